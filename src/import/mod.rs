@@ -1,0 +1,1 @@
+//! Importers: existing outlines -> X-spline sources.

@@ -1,0 +1,1 @@
+//! TTF and OTF export.

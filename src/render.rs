@@ -1,0 +1,1 @@
+//! Glyph sheets and text proofs (tiny-skia).

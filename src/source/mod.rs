@@ -1,0 +1,1 @@
+//! Sources: TOML text -> typed [`crate::model::Font`], with spans and diagnostics.

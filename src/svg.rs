@@ -1,0 +1,1 @@
+//! SVG glyph set and SVG font.
