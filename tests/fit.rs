@@ -1,0 +1,230 @@
+//! Cubic fitting against the true X-spline: two-sided distance by dense sampling.
+
+use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathEl, PathSeg, Point, Shape};
+use proptest::prelude::*;
+use xglyph::fit::fit_contour;
+use xglyph::orient::orient_contours;
+use xglyph::xspline::{ControlPoint, XSpline};
+
+/// Distance from `p` to the nearest segment of `path`.
+fn dist_to_path(path: &BezPath, p: Point) -> f64 {
+    path.segments()
+        .map(|s| s.nearest(p, 1e-9).distance_sq.sqrt())
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Two-sided sampled distance: 200 samples per X-spline segment against the path, and
+/// 200 samples per path segment against a dense polyline of the true curve refined by
+/// Newton on the curve parameter.
+fn hausdorff(spline: &XSpline, path: &BezPath) -> f64 {
+    let n = spline.segment_count();
+    let dense: Vec<(f64, Point)> = (0..n * 200)
+        .map(|i| {
+            let t = i as f64 / 200.0;
+            (t, spline.eval(t))
+        })
+        .collect();
+    let gap = dense
+        .windows(2)
+        .map(|w| w[0].1.distance(w[1].1))
+        .fold(0.0, f64::max);
+    let mut err: f64 = 0.0;
+    for (_, p) in &dense {
+        err = err.max(dist_to_path(path, *p));
+    }
+    for seg in path.segments() {
+        for i in 0..=200 {
+            let q = seg.eval(i as f64 / 200.0);
+            err = err.max(dist_to_curve(spline, &dense, gap, q));
+        }
+    }
+    err
+}
+
+/// Distance from `q` to the true curve: around every dense sample within one sample
+/// gap of the nearest sample's distance (loops and crossings have several branches), a nested scan of
+/// the curve parameter (3 levels of 20 steps; no Newton, which can jump between branches).
+fn dist_to_curve(spline: &XSpline, dense: &[(f64, Point)], gap: f64, q: Point) -> f64 {
+    let nearest = dense
+        .iter()
+        .map(|(_, p)| p.distance(q))
+        .fold(f64::INFINITY, f64::min);
+    // A branch's nearest sample is at most one sample gap farther than its nearest point.
+    let mut best = nearest;
+    for (t0, p) in dense {
+        if p.distance(q) > nearest + gap {
+            continue;
+        }
+        let (mut centre, mut half) = (*t0, 1.0 / 200.0);
+        for _ in 0..3 {
+            let mut local = (centre, f64::INFINITY);
+            for k in 0..=20 {
+                let t = centre - half + 2.0 * half * k as f64 / 20.0;
+                let d = spline.eval(t).distance(q);
+                if d < local.1 {
+                    local = (t, d);
+                }
+            }
+            best = best.min(local.1);
+            centre = local.0;
+            half /= 10.0;
+        }
+    }
+    best
+}
+
+fn spline(points: &[(f64, f64, f64)]) -> XSpline {
+    XSpline::new(
+        points
+            .iter()
+            .map(|&(x, y, s)| ControlPoint::new(x, y, s))
+            .collect(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn glyph_like_contour_within_tolerance_with_exact_corners_and_lines() {
+    // A "D"-like contour: a straight stem (two sharp pairs) and a round bowl.
+    let xs = spline(&[
+        (0.0, 0.0, 0.0),
+        (300.0, 0.0, -1.0),
+        (520.0, 350.0, -1.0),
+        (300.0, 700.0, -1.0),
+        (0.0, 700.0, 0.0),
+    ]);
+    let fit = fit_contour(&xs, 0.5);
+    let err = hausdorff(&xs, &fit.path);
+    assert!(err <= 0.5, "measured {err}");
+    assert!(fit.max_error <= 0.5);
+    let els = fit.path.elements();
+    assert_eq!(els[0], PathEl::MoveTo(Point::new(0.0, 0.0)));
+    assert_eq!(*els.last().unwrap(), PathEl::ClosePath);
+    // The stem (P4 -> P0) is a line ending exactly at the corner.
+    assert_eq!(els[els.len() - 2], PathEl::LineTo(Point::new(0.0, 0.0)));
+    // Every sharp point is an on-curve point.
+    let ends: Vec<Point> = fit.path.segments().map(|s| s.end()).collect();
+    assert!(ends.contains(&Point::new(0.0, 700.0)));
+}
+
+#[test]
+fn joins_inside_smooth_stretches_are_g1() {
+    let xs = spline(&[
+        (0.0, 0.0, -1.0),
+        (400.0, -50.0, 1.0),
+        (600.0, 300.0, -0.5),
+        (350.0, 650.0, 0.5),
+        (-100.0, 400.0, -1.0),
+    ]);
+    let fit = fit_contour(&xs, 0.2);
+    let segs: Vec<PathSeg> = fit.path.segments().collect();
+    assert!(segs.len() > 5, "{} segments", segs.len());
+    for w in 0..segs.len() {
+        let (a, b) = (segs[w], segs[(w + 1) % segs.len()]);
+        let (PathSeg::Cubic(a), PathSeg::Cubic(b)) = (a, b) else {
+            panic!("expected cubics")
+        };
+        let ta = (a.p3 - a.p2).normalize();
+        let tb = (b.p1 - b.p0).normalize();
+        assert!(
+            ta.cross(tb).abs() < 1e-9 && ta.dot(tb) > 0.0,
+            "join {w}: {ta:?} vs {tb:?}"
+        );
+    }
+    assert!(hausdorff(&xs, &fit.path) <= 0.2);
+}
+
+#[test]
+fn corner_with_interpolating_neighbour_has_no_hook() {
+    // s = 0 next to s = -1: the departure tilts toward Q3; a fitted cubic must follow it.
+    let xs = spline(&[
+        (0.0, 0.0, 0.0),
+        (100.0, 0.0, -1.0),
+        (100.0, 100.0, 0.5),
+        (0.0, 100.0, -1.0),
+    ]);
+    let fit = fit_contour(&xs, 0.05);
+    assert!(hausdorff(&xs, &fit.path) <= 0.05);
+    let PathSeg::Cubic(first) = fit.path.segments().next().unwrap() else {
+        panic!()
+    };
+    let dir = (first.p1 - first.p0).normalize();
+    assert!((dir - xs.segment(0).start_direction()).hypot() < 1e-12);
+}
+
+#[test]
+fn orientation_outer_ccw_counter_cw() {
+    let outer = spline(&[
+        (280.0, -12.0, -1.0),
+        (40.0, 250.0, -1.0),
+        (280.0, 512.0, -1.0),
+        (520.0, 250.0, -1.0),
+    ]); // clockwise as written
+    let inner = spline(&[
+        (280.0, 78.0, -1.0),
+        (430.0, 250.0, -1.0),
+        (280.0, 422.0, -1.0),
+        (130.0, 250.0, -1.0),
+    ]); // ccw as written
+    let path = orient_contours(vec![
+        fit_contour(&outer, 0.5).path,
+        fit_contour(&inner, 0.5).path,
+    ]);
+    let areas: Vec<f64> = subpaths(&path).iter().map(|p| p.area()).collect();
+    assert_eq!(areas.len(), 2);
+    assert!(areas[0] > 0.0 && areas[1] < 0.0, "{areas:?}");
+    assert_eq!(
+        path.winding(Point::new(280.0, 250.0)),
+        0,
+        "counter is a hole under nonzero"
+    );
+    assert_eq!(path.winding(Point::new(280.0, 30.0)).abs(), 1);
+}
+
+fn subpaths(path: &BezPath) -> Vec<BezPath> {
+    let mut out: Vec<BezPath> = Vec::new();
+    for el in path.elements() {
+        if let PathEl::MoveTo(_) = el {
+            out.push(BezPath::new());
+        }
+        out.last_mut().unwrap().push(*el);
+    }
+    out
+}
+
+fn shape_strategy() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        prop::sample::select(vec![-1.0, -0.5, 0.0, 0.5, 1.0]),
+        -1.0..=1.0f64,
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+
+    #[test]
+    fn random_contours_stay_within_tolerance(
+        raw in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64, shape_strategy()), 3..24),
+        scale_exp in -3i32..=5,
+        collinear in any::<bool>(),
+    ) {
+        let scale = 10f64.powi(scale_exp);
+        let mut pts: Vec<ControlPoint> = raw.iter().enumerate().map(|(i, &(x, y, s))| {
+            // Optionally squash onto a near-line to exercise near-collinear input.
+            let y = if collinear { y * 1e-3 + i as f64 * 1e-4 } else { y };
+            ControlPoint::new(x * scale, y * scale, s)
+        }).collect();
+        pts.dedup_by(|a, b| a.pos == b.pos);
+        prop_assume!(pts.len() >= 3 && pts[0].pos != pts[pts.len() - 1].pos);
+        let xs = XSpline::new(pts).unwrap();
+        let tol = 0.5 * scale / 1000.0;
+        let fit = fit_contour(&xs, tol);
+        for el in fit.path.elements() {
+            for p in el.end_point().into_iter() {
+                prop_assert!(p.x.is_finite() && p.y.is_finite());
+            }
+        }
+        let err = hausdorff(&xs, &fit.path);
+        prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
+    }
+}
