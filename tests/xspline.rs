@@ -13,16 +13,12 @@ fn square(s: [f64; 4]) -> XSpline {
     .unwrap()
 }
 
-fn close(a: Point, b: (f64, f64)) {
-    assert!(
-        (a.x - b.0).abs() < 1e-9 && (a.y - b.1).abs() < 1e-9,
-        "{a:?} != {b:?}"
-    );
-}
+/// Shapes `s0..s3` and the expected segment-0 points at t = 0, 1/4, 1/2, 3/4.
+type SquareRow = ([f64; 4], [(f64, f64); 4]);
 
 #[test]
 fn square_golden_vectors() {
-    let table: [([f64; 4], [(f64, f64); 4]); 7] = [
+    let table: [SquareRow; 7] = [
         (
             [1.0; 4],
             [

