@@ -118,12 +118,12 @@ pub struct StretchSource<'a> {
 }
 
 impl ParamCurveFit for StretchSource<'_> {
-    fn sample_pt_tangent(&self, t: f64, sign: f64) -> CurveFitSample {
+    fn sample_pt_tangent(&self, t: f64, _sign: f64) -> CurveFitSample {
         let big_t = self.start + (self.end - self.start) * t;
         let p = self.spline.eval(big_t);
-        // Exact one-sided directions at the ends (corners have zero speed there).
+        // Exact one-sided directions at the ends (corners have zero speed there); inside a
+        // stretch there is no discontinuity, so `sign` is not needed.
         let dir = direction(self.spline, big_t, self.start, self.end);
-        let _ = sign;
         CurveFitSample { p, tangent: dir }
     }
 
