@@ -113,7 +113,10 @@ fn check_keys(ctx: &mut Ctx<'_>, table: &DeTable<'_>, allowed: &[&str]) {
 }
 
 fn get<'t, 'i>(table: &'t DeTable<'i>, key: &str) -> Option<&'t Spanned<DeValue<'i>>> {
-    table.iter().find(|(k, _)| k.get_ref() == key).map(|(_, v)| v)
+    table
+        .iter()
+        .find(|(k, _)| k.get_ref() == key)
+        .map(|(_, v)| v)
 }
 
 /// A number (integer or float) from a value, or `None` with a diagnostic.
@@ -121,7 +124,9 @@ fn number(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, what: &str) -> Option<f64
     let x = match v.get_ref() {
         DeValue::Integer(i) => {
             let digits = i.as_str().replace('_', "");
-            i64::from_str_radix(&digits, i.radix()).ok().map(|n| n as f64)
+            i64::from_str_radix(&digits, i.radix())
+                .ok()
+                .map(|n| n as f64)
         }
         DeValue::Float(f) => {
             let s = f.as_str().replace('_', "");
@@ -610,7 +615,9 @@ fn load_kerning(
                 }
             };
             match (left, right, value) {
-                (Some(left), Some(right), Some(value)) => pairs.push(KernPair { left, right, value }),
+                (Some(left), Some(right), Some(value)) => {
+                    pairs.push(KernPair { left, right, value })
+                }
                 _ => ok = false,
             }
         }
