@@ -14,6 +14,7 @@ pub mod commands;
 pub mod fit;
 pub mod import;
 pub mod model;
+pub mod names;
 pub mod orient;
 pub mod otf;
 pub mod outline;
