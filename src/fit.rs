@@ -564,7 +564,7 @@ fn measure(samples: &Samples, cubic: &CubicBez) -> f64 {
         let point = Poly::new(&samples.piece(piece)).eval(s).to_point();
         poly.project(point, start).1
     };
-    let mut err = refine_peaks(&near, |i, s| curve_at(i, s));
+    let mut err = refine_peaks(&near, curve_at);
     // Cubic to curve. `rising` makes the samples' cubic parameters monotone for bracketing.
     let mut rising = u.clone();
     for i in 1..n {
