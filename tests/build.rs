@@ -91,7 +91,8 @@ fn build_writes_every_output_and_a_summary() {
     let sheet = tiny_skia::Pixmap::decode_png(&written["sheet.png"]).unwrap();
     assert_eq!((sheet.width(), sheet.height()), (1280, 160));
     let proof = tiny_skia::Pixmap::decode_png(&written["proof.png"]).unwrap();
-    assert_eq!(proof.width(), 1200);
+    // As wide as the longest line at 72 px: "AV Vo" is 2560 units = 184.32 px, plus 2 x 16.
+    assert_eq!(proof.width(), 217);
 }
 
 #[test]

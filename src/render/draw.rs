@@ -92,6 +92,19 @@ pub fn fill_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: Col
     }
 }
 
+/// Strokes `path` (font units) at `at` with a 1 px line (the width does not scale).
+pub fn stroke_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: Color) {
+    let in_px = kurbo::Affine::new([at.scale, 0.0, 0.0, -at.scale, at.origin_x, at.baseline_y])
+        * path.clone();
+    if let Some(p) = skia_path(&in_px) {
+        let stroke = Stroke {
+            width: 1.0,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&p, &paint(color), &stroke, Transform::identity(), None);
+    }
+}
+
 /// Strokes a polyline given in pixels, `width` px wide; `closed` joins the ends.
 pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32, color: Color) {
     let mut pb = PathBuilder::new();

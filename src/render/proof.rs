@@ -2,7 +2,8 @@
 //!
 //! Black text on white, with the font's advances and kerning ([`crate::layout`]).
 //! Sizes are pixels per em (`units_per_em` font units). Each size sets every line of the
-//! text; lines longer than the image are cut at the right edge (no wrapping).
+//! text; the image is as wide as the longest line (plus margins) up to a maximum width,
+//! and lines longer than that are cut at the right edge (no wrapping).
 
 use tiny_skia::{Color, Pixmap};
 
@@ -19,7 +20,8 @@ pub struct ProofOptions {
     pub text: Option<String>,
     /// Pixels per em, one block per size, top to bottom (each 1..=1000).
     pub sizes: Vec<f64>,
-    /// Image width, pixels.
+    /// Largest image width, pixels; the image is as wide as its longest line plus margins,
+    /// up to this (longer lines are cut).
     pub width_px: u32,
 }
 
@@ -105,11 +107,16 @@ pub fn render_proof(
     let info = &font.info;
     let upm = f64::from(info.units_per_em);
     let em = info.ascender - info.descender;
-    // Pass 1: baselines and the image height.
+    let layout = Layout::new(font);
+    let laid: Vec<_> = lines.iter().map(|l| layout.line(l)).collect();
+    let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
+    // Pass 1: baselines, the image height and width.
     let mut y = MARGIN;
     let mut blocks = Vec::new();
+    let mut width = 2.0 * MARGIN + 1.0;
     for &size in &opts.sizes {
         let scale = size / upm;
+        width = width.max((2.0 * MARGIN + widest * scale).ceil());
         let leading = (em * scale * 1.2).ceil();
         let mut baselines = Vec::new();
         for _ in &lines {
@@ -120,15 +127,14 @@ pub fn render_proof(
         y += (size * 0.5).round();
     }
     let height = (y + MARGIN).ceil() as u64;
-    let mut img = white_pixmap(u64::from(opts.width_px), height)?;
-    let layout = Layout::new(font);
+    let width = (width as u64).min(u64::from(opts.width_px));
+    let mut img = white_pixmap(width, height)?;
     let fallback = fallback_box(info);
     for (scale, baselines) in blocks {
-        for (text_line, baseline) in lines.iter().zip(baselines) {
-            let line = layout.line(text_line);
+        for (line, baseline) in laid.iter().zip(baselines) {
             for placed in &line.glyphs {
                 let origin_x = MARGIN + placed.x * scale;
-                if origin_x > f64::from(opts.width_px) {
+                if origin_x > width as f64 {
                     break;
                 }
                 let at = Placement {

@@ -10,7 +10,7 @@
 use kurbo::Point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
-use super::draw::{fill_glyph, line_px, rgb, Placement};
+use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
 use super::{overlay, white_pixmap, RenderError};
 use crate::layout::{fallback_box, Layout};
 use crate::model::Font;
@@ -47,6 +47,8 @@ const GRID: [u8; 3] = [215, 215, 215];
 const LABEL: [u8; 3] = [70, 70, 70];
 /// The glyph in overlay mode: grey, so the points on top stay readable.
 const GLYPH_UNDER_OVERLAY: [u8; 3] = [185, 185, 185];
+/// The exported Bézier outline in overlay mode.
+const OUTLINE_UNDER_OVERLAY: [u8; 3] = [60, 60, 60];
 
 /// Glyph indices in sheet order: by lowest code point, then unencoded glyphs by name.
 pub fn sheet_order(font: &Font) -> Vec<usize> {
@@ -198,6 +200,7 @@ fn render_cell(
     };
     fill_glyph(&mut img, &outline.path, at, ink);
     if opts.overlay {
+        stroke_glyph(&mut img, &outline.path, at, rgb(OUTLINE_UNDER_OVERLAY));
         overlay::draw(&mut img, font, index, &outline.path, at, geo.cell);
     }
     draw_label(&mut img, font, outlines, layout, geo, index);
