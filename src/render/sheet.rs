@@ -2,12 +2,13 @@
 //!
 //! Cells are square, `cell_px` wide, laid out `columns` per row, in code-point order
 //! (glyphs without a code point after, by name). Every cell uses one scale, so glyphs
-//! compare by size: the em (ascender to descender) fills the glyph area, narrowed if the
-//! widest advance would not fit. Ink beyond the cell is clipped. The label (glyph name and
+//! compare by size: the em (ascender to descender, stretched to the highest and lowest ink
+//! of the font, e.g. accents on capitals) fills the glyph area, narrowed if the widest
+//! advance would not fit. Ink beyond the cell sideways is clipped. The label (glyph name and
 //! `U+XXXX`) is set in the font's own glyphs (`.notdef` or a box for characters it lacks),
 //! shrunk to fit the cell width.
 
-use kurbo::Point;
+use kurbo::{Point, Shape};
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
@@ -101,7 +102,7 @@ pub fn render_sheet(
     let rows = n.div_ceil(columns);
     let cell = u64::from(opts.cell_px);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
-    let geometry = CellGeometry::new(font, opts.cell_px);
+    let geometry = CellGeometry::new(font, outlines, opts.cell_px);
     let layout = Layout::new(font);
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
@@ -131,11 +132,17 @@ struct CellGeometry {
 }
 
 impl CellGeometry {
-    fn new(font: &Font, cell_px: u32) -> Self {
+    fn new(font: &Font, outlines: &FontOutlines, cell_px: u32) -> Self {
         let cell = f64::from(cell_px);
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
-        let em = font.info.ascender - font.info.descender;
+        let (mut high, mut low) = (font.info.ascender, font.info.descender);
+        for g in outlines.glyphs.iter().filter(|g| !g.path.elements().is_empty()) {
+            let ink = g.path.bounding_box();
+            high = high.max(ink.y1);
+            low = low.min(ink.y0);
+        }
+        let em = high - low;
         let widest = font.glyphs.iter().map(|g| g.advance).fold(em, f64::max);
         let top = pad + label_em + pad;
         let height = cell - top - pad;
@@ -145,7 +152,7 @@ impl CellGeometry {
             pad,
             label_em,
             scale,
-            baseline: top + font.info.ascender * scale,
+            baseline: top + high * scale,
         }
     }
 }
