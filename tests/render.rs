@@ -193,6 +193,53 @@ fn sheet_order_and_default_text() {
 }
 
 #[test]
+fn a_tall_sheet_gets_more_columns() {
+    let (mut font, _) = mini();
+    // 400 glyphs of 2048 px: one column would be 819,200 px tall; 14 rows fit in 30,000.
+    let template = font.glyph("A").unwrap().clone();
+    font.glyphs = (0..400)
+        .map(|i| {
+            let mut g = template.clone();
+            g.name = format!("g{i:03}");
+            g.unicodes = vec![];
+            g
+        })
+        .collect();
+    font.kerning.clear();
+    let outlines = outline_font(&font, 0.5).unwrap();
+    let err = render_sheet(
+        &font,
+        &outlines,
+        &SheetOptions {
+            cell_px: 2048,
+            columns: 1,
+            overlay: false,
+        },
+    )
+    .unwrap_err();
+    // 400 / 14 = 29 columns: too wide as well, so a clear size error instead of a panic.
+    assert_eq!(
+        err,
+        RenderError::Size {
+            width: 29 * 2048,
+            height: 14 * 2048
+        }
+    );
+    let img = render_sheet(
+        &font,
+        &outlines,
+        &SheetOptions {
+            cell_px: 256,
+            columns: 1,
+            overlay: false,
+        },
+    )
+    .unwrap();
+    // 117 rows of 256 px fit in 30,000 px: 4 columns of 100 rows.
+    assert_eq!((img.width(), img.height()), (4 * 256, 100 * 256));
+}
+
+#[test]
 fn bad_options_are_errors_not_panics() {
     let (font, outlines) = mini();
     let sheet = |cell_px, columns| {

@@ -12,7 +12,7 @@ use kurbo::{Point, Shape};
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
-use super::{overlay, white_pixmap, RenderError};
+use super::{overlay, white_pixmap, RenderError, MAX_SIDE};
 use crate::layout::{fallback_box, Layout};
 use crate::model::Font;
 use crate::outline::FontOutlines;
@@ -22,7 +22,8 @@ use crate::outline::FontOutlines;
 pub struct SheetOptions {
     /// Side of a square cell, pixels (32..=2048).
     pub cell_px: u32,
-    /// Cells per row (at least 1; fewer when the font has fewer glyphs).
+    /// Cells per row (at least 1; fewer when the font has fewer glyphs, more when the sheet
+    /// would be taller than [`MAX_SIDE`](super::MAX_SIDE)).
     pub columns: u32,
     /// Draw the X-spline control polygons and points and the Bézier on-curve points.
     pub overlay: bool,
@@ -98,9 +99,11 @@ pub fn render_sheet(
         return Err(RenderError::NoGlyphs);
     }
     let n = order.len() as u64;
-    let columns = u64::from(opts.columns).min(n);
-    let rows = n.div_ceil(columns);
     let cell = u64::from(opts.cell_px);
+    // More columns than asked when the rows would be taller than an image can be.
+    let max_rows = u64::from(MAX_SIDE) / cell;
+    let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
+    let rows = n.div_ceil(columns);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
     let geometry = CellGeometry::new(font, outlines, opts.cell_px);
     let layout = Layout::new(font);
@@ -137,7 +140,11 @@ impl CellGeometry {
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
         let (mut high, mut low) = (font.info.ascender, font.info.descender);
-        for g in outlines.glyphs.iter().filter(|g| !g.path.elements().is_empty()) {
+        for g in outlines
+            .glyphs
+            .iter()
+            .filter(|g| !g.path.elements().is_empty())
+        {
             let ink = g.path.bounding_box();
             high = high.max(ink.y1);
             low = low.min(ink.y0);
