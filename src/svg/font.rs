@@ -157,3 +157,17 @@ pub fn svg_font(font: &Font, outlines: &FontOutlines) -> String {
     s.push_str("</font>\n</defs>\n</svg>\n");
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_and_slants_from_style_names() {
+        assert_eq!(weight_and_style("Regular"), (400, "normal"));
+        assert_eq!(weight_and_style("Bold Italic"), (700, "italic"));
+        assert_eq!(weight_and_style("Semi-Bold"), (600, "normal"));
+        assert_eq!(weight_and_style("ExtraLight Oblique"), (200, "oblique"));
+        assert_eq!(weight_and_style("Black"), (900, "normal"));
+    }
+}

@@ -41,7 +41,7 @@ pub fn horizontal_extent(info: &FontInfo, glyph: &GlyphOutline) -> (f64, f64) {
 pub fn glyph_svg(info: &FontInfo, glyph: &GlyphOutline) -> String {
     let (x, width) = horizontal_extent(info, glyph);
     let top = -info.ascender.ceil();
-    let height = info.descender.floor().abs() - top;
+    let height = -info.descender.floor() - top;
     let view_box = format!("{} {} {} {}", num(x), num(top), num(width), num(height));
     let d = path_data(&glyph.path, Affine::FLIP_Y);
     let mut s = String::new();
