@@ -19,7 +19,8 @@ pub enum Only {
 Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png.
 
 Sheet guides: grey ascender/descender, blue cap height, green x-height, dark baseline,
-red advance box. Overlay: blue-grey X-spline control polygon; control points as red
+red advance box. Overlay: grey glyph with its exported outline as a dark line, the
+blue-grey X-spline control polygon; control points as red
 squares (sharp, s = 0), blue circles (approximating, s > 0), green diamonds
 (interpolating, s < 0); orange dots on the on-curve points of the exported Béziers.
 
@@ -50,9 +51,9 @@ pub struct RenderArgs {
     #[arg(long)]
     pub text: Option<String>,
     /// Proof sizes, pixels per em, comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = ProofOptions::default().sizes)]
+    #[arg(long, value_delimiter = ',', default_value = "12,16,24,36,48,72")]
     pub sizes: Vec<f64>,
-    /// Proof width, pixels.
+    /// Largest proof width, pixels (the image fits its longest line up to this).
     #[arg(long, default_value_t = ProofOptions::default().width_px)]
     pub width: u32,
     /// Fitting tolerance in font units; overrides `tolerance` in font.toml.
@@ -96,4 +97,25 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         println!("wrote {}", args.out.join(path).display());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+    use crate::cli::{Cli, Command};
+
+    #[test]
+    fn defaults_match_the_library_defaults() {
+        let cli = Cli::try_parse_from(["xglyph", "render"]).unwrap();
+        let Command::Render(args) = cli.command else {
+            panic!("not the render command");
+        };
+        let (sheet, proof) = (SheetOptions::default(), ProofOptions::default());
+        assert_eq!(args.sizes, proof.sizes);
+        assert_eq!(args.width, proof.width_px);
+        assert_eq!((args.cell, args.columns), (sheet.cell_px, sheet.columns));
+        assert_eq!(args.font_dir, PathBuf::from("glyphs"));
+    }
 }
