@@ -157,7 +157,12 @@ fn diagnostics(dir: &Path) -> Vec<String> {
     diags
         .iter()
         .map(|d| {
-            let rel = d.path.strip_prefix(dir).unwrap_or(&d.path).display().to_string();
+            let rel = d
+                .path
+                .strip_prefix(dir)
+                .unwrap_or(&d.path)
+                .display()
+                .to_string();
             let rel = if rel.is_empty() { ".".to_string() } else { rel };
             let place = if d.has_position() {
                 format!("{rel}:{}:{}", d.line, d.col)
@@ -212,14 +217,24 @@ fn check_binary_prints_the_same_and_exits_1_on_errors() {
         assert_eq!(out.status.code(), Some(want_code), "case {case}");
         for line in *expected {
             let (rel, rest) = line.split_once(':').expect("file: prefix");
-            let path = if rel == "." { dir.clone() } else { dir.join(rel) };
-            let full = format!("{}:{rest}", path.display())
-                .replace("DIR", &dir.display().to_string());
-            assert!(stdout.contains(&full), "case {case}: missing {full}\n{stdout}");
+            let path = if rel == "." {
+                dir.clone()
+            } else {
+                dir.join(rel)
+            };
+            let full =
+                format!("{}:{rest}", path.display()).replace("DIR", &dir.display().to_string());
+            assert!(
+                stdout.contains(&full),
+                "case {case}: missing {full}\n{stdout}"
+            );
         }
         let warnings = expected.len() - errors;
         let summary = format!("{errors} errors, {warnings} warnings");
-        assert!(stdout.ends_with(&format!("{summary}\n")), "case {case}: {stdout}");
+        assert!(
+            stdout.ends_with(&format!("{summary}\n")),
+            "case {case}: {stdout}"
+        );
     }
 }
 
@@ -257,7 +272,11 @@ fn valid_font_loads() {
         VALID_GLYPH.replace("[[component]]\nbase = \"o\"\noffset = [1, 2.5]\n", ""),
     )
     .expect("write");
-    std::fs::write(dir.join("_notdef.toml"), "name = \".notdef\"\nadvance = 500\n").expect("write");
+    std::fs::write(
+        dir.join("_notdef.toml"),
+        "name = \".notdef\"\nadvance = 500\n",
+    )
+    .expect("write");
     std::fs::write(dir.join(".o.toml.swp.toml"), "not = [toml").expect("write");
     std::fs::write(dir.join("kerning.toml"), VALID_KERNING).expect("write");
     let result = load_font(&dir);
@@ -343,7 +362,11 @@ fn random_mutations_never_panic() {
     let dir = std::env::temp_dir().join(format!("xglyph-source-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("mkdir");
     std::fs::write(dir.join("font.toml"), VALID_FONT).expect("write");
-    std::fs::write(dir.join("_notdef.toml"), "name = \".notdef\"\nadvance = 500\n").expect("write");
+    std::fs::write(
+        dir.join("_notdef.toml"),
+        "name = \".notdef\"\nadvance = 500\n",
+    )
+    .expect("write");
     for i in 0..200 {
         std::fs::write(dir.join("o.toml"), rng.mutate(VALID_GLYPH)).expect("write");
         let kerning = if i % 2 == 0 {

@@ -2,8 +2,8 @@
 //! [`super::emit`], each glyph staying in its own file.
 //!
 //! Comments: the canonical text is generated from the model, which has no comments. A
-//! file's leading comment block (the lines before the first key that are blank or start
-//! with `#`) is kept verbatim above the canonical text; any other comment would be lost,
+//! file's leading comment block (the lines before the first key, when they hold a comment)
+//! is kept verbatim above the canonical text; any other comment would be lost,
 //! and [`Rewrite::dropped_comments`] says where they are, so that `fmt` can refuse unless
 //! forced. Comments are found with a small scanner rather than a TOML editing crate: the
 //! text has already parsed, so only strings need to be skipped.
@@ -17,6 +17,7 @@ use super::load::{LoadedFont, SourceKind};
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rewrite {
     pub path: PathBuf,
+    pub kind: SourceKind,
     pub old: String,
     pub new: String,
     /// Byte offsets (in `old`) of the comments the rewrite drops.
@@ -51,6 +52,7 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
             new.push_str(&body);
             Some(Rewrite {
                 path: file.path.clone(),
+                kind: file.kind.clone(),
                 old: file.text.clone(),
                 new,
                 dropped_comments: comments.into_iter().filter(|&c| c >= header_end).collect(),
@@ -59,21 +61,25 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
         .collect()
 }
 
-/// Length of the leading comment block: whole lines up to and including the last comment
-/// line before the first line that is neither blank nor a comment (0 when none).
+/// Length of the leading comment block: every line before the first line that is neither
+/// blank nor a comment, blank lines included (0 when those lines hold no comment).
 fn header_len(text: &str, comments: &[usize]) -> usize {
-    let mut end = 0;
     let mut pos = 0;
+    let mut any_comment = false;
     for line in text.split_inclusive('\n') {
         let trimmed = line.trim_start();
         if trimmed.starts_with('#') && comments.contains(&(pos + line.len() - trimmed.len())) {
-            end = pos + line.len();
+            any_comment = true;
         } else if !trimmed.trim_end().is_empty() {
             break;
         }
         pos += line.len();
     }
-    end
+    if any_comment {
+        pos
+    } else {
+        0
+    }
 }
 
 /// Byte offsets of every `#` that starts a comment in valid TOML `text`.
@@ -147,7 +153,12 @@ mod tests {
         let comments = comment_offsets(text);
         assert_eq!(comments.len(), 3);
         assert_eq!(&text[..header_len(text, &comments)], "# one\n\n  # two\n");
-        assert_eq!(header_len("a = 1\n# late\n", &comment_offsets("a = 1\n# late\n")), 0);
+        let text = "# one\n\n\nname = 1\n";
+        assert_eq!(header_len(text, &comment_offsets(text)), 8);
+        assert_eq!(
+            header_len("a = 1\n# late\n", &comment_offsets("a = 1\n# late\n")),
+            0
+        );
         assert_eq!(header_len("\n\na = 1\n", &[]), 0);
     }
 }

@@ -64,13 +64,20 @@ mod tests {
     use super::*;
 
     fn pts(xy: &[(f64, f64)]) -> Vec<ControlPoint> {
-        xy.iter().map(|&(x, y)| ControlPoint::new(x, y, 0.0)).collect()
+        xy.iter()
+            .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
+            .collect()
     }
 
     #[test]
     fn flat_contours() {
         assert!(is_flat(&pts(&[(0.0, 0.0), (100.0, 100.0), (50.0, 50.0)])));
-        assert!(is_flat(&pts(&[(0.1, 0.1), (0.3, 0.3), (0.7, 0.7), (0.2, 0.2)])));
+        assert!(is_flat(&pts(&[
+            (0.1, 0.1),
+            (0.3, 0.3),
+            (0.7, 0.7),
+            (0.2, 0.2)
+        ])));
         // 0.0005 units off a 1000-unit line is flat, 0.01 is not.
         assert!(is_flat(&pts(&[(0.0, 0.0), (1000.0, 0.0), (500.0, 0.0005)])));
         assert!(!is_flat(&pts(&[(0.0, 0.0), (1000.0, 0.0), (500.0, 0.01)])));

@@ -34,7 +34,10 @@ pub(super) struct GlyphSpans {
 /// glyph name when the file has no `name`. Only the checks that need this file alone run
 /// (see [`super::load_font`] for the rest). Returns the glyph and its warnings, or every
 /// diagnostic when there is an error.
-pub fn load_glyph_text(path: &Path, text: &str) -> Result<(Glyph, Vec<Diagnostic>), Vec<Diagnostic>> {
+pub fn load_glyph_text(
+    path: &Path,
+    text: &str,
+) -> Result<(Glyph, Vec<Diagnostic>), Vec<Diagnostic>> {
     let mut out = Vec::new();
     let glyph = load_glyph(&mut Ctx {
         path,
@@ -42,9 +45,7 @@ pub fn load_glyph_text(path: &Path, text: &str) -> Result<(Glyph, Vec<Diagnostic
         out: &mut out,
     });
     match glyph {
-        Some((glyph, _)) if !out.iter().any(|d| d.severity == Severity::Error) => {
-            Ok((glyph, out))
-        }
+        Some((glyph, _)) if !out.iter().any(|d| d.severity == Severity::Error) => Ok((glyph, out)),
         _ => Err(out),
     }
 }
@@ -204,7 +205,10 @@ fn load_contour(
             other => {
                 ctx.err(
                     p.span().start,
-                    format!("a point must be an array [x, y, s], found {}", type_name(other)),
+                    format!(
+                        "a point must be an array [x, y, s], found {}",
+                        type_name(other)
+                    ),
                 );
                 ok = false;
                 continue;
@@ -233,10 +237,7 @@ fn load_contour(
     if points.len() < 3 {
         ctx.err(
             v.span().start,
-            format!(
-                "a contour needs at least 3 points, found {}",
-                points.len()
-            ),
+            format!("a contour needs at least 3 points, found {}", points.len()),
         );
         return None;
     }
@@ -258,9 +259,7 @@ fn load_contour(
     if is_flat(&points) {
         ctx.err(
             v.span().start,
-            format!(
-                "contour encloses no area: its {n} points lie on one straight line"
-            ),
+            format!("contour encloses no area: its {n} points lie on one straight line"),
         );
         return None;
     }
@@ -295,7 +294,10 @@ fn load_component(
             other => {
                 ctx.err(
                     o.span().start,
-                    format!("`offset` must be an array [x, y], found {}", type_name(other)),
+                    format!(
+                        "`offset` must be an array [x, y], found {}",
+                        type_name(other)
+                    ),
                 );
                 None
             }

@@ -60,15 +60,22 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
         other => other.map(|(f, _)| f),
     };
 
-    let upm = require(ctx, t, "units_per_em", "units_per_em = 1000", at, &suggested)
-        .and_then(|v| Some((integer(ctx, v, "units_per_em")?, v.span().start)))
-        .and_then(|(n, off)| match u16::try_from(n) {
-            Ok(n) if (16..=16384).contains(&n) => Some(n),
-            _ => {
-                ctx.err(off, "`units_per_em` must be an integer in 16..16384");
-                None
-            }
-        });
+    let upm = require(
+        ctx,
+        t,
+        "units_per_em",
+        "units_per_em = 1000",
+        at,
+        &suggested,
+    )
+    .and_then(|v| Some((integer(ctx, v, "units_per_em")?, v.span().start)))
+    .and_then(|(n, off)| match u16::try_from(n) {
+        Ok(n) if (16..=16384).contains(&n) => Some(n),
+        _ => {
+            ctx.err(off, "`units_per_em` must be an integer in 16..16384");
+            None
+        }
+    });
 
     let metric = |ctx: &mut Ctx<'_>, key: &str, example: &str| {
         require(ctx, t, key, example, at, &suggested)

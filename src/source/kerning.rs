@@ -1,10 +1,33 @@
 //! `kerning.toml` -> [`KernPair`]s, checked against the glyph names.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
 
-use super::diagnostic::Ctx;
+use super::diagnostic::{Ctx, Diagnostic, Severity};
 use super::value::{check_keys, get, number, parse, require, string, tables};
 use crate::model::KernPair;
+
+/// Loads one `kerning.toml` from memory (`path` only labels diagnostics), with `names`
+/// the glyph names of the font: the pairs, or every diagnostic when there is an error.
+pub fn load_kerning_text(
+    path: &Path,
+    text: &str,
+    names: &BTreeSet<String>,
+) -> Result<Vec<KernPair>, Vec<Diagnostic>> {
+    let mut out = Vec::new();
+    let pairs = load_kerning(
+        &mut Ctx {
+            path,
+            text,
+            out: &mut out,
+        },
+        names,
+    );
+    match pairs {
+        Some(pairs) if !out.iter().any(|d| d.severity == Severity::Error) => Ok(pairs),
+        _ => Err(out),
+    }
+}
 
 /// Loads the pairs in file order. Every side must name an existing glyph; a pair written
 /// twice is an error (which value would win is not obvious), even with the same value.

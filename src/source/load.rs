@@ -145,7 +145,10 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     order.extend(glyph_paths.iter().cloned());
     order.push(kern_path.clone());
     out.sort_by_key(|d| {
-        let rank = order.iter().position(|p| *p == d.path).unwrap_or(order.len());
+        let rank = order
+            .iter()
+            .position(|p| *p == d.path)
+            .unwrap_or(order.len());
         (rank, d.line, d.col)
     });
 
@@ -264,10 +267,7 @@ fn check_unique(glyphs: &[GlyphFile], out: &mut Vec<Diagnostic>) {
         if let Some(prev) = names.get(name) {
             ctx.err(
                 g.spans.name,
-                format!(
-                    "duplicate glyph name `{name}` (also in {})",
-                    prev.display()
-                ),
+                format!("duplicate glyph name `{name}` (also in {})", prev.display()),
             );
         } else {
             names.insert(name, &g.path);

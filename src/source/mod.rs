@@ -20,4 +20,5 @@ pub use diagnostic::{line_col, Diagnostic, Severity};
 pub use geometry::{FAR_EMS, FLAT_RELATIVE};
 pub use glyph::load_glyph_text;
 pub use info::{load_info_text, DEFAULT_TOLERANCE};
+pub use kerning::load_kerning_text;
 pub use load::{load_font, load_sources, LoadedFont, SourceFile, SourceKind};

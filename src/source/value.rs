@@ -211,7 +211,10 @@ pub(super) fn tables<'t, 'i>(
             other => {
                 ctx.err(
                     item.span().start,
-                    format!("`{what}` entries must be tables, found {}", type_name(other)),
+                    format!(
+                        "`{what}` entries must be tables, found {}",
+                        type_name(other)
+                    ),
                 );
                 *all_ok = false;
             }
