@@ -72,11 +72,13 @@ const CASES: &[(&str, &[&str])] = &[
     (
         "glyph_several",
         &[
+            "g.toml:2:12: error: code point U+0041 is already mapped to `a`",
             "g.toml:2:18: error: invalid code point 0xDFFF: surrogates 0xD800..0xDFFF are not characters",
             "g.toml:4:1: error: unknown key `width`; expected one of `name`, `unicode`, `advance`, `contour`, `component`",
             "g.toml:7:31: error: s = -1.5 is outside [-1, 1]",
             "g.toml:7:49: error: `s` must be a finite number",
             "g.toml:10:46: error: a point must be [x, y, s], found 2 values",
+            "g.toml:13:8: error: component base `nothing` does not exist",
             "g.toml:14:1: error: unknown key `offst`; did you mean `offset`?",
         ],
     ),

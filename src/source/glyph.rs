@@ -45,12 +45,26 @@ pub fn load_glyph_text(
         out: &mut out,
     });
     match glyph {
-        Some((glyph, _)) if !out.iter().any(|d| d.severity == Severity::Error) => Ok((glyph, out)),
+        Some(loaded) if loaded.complete && !out.iter().any(|d| d.severity == Severity::Error) => {
+            Ok((loaded.glyph, out))
+        }
         _ => Err(out),
     }
 }
 
-pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<(Glyph, GlyphSpans)> {
+/// A glyph as far as it could be read.
+pub(super) struct Loaded {
+    /// When not `complete`: the parts that were well-formed (an unreadable advance is 0).
+    pub glyph: Glyph,
+    pub spans: GlyphSpans,
+    /// Whether the file had no error of its own.
+    pub complete: bool,
+}
+
+/// Reads a glyph file, reporting every problem of the file itself. `None` only when the
+/// file is not TOML or its name is unusable; otherwise the glyph, possibly incomplete, so
+/// that the checks across files still see its name, code points and components.
+pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     let stem = ctx
         .path
         .file_stem()
@@ -135,10 +149,10 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<(Glyph, GlyphSpans)> {
         }
     }
 
-    let (Some(name), Some(advance), true) = (name, advance, ok) else {
-        return None;
-    };
-    if contours.is_empty() && components.is_empty() && advance == 0.0 {
+    let name = name?;
+    let complete = ok && advance.is_some();
+    let advance = advance.unwrap_or(0.0);
+    if complete && contours.is_empty() && components.is_empty() && advance == 0.0 {
         ctx.warn(
             at,
             format!("glyph `{name}` is empty: no contours, no components and advance 0"),
@@ -151,7 +165,11 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<(Glyph, GlyphSpans)> {
         contours,
         components,
     };
-    Some((glyph, spans))
+    Some(Loaded {
+        glyph,
+        spans,
+        complete,
+    })
 }
 
 /// A Unicode scalar value, or `None` with a diagnostic saying why `n` is not one.

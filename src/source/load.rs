@@ -49,7 +49,9 @@ pub fn load_font(dir: &Path) -> Result<(Font, Vec<Diagnostic>), Vec<Diagnostic>>
 
 /// A loaded glyph with its file and where its parts were written.
 struct GlyphFile {
+    /// Possibly incomplete when `complete` is false (see [`load_glyph`]).
     glyph: Glyph,
+    complete: bool,
     spans: GlyphSpans,
     path: PathBuf,
     text: String,
@@ -107,12 +109,16 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             out: &mut out,
         });
         match loaded {
-            Some((glyph, spans)) => glyphs.push(GlyphFile {
-                glyph,
-                spans,
-                path: path.clone(),
-                text,
-            }),
+            Some(loaded) => {
+                glyph_failed |= !loaded.complete;
+                glyphs.push(GlyphFile {
+                    glyph: loaded.glyph,
+                    complete: loaded.complete,
+                    spans: loaded.spans,
+                    path: path.clone(),
+                    text,
+                });
+            }
             None => glyph_failed = true,
         }
     }
@@ -339,10 +345,10 @@ fn reaches(graph: &BTreeMap<&str, Vec<&str>>, from: &str, target: &str) -> bool 
 /// Warns about control points more than [`FAR_EMS`] ems outside the glyph box (`x` from
 /// 0 to the advance, `y` from descender to ascender): usually a typo such as `5000` for
 /// `500`. One warning per contour, at its first such point. Component offsets are not
-/// checked.
+/// checked, nor glyphs with errors of their own.
 fn check_far_points(glyphs: &[GlyphFile], info: &FontInfo, out: &mut Vec<Diagnostic>) {
     let limit = FAR_EMS * f64::from(info.units_per_em);
-    for g in glyphs {
+    for g in glyphs.iter().filter(|g| g.complete) {
         let bounds = glyph_box(g.glyph.advance, info.descender, info.ascender);
         let mut ctx = Ctx {
             path: &g.path,
