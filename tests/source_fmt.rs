@@ -255,3 +255,19 @@ fn check_json_lists_diagnostics_and_counts() {
     assert_eq!(doc["diagnostics"][0]["line"], 6);
     assert_eq!(doc["diagnostics"][0]["column"], 3);
 }
+
+#[test]
+fn crlf_files_get_lf_line_ends() {
+    let dir = copy("tests/fixtures/messy", "crlf");
+    let crlf = "# the space\r\n\r\nname = 'space'\r\nunicode = 32\r\nadvance = 260\r\n";
+    std::fs::write(dir.join("space.toml"), crlf).expect("write");
+    let (before, _) = load_font(&dir).expect("loads");
+    let out = xglyph(&["fmt"], &dir);
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        snapshot(&dir)["space.toml"],
+        "# the space\n\nname = \"space\"\nunicode = 0x0020\nadvance = 260\n"
+    );
+    assert_eq!(load_font(&dir).expect("loads").0, before);
+    std::fs::remove_dir_all(&dir).expect("cleanup");
+}

@@ -45,7 +45,8 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
             };
             let comments = comment_offsets(&file.text);
             let header_end = header_len(&file.text, &comments);
-            let mut new = file.text[..header_end].to_string();
+            // Canonical line ends are `\n`, in the kept header too.
+            let mut new = file.text[..header_end].replace("\r\n", "\n");
             if !new.is_empty() && !new.ends_with('\n') && !body.is_empty() {
                 new.push('\n');
             }
