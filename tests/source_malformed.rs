@@ -116,6 +116,10 @@ const CASES: &[(&str, &[&str])] = &[
     ("nonfinite", &["a.toml:4:28: error: `y` must be a finite number"]),
     ("not_utf8", &["a.toml:1:12: error: file is not valid UTF-8 (byte 0xE9); save it as UTF-8"]),
     ("offset_len", &["a.toml:8:10: error: `offset` must be [x, y], found 3 values"]),
+    (
+        "out_and_back",
+        &["a.toml:4:10: error: contour encloses no area: it runs out and back along itself"],
+    ),
     ("point_four", &["a.toml:4:35: error: a point must be [x, y, s], found 4 values"]),
     ("point_string", &["a.toml:4:23: error: `x` must be a number, found string"]),
     ("point_two", &["a.toml:4:22: error: a point must be [x, y, s], found 2 values"]),

@@ -10,7 +10,7 @@ use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
 use super::diagnostic::{Ctx, Diagnostic, Severity};
-use super::geometry::is_flat;
+use super::geometry::{no_area, NoArea};
 use super::value::{
     check_keys, first_offset, get, integer, number, parse, require, string, tables, type_name,
 };
@@ -274,11 +274,12 @@ fn load_contour(
     if coincident {
         return None;
     }
-    if is_flat(&points) {
-        ctx.err(
-            v.span().start,
-            format!("contour encloses no area: its {n} points lie on one straight line"),
-        );
+    if let Some(why) = no_area(&points) {
+        let how = match why {
+            NoArea::Collinear => format!("its {n} points lie on one straight line"),
+            NoArea::OutAndBack => "it runs out and back along itself".to_string(),
+        };
+        ctx.err(v.span().start, format!("contour encloses no area: {how}"));
         return None;
     }
     Some((points, offs))
