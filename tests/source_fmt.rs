@@ -55,6 +55,7 @@ fn listed(out: &Output, dir: &Path) -> Vec<String> {
 /// load -> fmt -> load gives the same model; the second fmt changes nothing.
 fn round_trip(fixture: &str, tag: &str, expect_changed: &[&str]) -> BTreeMap<String, String> {
     let dir = copy(fixture, tag);
+    let names_before: Vec<String> = snapshot(&dir).into_keys().collect();
     let (before, _) = load_font(&dir).unwrap_or_else(|d| panic!("{fixture}: {d:?}"));
     let out = xglyph(&["fmt"], &dir);
     assert_eq!(
@@ -68,6 +69,11 @@ fn round_trip(fixture: &str, tag: &str, expect_changed: &[&str]) -> BTreeMap<Str
     assert!(warnings.is_empty(), "{warnings:?}");
     assert_eq!(after, before);
     let formatted = snapshot(&dir);
+    let names_after: Vec<String> = formatted.keys().cloned().collect();
+    assert_eq!(
+        names_after, names_before,
+        "no file renamed, added or left behind"
+    );
     let again = xglyph(&["fmt"], &dir);
     assert_eq!(again.status.code(), Some(0));
     assert_eq!(again.stdout, b"", "second fmt rewrote files");
