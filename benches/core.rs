@@ -1,10 +1,11 @@
-//! Evaluation, flattening-free fitting per contour, and kurbo's two fitters side by side
+//! Evaluation, flattening, fitting per contour, and kurbo's two fitters side by side
 //! on the same corpus (tests/common/corpus.rs). Run: `cargo bench --bench core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use kurbo::{fit_to_bezpath, fit_to_bezpath_opt};
 use std::hint::black_box;
 use xglyph::fit::{fit_contour, stretches, Stretch, StretchSource};
+use xglyph::flatten::flatten;
 
 #[path = "../tests/common/corpus.rs"]
 mod corpus;
@@ -19,6 +20,14 @@ fn bench(c: &mut Criterion) {
             (0..1000).fold(0.0, |acc, i| {
                 acc + s.eval_deriv(black_box(i as f64 * 0.005)).1.x
             })
+        })
+    });
+    c.bench_function("flatten corpus (0.5 units)", |b| {
+        b.iter(|| {
+            splines
+                .iter()
+                .map(|s| flatten(black_box(s), TOLERANCE).points.len())
+                .sum::<usize>()
         })
     });
     let mut group = c.benchmark_group("fit corpus");

@@ -12,6 +12,7 @@
 pub mod cli;
 pub mod commands;
 pub mod fit;
+pub mod flatten;
 pub mod import;
 pub mod layout;
 pub mod model;
