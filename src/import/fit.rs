@@ -1,0 +1,654 @@
+//! The fitting problem in reverse: an original contour -> X-spline control points.
+//!
+//! Break points of the original (corners, ends of straight segments) become `s = 0` points
+//! fixed at their place; a straight edge between two of them needs nothing more. Each smooth
+//! stretch between break points (or a whole contour without break points) gets interior
+//! points of one shape value `s`, found like this:
+//!
+//! - For fixed shapes and a fixed curve parameter, an X-spline point is a fixed convex
+//!   combination of four control points, so the curve is linear in the positions. Samples
+//!   of the original, each assigned a curve parameter, make the best positions a linear
+//!   least-squares problem (small dense normal equations, x and y share the matrix).
+//! - Alternate: solve positions, re-assign parameters by projecting each sample onto the
+//!   new curve (Newton steps), a few rounds.
+//! - Measure the two-sided distance: original samples to the curve (their projections),
+//!   and dense curve samples to the original (kurbo `nearest` on the original segments).
+//! - Start from no interior point (a straight edge) or three (a loop); while the error is
+//!   above the target, split the curve segment with the largest error; then try removing
+//!   each point again while the target still holds.
+//! - Every stretch is fitted with each shape of [`SHAPES`]; the one with fewest points wins
+//!   (then the smaller error).
+//!
+//! Limits: the distances are measured by sampling (dense, but not a proof); the caller
+//! re-measures the final rounded contour independently ([`contour_error`]).
+
+use kurbo::{ParamCurve, ParamCurveArclen, ParamCurveNearest, PathSeg, Point, Rect, Shape, Vec2};
+
+use super::contour::{Cut, Piece, SourceContour};
+use crate::xspline::{weights_with_deriv, ControlPoint, XSpline};
+
+/// Shapes tried for the interior points of each smooth stretch: `-1` interpolates (the
+/// curve passes through the points), `1` approximates (B-spline-like, fewer points on
+/// long gentle curves).
+pub const SHAPES: [Shapes; 2] = [
+    Shapes { inner: 1.0, end: 1.0 },
+    Shapes { inner: -1.0, end: 1.0 },
+];
+
+/// The shape values of a stretch's interior points: `end` for the two points next to its
+/// sharp ends, `inner` for the others (a loop uses `inner` throughout). At a sharp end
+/// the curve leaves toward the next control point, which therefore sits on the original's
+/// tangent, off the curve: an approximating (`s > 0`) point fits there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shapes {
+    pub inner: f64,
+    pub end: f64,
+}
+/// Rounds of (solve positions, re-project parameters) after each change of the point set.
+const ROUNDS: usize = 20;
+/// Newton steps per projection.
+const NEWTON_STEPS: usize = 6;
+/// Curve samples per X-spline segment when measuring curve -> original.
+const CURVE_SAMPLES: usize = 16;
+
+/// A fitted contour: control points and the measured error during fitting.
+#[derive(Clone, Debug)]
+pub struct FittedContour {
+    pub points: Vec<ControlPoint>,
+    /// Largest sampled distance found while fitting (font units).
+    pub fit_error: f64,
+}
+
+/// Fits one original contour within `target` font units. `None` when the contour encloses
+/// nothing (fewer than three control points would remain).
+pub fn fit_contour(contour: &SourceContour, cut: &Cut, target: f64) -> Option<FittedContour> {
+    let spacing = (target * 4.0).max(1e-3);
+    let mut points = Vec::new();
+    let mut fit_error: f64 = 0.0;
+    match cut {
+        Cut::Loop(segs) => {
+            let chain = best_fit(segs, true, spacing, target);
+            fit_error = fit_error.max(chain.1);
+            points.extend(chain.0.pts.iter().zip(&chain.0.s).map(|(p, &s)| cp(*p, s)));
+        }
+        Cut::Pieces(pieces) => {
+            for piece in pieces {
+                match piece {
+                    Piece::Edge(line) => points.push(cp(line.p0, 0.0)),
+                    Piece::Smooth(segs) => {
+                        let (chain, err) = best_fit(segs, false, spacing, target);
+                        fit_error = fit_error.max(err);
+                        let n = chain.pts.len();
+                        points.extend(
+                            chain.pts[..n - 1]
+                                .iter()
+                                .zip(&chain.s)
+                                .map(|(p, &s)| cp(*p, s)),
+                        );
+                    }
+                }
+            }
+        }
+    }
+    let _ = contour;
+    (points.len() >= 3).then_some(FittedContour { points, fit_error })
+}
+
+fn cp(p: Point, s: f64) -> ControlPoint {
+    ControlPoint::new(p.x, p.y, s)
+}
+
+/// The fit with the fewest points over [`SHAPES`], and its error.
+fn best_fit(segs: &[PathSeg], closed: bool, spacing: f64, target: f64) -> (Chain, f64) {
+    let samples = Samples::new(segs, spacing, closed);
+    let mut best: Option<(Chain, f64)> = None;
+    for shape in SHAPES {
+        let cand = fit_stretch(segs, &samples, closed, shape, target);
+        let better = match &best {
+            None => true,
+            Some((b, e)) => {
+                let (ok_c, ok_b) = (cand.1 <= target, *e <= target);
+                (ok_c && !ok_b)
+                    || (ok_c == ok_b
+                        && (cand.0.pts.len() < b.pts.len()
+                            || (cand.0.pts.len() == b.pts.len() && cand.1 < *e)))
+            }
+        };
+        if better {
+            best = Some(cand);
+        }
+        // A straight edge cannot be beaten.
+        if let Some((b, e)) = &best {
+            if !closed && b.pts.len() == 2 && *e <= target {
+                break;
+            }
+        }
+    }
+    best.expect("SHAPES is not empty")
+}
+
+/// Dense samples of an original stretch with their arc-length fraction in `[0, 1]`.
+struct Samples {
+    pts: Vec<Point>,
+    /// Cumulative share in `[0, 1]` of arc length weighted by `1 + sqrt(|curvature| · L)`
+    /// (L the stretch length), so tight bends get more of the initial points.
+    budget: Vec<f64>,
+}
+
+impl Samples {
+    fn new(segs: &[PathSeg], spacing: f64, closed: bool) -> Self {
+        let mut pts = Vec::new();
+        for seg in segs {
+            let k = ((seg.arclen(1e-3) / spacing).ceil() as usize).clamp(6, 64);
+            pts.extend((0..k).map(|i| seg.eval(i as f64 / k as f64)));
+        }
+        let last = segs.last().map_or(Point::ZERO, |s| s.end());
+        pts.push(last);
+        let n = pts.len();
+        let length: f64 = pts.windows(2).map(|w| (w[1] - w[0]).hypot()).sum();
+        // Turning angle per unit length at each sample (wrapping on a loop).
+        let curvature = |k: usize| -> f64 {
+            let (prev, next) = match (k, closed) {
+                (0, false) => return 0.0,
+                (k, false) if k + 1 == n => return 0.0,
+                (0, true) => (pts[n - 2], pts[1]),
+                (k, true) if k + 1 == n => (pts[n - 2], pts[1]),
+                (k, _) => (pts[k - 1], pts[k + 1]),
+            };
+            let (a, b) = (pts[k] - prev, next - pts[k]);
+            let turn = super::contour::turn_degrees(a, b).to_radians();
+            turn / (0.5 * (a.hypot() + b.hypot())).max(1e-12)
+        };
+        let kappa: Vec<f64> = (0..n).map(curvature).collect();
+        let mut cum = vec![0.0];
+        for k in 1..n {
+            let d = (pts[k] - pts[k - 1]).hypot();
+            let density = 1.0 + (0.5 * (kappa[k] + kappa[k - 1]) * length).sqrt();
+            cum.push(cum[k - 1] + d * density);
+        }
+        let total = cum[n - 1].max(1e-12);
+        let mut budget: Vec<f64> = cum.iter().map(|c| c / total).collect();
+        if closed {
+            // The end repeats the start on a loop.
+            pts.pop();
+            budget.pop();
+        }
+        Samples { pts, budget }
+    }
+}
+
+/// An X-spline chain under construction: open (fixed `s = 0` ends) or a closed loop.
+#[derive(Clone, Debug)]
+struct Chain {
+    pts: Vec<Point>,
+    s: Vec<f64>,
+    closed: bool,
+    shapes: Shapes,
+}
+
+impl Chain {
+    fn nseg(&self) -> usize {
+        if self.closed {
+            self.pts.len()
+        } else {
+            self.pts.len() - 1
+        }
+    }
+
+    fn is_free(&self, i: usize) -> bool {
+        self.closed || (i != 0 && i + 1 != self.pts.len())
+    }
+
+    /// Segment and local parameter of a global parameter.
+    fn locate(&self, big_t: f64) -> (usize, f64) {
+        let ns = self.nseg();
+        let nf = ns as f64;
+        let tt = if self.closed {
+            big_t.rem_euclid(nf)
+        } else {
+            big_t.clamp(0.0, nf)
+        };
+        let j = (tt.floor() as usize).min(ns - 1);
+        (j, tt - j as f64)
+    }
+
+    fn window(&self, j: usize) -> [usize; 4] {
+        let n = self.pts.len();
+        if self.closed {
+            [(j + n - 1) % n, j, (j + 1) % n, (j + 2) % n]
+        } else {
+            [j.saturating_sub(1), j, j + 1, (j + 2).min(n - 1)]
+        }
+    }
+
+    /// Control point indices, normalised weights and their derivatives at `T`.
+    fn basis(&self, big_t: f64) -> ([usize; 4], [f64; 4], [f64; 4]) {
+        let (j, t) = self.locate(big_t);
+        let idx = self.window(j);
+        let n = self.pts.len();
+        let raw = weights_with_deriv(t, self.s[j], self.s[(j + 1) % n]);
+        let total: f64 = raw.iter().map(|a| a.0).sum();
+        let dtotal: f64 = raw.iter().map(|a| a.1).sum();
+        let mut w = [0.0; 4];
+        let mut dw = [0.0; 4];
+        for i in 0..4 {
+            w[i] = raw[i].0 / total;
+            dw[i] = (raw[i].1 - w[i] * dtotal) / total;
+        }
+        (idx, w, dw)
+    }
+
+    fn eval_deriv(&self, big_t: f64) -> (Point, Vec2) {
+        let (idx, w, dw) = self.basis(big_t);
+        let (mut p, mut d) = (Vec2::ZERO, Vec2::ZERO);
+        for i in 0..4 {
+            let q = self.pts[idx[i]].to_vec2();
+            p += w[i] * q;
+            d += dw[i] * q;
+        }
+        (p.to_point(), d)
+    }
+
+    fn eval(&self, big_t: f64) -> Point {
+        self.eval_deriv(big_t).0
+    }
+
+    /// Inserts a point in the middle of segment `j`; `ts` follow the curve.
+    fn insert(&mut self, j: usize, ts: &mut [f64]) {
+        let mid = self.eval(j as f64 + 0.5);
+        for big_t in ts.iter_mut() {
+            let (p, t) = self.locate(*big_t);
+            *big_t = match p.cmp(&j) {
+                std::cmp::Ordering::Less => p as f64 + t,
+                std::cmp::Ordering::Greater => p as f64 + 1.0 + t,
+                std::cmp::Ordering::Equal => j as f64 + 2.0 * t,
+            };
+        }
+        self.pts.insert(j + 1, mid);
+        self.s.insert(j + 1, 0.0);
+        self.assign_shapes();
+    }
+
+    /// Shapes by position: `s = 0` at the fixed ends of an open chain, the end shape next
+    /// to them, the inner shape elsewhere.
+    fn assign_shapes(&mut self) {
+        let n = self.pts.len();
+        for i in 0..n {
+            self.s[i] = if self.closed {
+                self.shapes.inner
+            } else if i == 0 || i + 1 == n {
+                0.0
+            } else if i == 1 || i + 2 == n {
+                self.shapes.end
+            } else {
+                self.shapes.inner
+            };
+        }
+    }
+
+    /// Removes point `i` (which must be free); `ts` follow the curve.
+    fn remove(&mut self, i: usize, ts: &mut [f64]) {
+        let n = self.pts.len();
+        let before = (i + n - 1) % n;
+        let new_index = |p: usize| if p > i { p - 1 } else { p };
+        for big_t in ts.iter_mut() {
+            let (p, t) = self.locate(*big_t);
+            *big_t = if p == before {
+                new_index(before) as f64 + 0.5 * t
+            } else if p == i {
+                new_index(before) as f64 + 0.5 + 0.5 * t
+            } else {
+                new_index(p) as f64 + t
+            };
+        }
+        self.pts.remove(i);
+        self.s.remove(i);
+        self.assign_shapes();
+    }
+}
+
+/// Fits one stretch with interior points of shape `shape`; the chain and its error.
+fn fit_stretch(
+    segs: &[PathSeg],
+    samples: &Samples,
+    closed: bool,
+    shapes: Shapes,
+    target: f64,
+) -> (Chain, f64) {
+    let start = segs[0].start();
+    let end = segs[segs.len() - 1].end();
+    let attempt = |interior: usize| -> (Chain, f64) {
+        let mut chain = initial_chain(samples, closed, start, end, interior, shapes);
+        let nseg = chain.nseg() as f64;
+        let mut ts: Vec<f64> = samples.budget.iter().map(|b| b * nseg).collect();
+        refine(&mut chain, samples, &mut ts);
+        let (err, _) = measure(&chain, samples, &mut ts, segs);
+        (chain, err)
+    };
+    // The error falls (nearly) monotonically with the point count: grow the count by
+    // doubling steps until the target holds, then bisect down to the fewest that hold.
+    let min_inner = if closed { 3 } else { 0 };
+    let max_inner = min_inner + 3 * segs.len() + 8;
+    let first = attempt(min_inner);
+    if first.1 <= target {
+        return first;
+    }
+    let (mut lo, mut step) = (min_inner, 1);
+    let (mut hi, mut hi_fit) = loop {
+        let m = (lo + step).min(max_inner);
+        let fit = attempt(m);
+        if fit.1 <= target || m == max_inner {
+            break (m, fit);
+        }
+        lo = m;
+        step *= 2;
+    };
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        let fit = attempt(mid);
+        if fit.1 <= target {
+            hi = mid;
+            hi_fit = fit;
+        } else {
+            lo = mid;
+        }
+    }
+    hi_fit
+}
+
+/// Interior points at equal steps of the sample budget (arc length weighted by curvature).
+fn initial_chain(
+    samples: &Samples,
+    closed: bool,
+    start: Point,
+    end: Point,
+    interior: usize,
+    shapes: Shapes,
+) -> Chain {
+    let at = |b: f64| -> Point {
+        let k = samples
+            .budget
+            .partition_point(|&x| x < b)
+            .min(samples.pts.len() - 1);
+        samples.pts[k]
+    };
+    let pts: Vec<Point> = if closed {
+        (0..interior)
+            .map(|i| at(i as f64 / interior as f64))
+            .collect()
+    } else {
+        let mut pts = vec![start];
+        pts.extend((1..=interior).map(|i| at(i as f64 / (interior + 1) as f64)));
+        pts.push(end);
+        pts
+    };
+    let mut chain = Chain {
+        s: vec![0.0; pts.len()],
+        pts,
+        closed,
+        shapes,
+    };
+    chain.assign_shapes();
+    chain
+}
+
+/// Rounds of least-squares positions and parameter projection.
+fn refine(chain: &mut Chain, samples: &Samples, ts: &mut [f64]) {
+    for _ in 0..ROUNDS {
+        if !solve_positions(chain, samples, ts) {
+            break;
+        }
+        project(chain, samples, ts, NEWTON_STEPS);
+    }
+}
+
+/// Least-squares positions of the free points for fixed parameters `ts`; false when the
+/// chain has no free point.
+fn solve_positions(chain: &mut Chain, samples: &Samples, ts: &[f64]) -> bool {
+    let n = chain.pts.len();
+    let mut col = vec![usize::MAX; n];
+    let mut k = 0;
+    for (i, c) in col.iter_mut().enumerate() {
+        if chain.is_free(i) {
+            *c = k;
+            k += 1;
+        }
+    }
+    if k == 0 {
+        return false;
+    }
+    let mut m = vec![0.0; k * k];
+    let mut rhs = vec![Vec2::ZERO; k];
+    for (p, &big_t) in samples.pts.iter().zip(ts) {
+        let (idx, w, _) = chain.basis(big_t);
+        let mut target = p.to_vec2();
+        for i in 0..4 {
+            if col[idx[i]] == usize::MAX {
+                target -= w[i] * chain.pts[idx[i]].to_vec2();
+            }
+        }
+        for a in 0..4 {
+            let ca = col[idx[a]];
+            if ca == usize::MAX {
+                continue;
+            }
+            rhs[ca] += w[a] * target;
+            for b in 0..4 {
+                let cb = col[idx[b]];
+                if cb != usize::MAX {
+                    m[ca * k + cb] += w[a] * w[b];
+                }
+            }
+        }
+    }
+    // A light pull toward the current positions keeps points without samples in place.
+    let lambda = 1e-6;
+    for i in 0..n {
+        let c = col[i];
+        if c != usize::MAX {
+            m[c * k + c] += lambda;
+            rhs[c] += lambda * chain.pts[i].to_vec2();
+        }
+    }
+    let Some(sol) = solve_dense(&mut m, &mut rhs, k) else {
+        return false;
+    };
+    for i in 0..n {
+        if col[i] != usize::MAX {
+            chain.pts[i] = sol[col[i]].to_point();
+        }
+    }
+    true
+}
+
+/// Gaussian elimination with partial pivoting on a `k × k` system with two right-hand
+/// sides (x and y). Written by hand: the systems are tiny and dense, and this keeps a
+/// linear-algebra dependency out.
+fn solve_dense(m: &mut [f64], rhs: &mut [Vec2], k: usize) -> Option<Vec<Vec2>> {
+    for c in 0..k {
+        let pivot = (c..k).max_by(|&a, &b| m[a * k + c].abs().total_cmp(&m[b * k + c].abs()))?;
+        if m[pivot * k + c].abs() < 1e-14 {
+            return None;
+        }
+        if pivot != c {
+            for j in 0..k {
+                m.swap(c * k + j, pivot * k + j);
+            }
+            rhs.swap(c, pivot);
+        }
+        let d = m[c * k + c];
+        for r in c + 1..k {
+            let f = m[r * k + c] / d;
+            if f == 0.0 {
+                continue;
+            }
+            for j in c..k {
+                m[r * k + j] -= f * m[c * k + j];
+            }
+            let sub = f * rhs[c];
+            rhs[r] -= sub;
+        }
+    }
+    let mut x = vec![Vec2::ZERO; k];
+    for r in (0..k).rev() {
+        let mut acc = rhs[r];
+        for j in r + 1..k {
+            acc -= m[r * k + j] * x[j];
+        }
+        x[r] = acc / m[r * k + r];
+    }
+    x.iter()
+        .all(|v| v.x.is_finite() && v.y.is_finite())
+        .then_some(x)
+}
+
+/// Newton steps moving each sample's parameter to its nearest curve point (fixed ends of
+/// an open chain stay at the ends).
+fn project(chain: &Chain, samples: &Samples, ts: &mut [f64], steps: usize) {
+    let nf = chain.nseg() as f64;
+    let last = ts.len().saturating_sub(1);
+    for (k, (p, big_t)) in samples.pts.iter().zip(ts.iter_mut()).enumerate() {
+        if !chain.closed && (k == 0 || k == last) {
+            continue;
+        }
+        for _ in 0..steps {
+            let (c, d) = chain.eval_deriv(*big_t);
+            let dd = d.hypot2();
+            if dd < 1e-18 {
+                break;
+            }
+            let step = ((c - *p).dot(d) / dd).clamp(-0.25, 0.25);
+            let mut next = *big_t - step;
+            if !chain.closed {
+                next = next.clamp(0.0, nf);
+            }
+            let better = (chain.eval(next) - *p).hypot2() < (c - *p).hypot2();
+            if !better {
+                break;
+            }
+            *big_t = next;
+        }
+    }
+}
+
+/// Two-sided sampled distance between the chain and the original stretch, and the
+/// segment where it is largest.
+fn measure(chain: &Chain, samples: &Samples, ts: &mut [f64], segs: &[PathSeg]) -> (f64, usize) {
+    project(chain, samples, ts, NEWTON_STEPS + 2);
+    let mut worst = (0.0, 0);
+    for (p, &big_t) in samples.pts.iter().zip(ts.iter()) {
+        let d = (chain.eval(big_t) - *p).hypot();
+        if d > worst.0 {
+            worst = (d, chain.locate(big_t).0);
+        }
+    }
+    let boxes: Vec<Rect> = segs.iter().map(|s| s.bounding_box()).collect();
+    for j in 0..chain.nseg() {
+        for i in 1..CURVE_SAMPLES {
+            let p = chain.eval(j as f64 + i as f64 / CURVE_SAMPLES as f64);
+            let d = distance_to(p, segs, &boxes);
+            if d > worst.0 {
+                worst = (d, j);
+            }
+        }
+    }
+    worst
+}
+
+/// Distance from `p` to the nearest of `segs`, skipping segments whose bounding box is
+/// farther than the best distance so far.
+pub fn distance_to(p: Point, segs: &[PathSeg], boxes: &[Rect]) -> f64 {
+    let mut best = f64::INFINITY;
+    for (seg, bb) in segs.iter().zip(boxes) {
+        let dx = (bb.x0 - p.x).max(p.x - bb.x1).max(0.0);
+        let dy = (bb.y0 - p.y).max(p.y - bb.y1).max(0.0);
+        if dx * dx + dy * dy >= best {
+            continue;
+        }
+        best = best.min(seg.nearest(p, 1e-6).distance_sq);
+    }
+    best.sqrt()
+}
+
+/// Two-sided distance between a finished X-spline and the original contour, measured
+/// independently of the fitter: 32 curve samples per X-spline segment projected onto the
+/// original (kurbo `nearest`), and 32 samples per original segment projected onto the
+/// X-spline (nearest of 64 samples per segment, then Newton steps on the exact curve).
+pub fn contour_error(spline: &XSpline, segs: &[PathSeg]) -> f64 {
+    const PER_SEG: usize = 32;
+    let boxes: Vec<Rect> = segs.iter().map(|s| s.bounding_box()).collect();
+    let n = spline.segment_count();
+    let mut worst: f64 = 0.0;
+    let mut poly = Vec::with_capacity(n * 2 * PER_SEG);
+    for k in 0..n * 2 * PER_SEG {
+        let big_t = k as f64 / (2 * PER_SEG) as f64;
+        poly.push((big_t, spline.eval(big_t)));
+    }
+    for k in 0..n * PER_SEG {
+        let p = spline.eval(k as f64 / PER_SEG as f64);
+        worst = worst.max(distance_to(p, segs, &boxes));
+    }
+    for seg in segs {
+        for i in 0..PER_SEG {
+            let p = seg.eval(i as f64 / PER_SEG as f64);
+            let (mut big_t, mut best) = poly
+                .iter()
+                .map(|&(t, q)| (t, (q - p).hypot2()))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap_or((0.0, f64::INFINITY));
+            for _ in 0..8 {
+                let (c, d) = spline.eval_deriv(big_t);
+                let dd = d.hypot2();
+                if dd < 1e-18 {
+                    break;
+                }
+                let next = big_t - ((c - p).dot(d) / dd).clamp(-0.1, 0.1);
+                let e = (spline.eval(next) - p).hypot2();
+                if e >= best {
+                    break;
+                }
+                big_t = next;
+                best = e;
+            }
+            worst = worst.max(best.sqrt());
+        }
+    }
+    worst
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::{CubicBez, Line};
+
+    fn quarter() -> Vec<PathSeg> {
+        // Quarter circle of radius 500, centre at the origin, as one cubic.
+        let k = 0.5522847498 * 500.0;
+        vec![PathSeg::Cubic(CubicBez::new(
+            (500.0, 0.0),
+            (500.0, k),
+            (k, 500.0),
+            (0.0, 500.0),
+        ))]
+    }
+
+    #[test]
+    fn debug_quarter() {
+        let segs = quarter();
+        let samples = Samples::new(&segs, 4.0, false);
+        let many = [(1.0, 1.0), (1.0, 0.5), (1.0, 0.2), (1.0, -0.5), (1.0, -1.0), (0.5, 0.5), (-0.5, 1.0)];
+        for (inner, end) in many {
+            let shape = Shapes { inner, end };
+            let (chain, err) = fit_stretch(&segs, &samples, false, shape, 1.0);
+            eprintln!("shape {shape:?}: {} err {err}", chain.pts.len());
+        }
+        let _ = Line::new((0.0, 0.0), (1.0, 1.0));
+        let circle = kurbo::Circle::new((0.0, 0.0), 500.0).to_path(1e-9);
+        let segs: Vec<PathSeg> = circle.segments().collect();
+        let samples = Samples::new(&segs, 4.0, true);
+        for shape in SHAPES {
+            let (chain, err) = fit_stretch(&segs, &samples, true, shape, 1.0);
+            eprintln!("loop {shape:?}: {} err {err}", chain.pts.len());
+        }
+    }
+}
