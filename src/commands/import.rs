@@ -77,14 +77,13 @@ pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
         .map(|(name, text)| (args.output.join(name), text.into_bytes()))
         .collect();
     write_all_atomic(&files).map_err(|e| {
-        ImportError::at(&args.output, format!("cannot write the font directory: {e}"))
+        ImportError::at(
+            &args.output,
+            format!("cannot write the font directory: {e}"),
+        )
     })?;
     print!("{}", imported.report.render());
-    println!(
-        "wrote {} files to {}",
-        files.len(),
-        args.output.display()
-    );
+    println!("wrote {} files to {}", files.len(), args.output.display());
     Ok(ExitCode::SUCCESS)
 }
 
@@ -151,7 +150,9 @@ fn parse_hex_char(s: &str) -> Option<char> {
         .strip_prefix("U+")
         .or_else(|| s.strip_prefix("0x"))
         .unwrap_or(s);
-    u32::from_str_radix(digits, 16).ok().and_then(char::from_u32)
+    u32::from_str_radix(digits, 16)
+        .ok()
+        .and_then(char::from_u32)
 }
 
 /// A code point map: `name = 0xE001` (an integer) or `name = "h"` (one character).
@@ -196,6 +197,9 @@ fn check_output_dir(dir: &Path, force: bool) -> Result<(), ImportError> {
             Ok(())
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(ImportError::at(dir, format!("cannot use as output directory: {e}"))),
+        Err(e) => Err(ImportError::at(
+            dir,
+            format!("cannot use as output directory: {e}"),
+        )),
     }
 }

@@ -106,10 +106,7 @@ pub fn read_font(
     chars: Option<&[char]>,
 ) -> Result<SourceFont, ImportError> {
     let face = Face::parse(data, 0).map_err(|e| {
-        ImportError::at(
-            path,
-            format!("not a readable TrueType/OpenType font ({e})"),
-        )
+        ImportError::at(path, format!("not a readable TrueType/OpenType font ({e})"))
     })?;
     let metrics = read_metrics(&face);
     let wanted: Vec<char> = match chars {

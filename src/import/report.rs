@@ -51,7 +51,13 @@ impl Report {
 
     /// The printed report: a table, notes, and the summary line.
     pub fn render(&self) -> String {
-        let width = self.rows.iter().map(|r| r.name.len()).max().unwrap_or(5).max(5);
+        let width = self
+            .rows
+            .iter()
+            .map(|r| r.name.len())
+            .max()
+            .unwrap_or(5)
+            .max(5);
         let mut out = String::new();
         let _ = writeln!(
             out,
@@ -65,11 +71,7 @@ impl Report {
                 r.name, r.original_points, r.xspline_points, r.max_error
             );
             if r.dropped_contours > 0 {
-                let _ = write!(
-                    out,
-                    "  ({} empty contour(s) left out)",
-                    r.dropped_contours
-                );
+                let _ = write!(out, "  ({} empty contour(s) left out)", r.dropped_contours);
             }
             out.push('\n');
         }

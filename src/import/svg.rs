@@ -54,7 +54,10 @@ pub fn read_svg(path: &Path, data: &[u8], em: EmBox) -> Result<Drawing, ImportEr
         .flat_map(|el| el.end_point())
         .any(|p| !(p.x.is_finite() && p.y.is_finite()))
     {
-        return Err(ImportError::at(path, "the drawing has non-finite coordinates"));
+        return Err(ImportError::at(
+            path,
+            "the drawing has non-finite coordinates",
+        ));
     }
     Ok(Drawing {
         path: out,
