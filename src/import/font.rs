@@ -135,9 +135,21 @@ pub fn read_font(
             )
         })?;
         let mut builder = PathBuilder::default();
-        // `None` is an empty glyph (space) or an outline ttf-parser could not read; both
-        // import as a glyph without contours.
-        let _ = face.outline_glyph(gid, &mut builder);
+        // `None` is an empty glyph (space) or an outline ttf-parser could not read: an
+        // error for a visible character, an empty glyph otherwise.
+        if face.outline_glyph(gid, &mut builder).is_none()
+            && unicodes
+                .iter()
+                .any(|c| c.is_alphanumeric() || c.is_ascii_graphic())
+        {
+            return Err(ImportError::at(
+                path,
+                format!(
+                    "glyph `{name}` (U+{:04X}) has no readable outline; the font may be damaged",
+                    u32::from(unicodes[0])
+                ),
+            ));
+        }
         if !builder.finite {
             return Err(ImportError::at(
                 path,
