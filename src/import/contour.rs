@@ -274,7 +274,55 @@ pub fn cut(contour: &SourceContour) -> Cut {
     Cut::Pieces(pieces)
 }
 
-/// Evaluates a point on a chain of segments at `u` (segment index + local parameter).
-pub fn seg_point(seg: PathSeg, t: f64) -> Point {
-    seg.eval(t)
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::Shape;
+
+    #[test]
+    fn truetype_point_counts() {
+        // On (0,0), off (100,0), off (100,100) [implied on (100,50)], on (0,100), line back.
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.quad_to((100.0, 0.0), (100.0, 50.0));
+        p.quad_to((100.0, 100.0), (0.0, 100.0));
+        p.line_to((0.0, 0.0));
+        p.close_path();
+        let c = contours(&p);
+        assert_eq!(c.len(), 1);
+        assert_eq!(stored_points(&c[0].segs), 4);
+        match cut(&c[0]) {
+            Cut::Pieces(pieces) => {
+                assert_eq!(pieces.len(), 2);
+                assert!(matches!(pieces[0], Piece::Smooth(ref s) if s.len() == 2));
+                assert!(matches!(pieces[1], Piece::Edge(_)));
+            }
+            Cut::Loop(_) => panic!("has corners"),
+        }
+    }
+
+    #[test]
+    fn cleaning_and_cutting() {
+        // Collinear lines merge, zero-length lines go; a rectangle is four edges.
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to((50.0, 0.0));
+        p.line_to((100.0, 0.0));
+        p.line_to((100.0, 0.0));
+        p.line_to((100.0, 80.0));
+        p.line_to((0.0, 80.0));
+        p.close_path();
+        let c = contours(&p);
+        assert_eq!(c[0].segs.len(), 4);
+        assert!(matches!(cut(&c[0]), Cut::Pieces(ref v) if v.len() == 4));
+        // A circle has no break point; a lone point is no contour.
+        let circle = kurbo::Circle::new((0.0, 0.0), 10.0).to_path(1e-9);
+        assert!(matches!(cut(&contours(&circle)[0]), Cut::Loop(_)));
+        let mut dot = BezPath::new();
+        dot.move_to((5.0, 5.0));
+        dot.line_to((5.0, 5.0));
+        dot.close_path();
+        assert!(contours(&dot).is_empty());
+        assert_eq!(turn_degrees(Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)), 90.0);
+    }
 }

@@ -757,3 +757,91 @@ pub fn contour_error(spline: &XSpline, segs: &[PathSeg]) -> f64 {
     }
     worst
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::import::contour::{contours, cut};
+    use kurbo::Shape;
+
+    #[test]
+    fn chain_matches_xspline() {
+        // The asymmetric pentagon of docs/xspline.md, as a loop.
+        let pts = [
+            (0.0, 0.0),
+            (100.0, 0.0),
+            (130.0, 70.0),
+            (60.0, 120.0),
+            (-20.0, 80.0),
+        ];
+        let s = [0.7, -0.6, 1.0, -1.0, 0.3];
+        let chain = Chain {
+            pts: pts.iter().map(|&p| p.into()).collect(),
+            s: s.to_vec(),
+            closed: true,
+            shapes: PRIMARY.shapes,
+            rays: None,
+        };
+        let spline = XSpline::new(
+            pts.iter()
+                .zip(s)
+                .map(|(&(x, y), s)| ControlPoint::new(x, y, s))
+                .collect(),
+        )
+        .unwrap();
+        for k in 0..50 {
+            let t = k as f64 * 0.1;
+            assert!((chain.eval(t) - spline.eval(t)).hypot() < 1e-9, "T = {t}");
+        }
+        // An open chain with sharp ends is that stretch of the closed contour.
+        let open = Chain {
+            pts: vec![(0.0, 0.0).into(), (100.0, 0.0).into(), (130.0, 70.0).into()],
+            s: vec![0.0, 1.0, 0.0],
+            closed: false,
+            shapes: PRIMARY.shapes,
+            rays: None,
+        };
+        let closed = XSpline::new(vec![
+            ControlPoint::new(0.0, 0.0, 0.0),
+            ControlPoint::new(100.0, 0.0, 1.0),
+            ControlPoint::new(130.0, 70.0, 0.0),
+        ])
+        .unwrap();
+        for k in 0..=20 {
+            let t = k as f64 * 0.1;
+            assert!((open.eval(t) - closed.eval(t)).hypot() < 1e-9, "T = {t}");
+        }
+    }
+
+    #[test]
+    fn circle_becomes_one_smooth_loop() {
+        let circle = kurbo::Circle::new((0.0, 0.0), 500.0).to_path(1e-9);
+        let contour = &contours(&circle)[0];
+        let fitted = fit_contour(contour, &cut(contour), 1.0).unwrap();
+        assert_eq!(fitted.points.len(), 8);
+        assert!(fitted.points.iter().all(|p| p.s == 1.0));
+        assert!(fitted.fit_error <= 1.0);
+        let spline = XSpline::new(fitted.points).unwrap();
+        let err = contour_error(&spline, &contour.segs);
+        assert!(err <= 1.0 && err > 0.5, "{err}");
+    }
+
+    #[test]
+    fn rounded_square_keeps_its_edges() {
+        // A square with rounded corners: four straight edges (eight sharp points) and four
+        // quarter circles between them.
+        let shape = kurbo::RoundedRect::new(0.0, 0.0, 1000.0, 1000.0, 200.0).to_path(1e-9);
+        let contour = &contours(&shape)[0];
+        let fitted = fit_contour(contour, &cut(contour), 1.0).unwrap();
+        let sharp = fitted.points.iter().filter(|p| p.s == 0.0).count();
+        assert_eq!(sharp, 8);
+        let spline = XSpline::new(fitted.points.clone()).unwrap();
+        assert!(contour_error(&spline, &contour.segs) <= 1.0);
+        // Each edge is exactly two consecutive sharp points on the original edge.
+        let on_edge =
+            fitted.points.iter().filter(|p| p.s == 0.0).all(|p| {
+                p.pos.x == 0.0 || p.pos.x == 1000.0 || p.pos.y == 0.0 || p.pos.y == 1000.0
+            });
+        assert!(on_edge);
+    }
+}

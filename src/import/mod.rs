@@ -337,3 +337,23 @@ fn rounded(points: &[ControlPoint], grid: f64) -> Option<XSpline> {
     }
     XSpline::new(out).ok()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_and_rounding() {
+        assert_eq!(grid_for(2.048), 0.1);
+        assert_eq!(grid_for(1.0), 0.1);
+        assert_eq!(grid_for(0.05), 0.001);
+        assert_eq!(grid_for(40.0), 1.0);
+        assert_eq!(round_to(280.34, 0.1), 280.3);
+        assert_eq!(
+            crate::source::emit::number(round_to(1030.7149, 0.1)),
+            "1030.7"
+        );
+        assert_eq!(round_to(-0.04, 0.1).to_bits(), 0.0f64.to_bits());
+        assert_eq!(round_to(1234.0, 10.0), 1230.0);
+    }
+}
