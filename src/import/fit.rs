@@ -31,13 +31,12 @@
 
 use kurbo::{ParamCurve, ParamCurveArclen, ParamCurveNearest, PathSeg, Point, Rect, Shape, Vec2};
 
-use super::contour::{end_tangent, start_tangent, Cut, Piece, SourceContour};
+use super::contour::{end_tangent, start_tangent, Cut, Piece};
 
 use crate::xspline::{weights_with_deriv, ControlPoint, XSpline};
 
-/// Shapes tried for the interior points of each smooth stretch: `-1` interpolates (the
-/// curve passes through the points), `1` approximates (B-spline-like, fewer points on
-/// long gentle curves).
+/// The settings of the point-count search: approximating points (`s = 1`, B-spline-like)
+/// throughout, initial points crowded toward sharp ends.
 pub const PRIMARY: Settings = Settings {
     shapes: Shapes {
         inner: 1.0,
@@ -104,7 +103,8 @@ pub struct Shapes {
     pub inner: f64,
     pub end: f64,
 }
-/// Rounds of (solve positions, re-project parameters) after each change of the point set.
+
+/// Rounds of (solve positions, re-project parameters) per fit.
 const ROUNDS: usize = 20;
 /// Newton steps per projection.
 const NEWTON_STEPS: usize = 6;
@@ -119,9 +119,9 @@ pub struct FittedContour {
     pub fit_error: f64,
 }
 
-/// Fits one original contour within `target` font units. `None` when the contour encloses
-/// nothing (fewer than three control points would remain).
-pub fn fit_contour(contour: &SourceContour, cut: &Cut, target: f64) -> Option<FittedContour> {
+/// Fits one original contour (as [`super::contour::cut`] cut it) within `target` font
+/// units. `None` when the contour encloses nothing (fewer than three points would remain).
+pub fn fit_contour(cut: &Cut, target: f64) -> Option<FittedContour> {
     let spacing = (target * 4.0).max(1e-3);
     let mut points = Vec::new();
     let mut fit_error: f64 = 0.0;
@@ -150,7 +150,6 @@ pub fn fit_contour(contour: &SourceContour, cut: &Cut, target: f64) -> Option<Fi
             }
         }
     }
-    let _ = contour;
     (points.len() >= 3).then_some(FittedContour { points, fit_error })
 }
 
@@ -817,7 +816,7 @@ mod tests {
     fn circle_becomes_one_smooth_loop() {
         let circle = kurbo::Circle::new((0.0, 0.0), 500.0).to_path(1e-9);
         let contour = &contours(&circle)[0];
-        let fitted = fit_contour(contour, &cut(contour), 1.0).unwrap();
+        let fitted = fit_contour(&cut(contour), 1.0).unwrap();
         assert_eq!(fitted.points.len(), 8);
         assert!(fitted.points.iter().all(|p| p.s == 1.0));
         assert!(fitted.fit_error <= 1.0);
@@ -832,7 +831,7 @@ mod tests {
         // quarter circles between them.
         let shape = kurbo::RoundedRect::new(0.0, 0.0, 1000.0, 1000.0, 200.0).to_path(1e-9);
         let contour = &contours(&shape)[0];
-        let fitted = fit_contour(contour, &cut(contour), 1.0).unwrap();
+        let fitted = fit_contour(&cut(contour), 1.0).unwrap();
         let sharp = fitted.points.iter().filter(|p| p.s == 0.0).count();
         assert_eq!(sharp, 8);
         let spline = XSpline::new(fitted.points.clone()).unwrap();
