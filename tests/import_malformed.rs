@@ -317,5 +317,38 @@ fn command_line_errors_write_nothing() {
             "error: --tolerance must be a positive number of font units, got -1\n"
         )
     );
+    let map = dir.join("map.toml");
+    std::fs::write(&map, "ring = 0xE001\nhouse = [1, 2]\n").unwrap();
+    let (code, _, err) = xglyph(&[
+        "import",
+        &ring,
+        "--codepoints",
+        map.to_str().unwrap(),
+        "-o",
+        dir.join("o3").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: `house`: expected a code point (0xE001) or one character (\"h\")\n",
+            map.display()
+        )
+    );
+    std::fs::write(&map, "ring = 0xE001\nhouse = \n").unwrap();
+    let (code, _, err) = xglyph(&[
+        "import",
+        &ring,
+        "--codepoints",
+        map.to_str().unwrap(),
+        "-o",
+        dir.join("o3").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.starts_with(&format!("error: {}:2:9: invalid TOML: ", map.display())),
+        "{err}"
+    );
+    assert!(!dir.join("o3").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

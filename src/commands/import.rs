@@ -159,8 +159,14 @@ fn parse_hex_char(s: &str) -> Option<char> {
 fn read_codepoints(path: &Path) -> Result<BTreeMap<String, char>, ImportError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| ImportError::at(path, format!("cannot read: {e}")))?;
-    let table: toml::Table = toml::from_str(&text)
-        .map_err(|e| ImportError::at(path, format!("invalid TOML: {}", e.message())))?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| {
+        let (line, col) = crate::source::line_col(&text, e.span().map_or(0, |s| s.start));
+        ImportError::plain(format!(
+            "{}:{line}:{col}: invalid TOML: {}",
+            path.display(),
+            e.message()
+        ))
+    })?;
     let mut out = BTreeMap::new();
     for (name, value) in table {
         let c = match &value {
