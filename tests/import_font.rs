@@ -283,3 +283,64 @@ fn round_trip_import_build_within_tolerance() {
     eprintln!("round trip: worst {worst:.3} font units (T = {T})");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// At joins that are smooth in the original (a straight segment meeting a curve along its
+/// tangent, which becomes an `s = 0` point), the imported X-spline turns by at most 2°.
+#[test]
+fn smooth_joins_stay_smooth() {
+    let (imp, _) = imported();
+    let data = font_bytes();
+    let face = ttf_parser::Face::parse(&data, 0).unwrap();
+    let angle = |a: kurbo::Vec2, b: kurbo::Vec2| {
+        (a.dot(b) / (a.hypot() * b.hypot()))
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees()
+    };
+    let tangents = |s: PathSeg| -> (kurbo::Vec2, kurbo::Vec2) {
+        let pts: Vec<Point> = match s {
+            PathSeg::Line(l) => vec![l.p0, l.p1],
+            PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+            PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+        };
+        let n = pts.len();
+        (pts[1] - pts[0], pts[n - 1] - pts[n - 2])
+    };
+    let (mut joins, mut worst) = (0, (0.0, String::new()));
+    for glyph in &imp.font.glyphs {
+        let segs: Vec<PathSeg> = segments(&original(&face, glyph.unicodes[0])).collect();
+        for contour in &glyph.contours {
+            let spline = XSpline::new(contour.points.clone()).unwrap();
+            let n = spline.segment_count();
+            for k in 0..n {
+                if contour.points[k].s != 0.0 {
+                    continue;
+                }
+                let p = contour.points[k].pos;
+                // The original join at this point: a segment ending here, one starting here.
+                let ins = segs.iter().find(|s| (s.end() - p).hypot() < 1e-6);
+                let outs = segs.iter().find(|s| (s.start() - p).hypot() < 1e-6);
+                let (Some(&a), Some(&b)) = (ins, outs) else {
+                    continue;
+                };
+                if angle(tangents(a).1, tangents(b).0) > 0.5 {
+                    continue;
+                }
+                let turn = angle(
+                    spline.segment(k + n - 1).end_direction(),
+                    spline.segment(k).start_direction(),
+                );
+                joins += 1;
+                if turn > worst.0 {
+                    worst = (turn, glyph.name.clone());
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{joins} smooth joins, worst turn {:.2}° in {}",
+        worst.0, worst.1
+    );
+    assert!(joins > 50, "{joins}");
+    assert!(worst.0 <= 2.0, "{worst:?}");
+}
