@@ -70,8 +70,8 @@ fn read(path: &Path) -> Result<Vec<u8>, ImportError> {
 }
 
 pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
-    let imported = import_inputs(&args)?;
     check_output_dir(&args.output, args.force)?;
+    let imported = import_inputs(&args)?;
     let files: Vec<(PathBuf, Vec<u8>)> = font_sources(&imported.font)
         .into_iter()
         .map(|(name, text)| (args.output.join(name), text.into_bytes()))
