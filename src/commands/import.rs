@@ -1,12 +1,211 @@
-//! `xglyph import` (not yet implemented).
+//! `xglyph import`: a font file or SVG drawings -> a font directory of X-spline sources.
+//!
+//! Everything is fitted and rendered in memory first; files are written atomically only
+//! when all succeeded, and never into a non-empty directory without `--force`.
 
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use super::CommandError;
+use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions};
+use crate::source::emit::font_sources;
+use crate::write::write_all_atomic;
 
 #[derive(Debug, clap::Args)]
-pub struct ImportArgs {}
+pub struct ImportArgs {
+    /// One font (.ttf, .otf) or one or more SVG drawings (.svg, one glyph each).
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output font directory (must be empty or absent unless --force).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Fonts: characters to import, e.g. `A-Z,a-z,0-9` (default: every mapped character).
+    #[arg(long)]
+    pub glyphs: Option<String>,
+    /// Largest distance (font units) from the original after import and build
+    /// (default: 1/1000 em).
+    #[arg(long)]
+    pub tolerance: Option<f64>,
+    /// Family name of the new font.
+    #[arg(long)]
+    pub family: Option<String>,
+    /// SVG: TOML file mapping glyph names (file stems) to code points, e.g. `home = 0xE001`
+    /// or `home = "h"`.
+    #[arg(long)]
+    pub codepoints: Option<PathBuf>,
+    /// SVG: first code point for unmapped drawings, in hex (default E000).
+    #[arg(long)]
+    pub first_codepoint: Option<String>,
+    /// SVG: units per em of the new font (default 1000).
+    #[arg(long)]
+    pub units_per_em: Option<u16>,
+    /// Write into a non-empty output directory, replacing files of the same name.
+    #[arg(long)]
+    pub force: bool,
+}
 
-pub fn run(_args: ImportArgs) -> Result<ExitCode, CommandError> {
-    Err("`xglyph import` is not implemented yet".into())
+enum Kind {
+    Font,
+    Svg,
+}
+
+fn kind(path: &Path) -> Result<Kind, ImportError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "ttf" | "otf" => Ok(Kind::Font),
+        "svg" => Ok(Kind::Svg),
+        _ => Err(ImportError::at(
+            path,
+            "unknown input type; expected a .ttf, .otf or .svg file",
+        )),
+    }
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, ImportError> {
+    std::fs::read(path).map_err(|e| ImportError::at(path, format!("cannot read: {e}")))
+}
+
+pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
+    check_output_dir(&args.output, args.force)?;
+    let imported = import_inputs(&args)?;
+    let files: Vec<(PathBuf, Vec<u8>)> = font_sources(&imported.font)
+        .into_iter()
+        .map(|(name, text)| (args.output.join(name), text.into_bytes()))
+        .collect();
+    write_all_atomic(&files).map_err(|e| {
+        ImportError::at(
+            &args.output,
+            format!("cannot write the font directory: {e}"),
+        )
+    })?;
+    print!("{}", imported.report.render());
+    println!("wrote {} files to {}", files.len(), args.output.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Reads and fits the inputs per the arguments (no file is written).
+pub fn import_inputs(args: &ImportArgs) -> Result<import::Imported, ImportError> {
+    let kinds = args
+        .inputs
+        .iter()
+        .map(|p| kind(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let fonts = kinds.iter().filter(|k| matches!(k, Kind::Font)).count();
+    let mut opts = ImportOptions {
+        tolerance: args.tolerance,
+        family: args.family.clone(),
+        units_per_em: args.units_per_em,
+        ..ImportOptions::default()
+    };
+    if fonts > 0 {
+        if args.inputs.len() > 1 {
+            return Err(ImportError::plain(
+                "import one font at a time, and fonts and SVG drawings separately",
+            ));
+        }
+        for (given, flag) in [
+            (args.codepoints.is_some(), "--codepoints"),
+            (args.first_codepoint.is_some(), "--first-codepoint"),
+            (args.units_per_em.is_some(), "--units-per-em"),
+        ] {
+            if given {
+                return Err(ImportError::plain(format!(
+                    "{flag} applies to SVG drawings, not to fonts"
+                )));
+            }
+        }
+        opts.glyphs = args.glyphs.as_deref().map(parse_glyph_list).transpose()?;
+        let path = &args.inputs[0];
+        return import::import_font(path, &read(path)?, &opts);
+    }
+    if args.glyphs.is_some() {
+        return Err(ImportError::plain(
+            "--glyphs applies to fonts; SVG drawings become one glyph per file",
+        ));
+    }
+    if let Some(map) = &args.codepoints {
+        opts.codepoints = read_codepoints(map)?;
+    }
+    if let Some(hex) = &args.first_codepoint {
+        opts.first_codepoint = Some(parse_hex_char(hex).ok_or_else(|| {
+            ImportError::plain(format!(
+                "--first-codepoint `{hex}` is not a hex code point such as E000"
+            ))
+        })?);
+    }
+    let files = args
+        .inputs
+        .iter()
+        .map(|p| read(p).map(|d| (p.clone(), d)))
+        .collect::<Result<Vec<_>, _>>()?;
+    import::import_svgs(&files, &opts)
+}
+
+fn parse_hex_char(s: &str) -> Option<char> {
+    let digits = s
+        .strip_prefix("U+")
+        .or_else(|| s.strip_prefix("0x"))
+        .unwrap_or(s);
+    u32::from_str_radix(digits, 16)
+        .ok()
+        .and_then(char::from_u32)
+}
+
+/// A code point map: `name = 0xE001` (an integer) or `name = "h"` (one character).
+fn read_codepoints(path: &Path) -> Result<BTreeMap<String, char>, ImportError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| ImportError::at(path, format!("cannot read: {e}")))?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| {
+        let (line, col) = crate::source::line_col(&text, e.span().map_or(0, |s| s.start));
+        ImportError::plain(format!(
+            "{}:{line}:{col}: invalid TOML: {}",
+            path.display(),
+            e.message()
+        ))
+    })?;
+    let mut out = BTreeMap::new();
+    for (name, value) in table {
+        let c = match &value {
+            toml::Value::Integer(n) => u32::try_from(*n).ok().and_then(char::from_u32),
+            toml::Value::String(s) => {
+                let mut it = s.chars();
+                match (it.next(), it.next()) {
+                    (Some(c), None) => Some(c),
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        let c = c.ok_or_else(|| {
+            ImportError::at(
+                path,
+                format!("`{name}`: expected a code point (0xE001) or one character (\"h\")"),
+            )
+        })?;
+        out.insert(name, c);
+    }
+    Ok(out)
+}
+
+fn check_output_dir(dir: &Path, force: bool) -> Result<(), ImportError> {
+    match std::fs::read_dir(dir) {
+        Ok(mut entries) => {
+            if entries.next().is_some() && !force {
+                return Err(ImportError::at(
+                    dir,
+                    "the output directory is not empty; choose another or pass --force",
+                ));
+            }
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(ImportError::at(
+            dir,
+            format!("cannot use as output directory: {e}"),
+        )),
+    }
 }

@@ -1,1 +1,359 @@
-//! Importers: existing outlines -> X-spline sources.
+//! Importers: existing outlines -> editable X-spline sources.
+//!
+//! ```text
+//! font.rs (ttf-parser) | svg.rs (usvg)  ->  original BezPath per glyph
+//!   -> contour.rs (closed contours, corners, edges, smooth stretches)
+//!   -> fit.rs (X-spline control points within the fit target)
+//!   -> a model::Font (emitted by source::emit) and a report.rs summary
+//! ```
+//!
+//! Tolerance budget: with an import tolerance `T` (default 1/1000 em), the fitter aims at
+//! [`FIT_SHARE`]` · T`, coordinates are then rounded to a decimal grid of at most `T / 10`
+//! (a hundred times finer if the coarse grid would break the bound) and the rounded
+//! contour is re-measured independently, which must stay within [`IMPORT_SHARE`]` · T`
+//! (the report warns otherwise); the written `tolerance` (the build's Bézier fitting
+//! tolerance) is [`BUILD_SHARE`]` · T`. So import followed by build stays within `T` of
+//! the original (triangle inequality on the two-sided distance).
+
+pub mod contour;
+pub mod fit;
+pub mod font;
+pub mod report;
+pub mod svg;
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use kurbo::BezPath;
+
+use crate::model::{Contour, Font, FontInfo, Glyph};
+use crate::xspline::{ControlPoint, XSpline};
+use report::{GlyphReport, Report};
+
+/// The share of the tolerance the fitter aims at (measured by sampling).
+pub const FIT_SHARE: f64 = 0.65;
+/// The share the rounded, re-measured contours must stay within.
+pub const IMPORT_SHARE: f64 = 0.75;
+/// The share written as the font's build tolerance.
+pub const BUILD_SHARE: f64 = 0.25;
+
+/// An import failure: the file (when there is one) and what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportError {
+    pub path: Option<PathBuf>,
+    pub message: String,
+}
+
+impl ImportError {
+    pub fn plain(message: impl Into<String>) -> Self {
+        ImportError {
+            path: None,
+            message: message.into(),
+        }
+    }
+
+    pub fn at(path: &Path, message: impl Into<String>) -> Self {
+        ImportError {
+            path: Some(path.to_path_buf()),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for ImportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.path {
+            Some(p) => write!(f, "{}: {}", p.display(), self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+impl std::error::Error for ImportError {}
+
+/// One original glyph: name, code points, advance and outline in font units (y up).
+#[derive(Clone, Debug)]
+pub struct SourceGlyph {
+    pub name: String,
+    pub unicodes: Vec<char>,
+    pub advance: f64,
+    pub path: BezPath,
+}
+
+/// Settings shared by both importers.
+#[derive(Clone, Debug, Default)]
+pub struct ImportOptions {
+    /// Characters to import from a font (`None`: every mapped character).
+    pub glyphs: Option<Vec<char>>,
+    /// Import tolerance `T` in font units (`None`: 1/1000 of the em).
+    pub tolerance: Option<f64>,
+    /// Family name instead of the font's own (SVG default: "Imported Icons").
+    pub family: Option<String>,
+    /// SVG: code point per glyph name (file stem).
+    pub codepoints: BTreeMap<String, char>,
+    /// SVG: first code point for files not in `codepoints` (default U+E000, private use).
+    pub first_codepoint: Option<char>,
+    /// SVG: units per em of the new font (default 1000).
+    pub units_per_em: Option<u16>,
+}
+
+/// A finished import: the font model to emit and the report to print.
+#[derive(Clone, Debug)]
+pub struct Imported {
+    pub font: Font,
+    pub report: Report,
+}
+
+/// Imports a TrueType/OpenType font from its bytes (`path` names it in messages).
+pub fn import_font(
+    path: &Path,
+    data: &[u8],
+    opts: &ImportOptions,
+) -> Result<Imported, ImportError> {
+    let source = font::read_font(path, data, opts.glyphs.as_deref())?;
+    if source.glyphs.is_empty() {
+        return Err(ImportError::at(
+            path,
+            "none of the requested characters has a glyph in this font",
+        ));
+    }
+    let m = &source.metrics;
+    let tolerance = check_tolerance(opts.tolerance, m.units_per_em)?;
+    let info = FontInfo {
+        family: opts.family.clone().unwrap_or_else(|| m.family.clone()),
+        style: m.style.clone(),
+        units_per_em: m.units_per_em,
+        ascender: m.ascender,
+        descender: m.descender,
+        x_height: m.x_height,
+        cap_height: m.cap_height,
+        tolerance: BUILD_SHARE * tolerance,
+        copyright: m.copyright.clone(),
+        designer: m.designer.clone(),
+        version: m.version.clone(),
+    };
+    let mut imported = import_glyphs(&source.glyphs, info, tolerance);
+    for c in source.missing {
+        imported.report.notes.push(format!(
+            "no glyph for '{c}' (U+{:04X}) in the font",
+            u32::from(c)
+        ));
+    }
+    Ok(imported)
+}
+
+/// Imports SVG drawings, one glyph per file: `(path, bytes)` in the order given.
+pub fn import_svgs(
+    files: &[(PathBuf, Vec<u8>)],
+    opts: &ImportOptions,
+) -> Result<Imported, ImportError> {
+    let upm = opts.units_per_em.unwrap_or(1000);
+    if !(16..=16384).contains(&upm) {
+        return Err(ImportError::plain(format!(
+            "--units-per-em {upm} is outside 16..16384"
+        )));
+    }
+    let tolerance = check_tolerance(opts.tolerance, upm)?;
+    let em = f64::from(upm);
+    let em_box = svg::EmBox {
+        ascender: 0.8 * em,
+        descender: -0.2 * em,
+    };
+    let mut next_cp = u32::from(opts.first_codepoint.unwrap_or('\u{E000}'));
+    let mut taken: std::collections::BTreeSet<char> = opts.codepoints.values().copied().collect();
+    let mut glyphs = Vec::new();
+    let mut names = std::collections::BTreeSet::new();
+    for (path, data) in files {
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .filter(|s| !s.is_empty())
+            .ok_or_else(|| ImportError::at(path, "cannot take a glyph name from this file name"))?;
+        if !names.insert(name.clone()) {
+            return Err(ImportError::at(
+                path,
+                format!("two drawings would both become glyph `{name}`; rename one file"),
+            ));
+        }
+        let drawing = svg::read_svg(path, data, em_box)?;
+        let cp = match opts.codepoints.get(&name) {
+            Some(&c) => c,
+            None => loop {
+                let c = char::from_u32(next_cp).ok_or_else(|| {
+                    ImportError::plain(format!("ran out of code points at U+{next_cp:04X}"))
+                })?;
+                next_cp += 1;
+                if taken.insert(c) {
+                    break c;
+                }
+            },
+        };
+        glyphs.push(SourceGlyph {
+            name,
+            unicodes: vec![cp],
+            advance: drawing.advance,
+            path: drawing.path,
+        });
+    }
+    for name in opts.codepoints.keys() {
+        if !names.contains(name) {
+            return Err(ImportError::plain(format!(
+                "the code point map names `{name}`, but no drawing has that file name"
+            )));
+        }
+    }
+    let info = FontInfo {
+        family: opts
+            .family
+            .clone()
+            .unwrap_or_else(|| "Imported Icons".to_string()),
+        style: "Regular".to_string(),
+        units_per_em: upm,
+        ascender: em_box.ascender,
+        descender: em_box.descender,
+        x_height: 0.5 * em,
+        cap_height: 0.7 * em,
+        tolerance: BUILD_SHARE * tolerance,
+        copyright: None,
+        designer: None,
+        version: None,
+    };
+    Ok(import_glyphs(&glyphs, info, tolerance))
+}
+
+fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
+    let t = tolerance.unwrap_or(f64::from(upm) / 1000.0);
+    if !(t.is_finite() && t > 0.0) {
+        return Err(ImportError::plain(format!(
+            "--tolerance must be a positive number of font units, got {t}"
+        )));
+    }
+    Ok(t)
+}
+
+/// Fits every glyph; glyphs sorted by name in the model, the report in the same order.
+fn import_glyphs(sources: &[SourceGlyph], info: FontInfo, tolerance: f64) -> Imported {
+    let grid = grid_for(tolerance);
+    let mut pairs: Vec<(Glyph, GlyphReport)> = sources
+        .iter()
+        .map(|g| import_glyph(g, tolerance, grid))
+        .collect();
+    pairs.sort_by(|a, b| glyph_order(&a.0.name, &b.0.name));
+    let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) = pairs.into_iter().unzip();
+    Imported {
+        font: Font {
+            info,
+            glyphs,
+            kerning: Vec::new(),
+        },
+        report: Report {
+            rows,
+            tolerance,
+            notes: Vec::new(),
+        },
+    }
+}
+
+fn glyph_order(a: &str, b: &str) -> std::cmp::Ordering {
+    (a != ".notdef", a).cmp(&(b != ".notdef", b))
+}
+
+/// The decimal rounding grid for written coordinates: the largest power of ten not above
+/// `tolerance / 10` (0.1 for a 1000 or 2048 em at the default tolerance).
+pub fn grid_for(tolerance: f64) -> f64 {
+    10f64.powf((tolerance / 10.0).log10().floor())
+}
+
+fn round_to(x: f64, grid: f64) -> f64 {
+    // Dividing by the integer 1/grid (not multiplying by grid) gives the shortest decimal.
+    let inv = (1.0 / grid).round();
+    if inv >= 1.0 {
+        (x * inv).round() / inv + 0.0
+    } else {
+        (x / grid).round() * grid + 0.0
+    }
+}
+
+/// Fits one glyph: its X-spline contours and its report row.
+pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, GlyphReport) {
+    let mut contours = Vec::new();
+    let mut row = GlyphReport {
+        name: source.name.clone(),
+        original_points: 0,
+        xspline_points: 0,
+        max_error: 0.0,
+        dropped_contours: 0,
+    };
+    for original in contour::contours(&source.path) {
+        row.original_points += contour::stored_points(&original.segs);
+        let cut = contour::cut(&original);
+        let Some(fitted) = fit::fit_contour(&cut, FIT_SHARE * tolerance) else {
+            row.dropped_contours += 1;
+            continue;
+        };
+        // Round to the grid; if that costs too much, to a grid a hundred times finer.
+        let measured = [grid, grid / 100.0].iter().find_map(|&g| {
+            let spline = rounded(&fitted.points, g)?;
+            let err = fit::contour_error(&spline, &original.segs);
+            (err <= IMPORT_SHARE * tolerance || g < grid).then_some((spline, err))
+        });
+        let Some((spline, err)) = measured else {
+            row.dropped_contours += 1;
+            continue;
+        };
+        row.max_error = row.max_error.max(err);
+        row.xspline_points += spline.points().len();
+        contours.push(Contour {
+            points: spline.points().to_vec(),
+        });
+    }
+    let glyph = Glyph {
+        name: source.name.clone(),
+        unicodes: source.unicodes.clone(),
+        advance: round_to(source.advance, grid),
+        contours,
+        components: Vec::new(),
+    };
+    (glyph, row)
+}
+
+/// Rounds positions to `grid`, drops a point that then coincides with the one before it
+/// (keeping sharp points), and validates the result.
+fn rounded(points: &[ControlPoint], grid: f64) -> Option<XSpline> {
+    let mut out: Vec<ControlPoint> = points
+        .iter()
+        .map(|p| ControlPoint::new(round_to(p.pos.x, grid), round_to(p.pos.y, grid), p.s))
+        .collect();
+    let mut i = 0;
+    while out.len() >= 3 && i < out.len() {
+        let j = (i + 1) % out.len();
+        if out[i].pos == out[j].pos {
+            let drop = if out[j].is_sharp() { i } else { j };
+            out.remove(drop);
+        } else {
+            i += 1;
+        }
+    }
+    XSpline::new(out).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_and_rounding() {
+        assert_eq!(grid_for(2.048), 0.1);
+        assert_eq!(grid_for(1.0), 0.1);
+        assert_eq!(grid_for(0.05), 0.001);
+        assert_eq!(grid_for(40.0), 1.0);
+        assert_eq!(round_to(280.34, 0.1), 280.3);
+        assert_eq!(
+            crate::source::emit::number(round_to(1030.7149, 0.1)),
+            "1030.7"
+        );
+        assert_eq!(round_to(-0.04, 0.1).to_bits(), 0.0f64.to_bits());
+        assert_eq!(round_to(1234.0, 10.0), 1230.0);
+    }
+}

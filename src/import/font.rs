@@ -1,0 +1,325 @@
+//! TrueType/OpenType fonts (ttf-parser) -> original outlines, advances, code points, metrics.
+//!
+//! Quadratic (`glyf`) and cubic (`CFF`) outlines both arrive as kurbo paths in font units
+//! (y up). Composite glyphs arrive flattened (ttf-parser resolves them), so they import as
+//! plain contours. Limits: only the first face of a collection; variable fonts at their
+//! default instance; metrics from hhea/OS/2 as ttf-parser reports them.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use kurbo::BezPath;
+use ttf_parser::{name_id, Face, GlyphId, OutlineBuilder};
+
+use super::{ImportError, SourceGlyph};
+
+/// Font-wide data read from the font.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SourceMetrics {
+    pub family: String,
+    pub style: String,
+    pub units_per_em: u16,
+    pub ascender: f64,
+    pub descender: f64,
+    pub x_height: f64,
+    pub cap_height: f64,
+    pub copyright: Option<String>,
+    pub version: Option<String>,
+    pub designer: Option<String>,
+}
+
+/// What [`read_font`] found: metrics, glyphs in code point order, and notes on requested
+/// characters the font does not have.
+#[derive(Clone, Debug)]
+pub struct SourceFont {
+    pub metrics: SourceMetrics,
+    pub glyphs: Vec<SourceGlyph>,
+    pub missing: Vec<char>,
+}
+
+/// Parses a glyph list: comma-separated characters and inclusive ranges, e.g.
+/// `A-Z,a-z,0-9`; `U+0041` and `U+0041-U+005A` also work. A lone `-` is the hyphen.
+pub fn parse_glyph_list(list: &str) -> Result<Vec<char>, ImportError> {
+    let mut out = Vec::new();
+    for item in list.split(',') {
+        if item.is_empty() {
+            continue;
+        }
+        let (lo, hi) = match split_range(item) {
+            Some((a, b)) => (one_char(a, list)?, one_char(b, list)?),
+            None => {
+                let c = one_char(item, list)?;
+                (c, c)
+            }
+        };
+        if lo > hi {
+            return Err(ImportError::plain(format!(
+                "glyph list: range `{item}` runs backwards (write `{hi}-{lo}`)"
+            )));
+        }
+        out.extend((u32::from(lo)..=u32::from(hi)).filter_map(char::from_u32));
+    }
+    out.sort_unstable();
+    out.dedup();
+    if out.is_empty() {
+        return Err(ImportError::plain(format!(
+            "glyph list `{list}` names no character"
+        )));
+    }
+    Ok(out)
+}
+
+/// `a-b` with a non-empty side on both ends of one `-` (so `-` alone is a character).
+fn split_range(item: &str) -> Option<(&str, &str)> {
+    let chars: Vec<(usize, char)> = item.char_indices().collect();
+    chars
+        .iter()
+        .skip(1)
+        .find(|&&(_, c)| c == '-')
+        .map(|&(i, _)| (&item[..i], &item[i + 1..]))
+        .filter(|(_, b)| !b.is_empty())
+}
+
+fn one_char(s: &str, list: &str) -> Result<char, ImportError> {
+    let bad = || {
+        ImportError::plain(format!(
+            "glyph list `{list}`: `{s}` is not one character or U+XXXX code point"
+        ))
+    };
+    if let Some(hex) = s.strip_prefix("U+").or_else(|| s.strip_prefix("u+")) {
+        return u32::from_str_radix(hex, 16)
+            .ok()
+            .and_then(char::from_u32)
+            .ok_or_else(bad);
+    }
+    let mut it = s.chars();
+    match (it.next(), it.next()) {
+        (Some(c), None) => Ok(c),
+        _ => Err(bad()),
+    }
+}
+
+/// Reads `chars` (or every mapped character when `None`) from the font bytes `data`.
+pub fn read_font(
+    path: &Path,
+    data: &[u8],
+    chars: Option<&[char]>,
+) -> Result<SourceFont, ImportError> {
+    let face = Face::parse(data, 0).map_err(|e| {
+        ImportError::at(path, format!("not a readable TrueType/OpenType font ({e})"))
+    })?;
+    let metrics = read_metrics(&face);
+    let wanted: Vec<char> = match chars {
+        Some(list) => list.to_vec(),
+        None => mapped_chars(&face),
+    };
+    // Several characters can share one glyph; group them by glyph id.
+    let mut by_glyph: BTreeMap<u16, Vec<char>> = BTreeMap::new();
+    let mut missing = Vec::new();
+    for &c in &wanted {
+        match face.glyph_index(c) {
+            Some(gid) if gid.0 != 0 => by_glyph.entry(gid.0).or_default().push(c),
+            _ => missing.push(c),
+        }
+    }
+    let mut glyphs = Vec::new();
+    let mut used_names = std::collections::BTreeSet::new();
+    for (gid, unicodes) in by_glyph {
+        let gid = GlyphId(gid);
+        let name = glyph_name(&face, gid, unicodes[0], &used_names);
+        used_names.insert(name.clone());
+        let advance = face.glyph_hor_advance(gid).ok_or_else(|| {
+            ImportError::at(
+                path,
+                format!("glyph `{name}` has no horizontal advance (damaged hmtx table)"),
+            )
+        })?;
+        let mut builder = PathBuilder::default();
+        // `None` is an empty glyph (space) or an outline ttf-parser could not read: an
+        // error for a visible character, an empty glyph otherwise.
+        if face.outline_glyph(gid, &mut builder).is_none()
+            && unicodes
+                .iter()
+                .any(|c| c.is_alphanumeric() || c.is_ascii_graphic())
+        {
+            return Err(ImportError::at(
+                path,
+                format!(
+                    "glyph `{name}` (U+{:04X}) has no readable outline; the font may be damaged",
+                    u32::from(unicodes[0])
+                ),
+            ));
+        }
+        if !builder.finite {
+            return Err(ImportError::at(
+                path,
+                format!("glyph `{name}` has non-finite coordinates"),
+            ));
+        }
+        glyphs.push(SourceGlyph {
+            name,
+            unicodes,
+            advance: f64::from(advance),
+            path: builder.path,
+        });
+    }
+    Ok(SourceFont {
+        metrics,
+        glyphs,
+        missing,
+    })
+}
+
+/// Every character of the font's Unicode cmap subtables, in order.
+fn mapped_chars(face: &Face) -> Vec<char> {
+    let mut set = std::collections::BTreeSet::new();
+    if let Some(cmap) = face.tables().cmap {
+        for sub in cmap.subtables {
+            if sub.is_unicode() {
+                sub.codepoints(|cp| {
+                    if let Some(c) = char::from_u32(cp) {
+                        set.insert(c);
+                    }
+                });
+            }
+        }
+    }
+    set.into_iter().collect()
+}
+
+/// The post-table name, or `uniXXXX` from the first code point; unique within the import.
+fn glyph_name(
+    face: &Face,
+    gid: GlyphId,
+    first: char,
+    used: &std::collections::BTreeSet<String>,
+) -> String {
+    let stored = face
+        .glyph_name(gid)
+        .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_graphic()))
+        .map(str::to_string);
+    let base = stored.unwrap_or_else(|| format!("uni{:04X}", u32::from(first)));
+    let mut name = base.clone();
+    let mut k = 1;
+    while used.contains(&name) {
+        name = format!("{base}.{k}");
+        k += 1;
+    }
+    name
+}
+
+fn read_metrics(face: &Face) -> SourceMetrics {
+    let upm = face.units_per_em();
+    let name = |ids: &[u16]| -> Option<String> {
+        ids.iter().find_map(|&id| {
+            face.names()
+                .into_iter()
+                .filter(|n| n.name_id == id && n.is_unicode())
+                .find_map(|n| n.to_string())
+                .filter(|s| !s.trim().is_empty())
+        })
+    };
+    let measured_top = |c: char| -> Option<f64> {
+        let gid = face.glyph_index(c)?;
+        face.glyph_bounding_box(gid).map(|b| f64::from(b.y_max))
+    };
+    let em = f64::from(upm);
+    let ascender = f64::from(face.ascender());
+    let descender = f64::from(face.descender());
+    // A damaged hhea can give ascender <= descender; fall back to the usual 0.8/-0.2 em.
+    let (ascender, descender) = if ascender > descender {
+        (ascender, descender)
+    } else {
+        (0.8 * em, -0.2 * em)
+    };
+    SourceMetrics {
+        family: name(&[name_id::TYPOGRAPHIC_FAMILY, name_id::FAMILY])
+            .unwrap_or_else(|| "Imported".to_string()),
+        style: name(&[name_id::TYPOGRAPHIC_SUBFAMILY, name_id::SUBFAMILY])
+            .unwrap_or_else(|| "Regular".to_string()),
+        units_per_em: upm,
+        ascender,
+        descender,
+        x_height: face
+            .x_height()
+            .map(f64::from)
+            .filter(|&h| h > 0.0)
+            .or_else(|| measured_top('x'))
+            .unwrap_or(0.5 * em),
+        cap_height: face
+            .capital_height()
+            .map(f64::from)
+            .filter(|&h| h > 0.0)
+            .or_else(|| measured_top('H'))
+            .unwrap_or(0.7 * em),
+        copyright: name(&[name_id::COPYRIGHT_NOTICE]),
+        version: name(&[name_id::VERSION]),
+        designer: name(&[name_id::DESIGNER]),
+    }
+}
+
+/// Collects ttf-parser's outline calls into a kurbo path.
+struct PathBuilder {
+    path: BezPath,
+    finite: bool,
+}
+
+impl Default for PathBuilder {
+    fn default() -> Self {
+        PathBuilder {
+            path: BezPath::new(),
+            finite: true,
+        }
+    }
+}
+
+impl PathBuilder {
+    fn pt(&mut self, x: f32, y: f32) -> kurbo::Point {
+        self.finite &= x.is_finite() && y.is_finite();
+        kurbo::Point::new(f64::from(x), f64::from(y))
+    }
+}
+
+impl OutlineBuilder for PathBuilder {
+    fn move_to(&mut self, x: f32, y: f32) {
+        let p = self.pt(x, y);
+        self.path.move_to(p);
+    }
+    fn line_to(&mut self, x: f32, y: f32) {
+        let p = self.pt(x, y);
+        self.path.line_to(p);
+    }
+    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
+        let (c, p) = (self.pt(x1, y1), self.pt(x, y));
+        self.path.quad_to(c, p);
+    }
+    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
+        let (c1, c2, p) = (self.pt(x1, y1), self.pt(x2, y2), self.pt(x, y));
+        self.path.curve_to(c1, c2, p);
+    }
+    fn close(&mut self) {
+        self.path.close_path();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn glyph_lists() {
+        let az = parse_glyph_list("A-Z,a-z,0-9").unwrap();
+        assert_eq!(az.len(), 62);
+        assert_eq!(az[0], '0');
+        assert_eq!(parse_glyph_list("-,x").unwrap(), vec!['-', 'x']);
+        assert_eq!(parse_glyph_list("U+41-U+43").unwrap(), vec!['A', 'B', 'C']);
+        assert_eq!(
+            parse_glyph_list("Z-A").unwrap_err().to_string(),
+            "glyph list: range `Z-A` runs backwards (write `A-Z`)"
+        );
+        assert_eq!(
+            parse_glyph_list("AB").unwrap_err().to_string(),
+            "glyph list `AB`: `AB` is not one character or U+XXXX code point"
+        );
+    }
+}

@@ -1,0 +1,346 @@
+//! `xglyph import` of a real font: DejaVu Sans A–Z, a–z, 0–9 (Debian fonts-dejavu-core).
+//!
+//! Asserts, against outlines read here directly with ttf-parser: every imported X-spline
+//! within 0.75 T of the original (two-sided, dense sampling, T = 1/1000 em), fewer control
+//! points than the original's stored points, a report consistent with the written files,
+//! and the round trip import -> load -> build within T of the original.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathSeg, Point, Rect, Shape};
+use xglyph::import::{import_font, ImportOptions, Imported, IMPORT_SHARE};
+use xglyph::outline::outline_font;
+use xglyph::source::emit::font_sources;
+use xglyph::source::load_font;
+use xglyph::xspline::XSpline;
+
+const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+const LIST: &str = "A-Z,a-z,0-9";
+/// The default import tolerance: 1/1000 of DejaVu's 2048-unit em.
+const T: f64 = 2.048;
+
+fn font_bytes() -> Vec<u8> {
+    std::fs::read(DEJAVU).unwrap_or_else(|e| {
+        panic!("{DEJAVU} is needed for this test (Debian package fonts-dejavu-core): {e}")
+    })
+}
+
+/// The import, done once for all tests of this file; with its wall time in seconds.
+fn imported() -> &'static (Imported, f64) {
+    static CELL: OnceLock<(Imported, f64)> = OnceLock::new();
+    CELL.get_or_init(|| {
+        let opts = ImportOptions {
+            glyphs: Some(xglyph::import::font::parse_glyph_list(LIST).unwrap()),
+            ..ImportOptions::default()
+        };
+        let start = Instant::now();
+        let imp = import_font(Path::new(DEJAVU), &font_bytes(), &opts).unwrap();
+        (imp, start.elapsed().as_secs_f64())
+    })
+}
+
+/// The original outline of `c`, read with ttf-parser directly.
+fn original(face: &ttf_parser::Face, c: char) -> BezPath {
+    struct B(BezPath);
+    impl ttf_parser::OutlineBuilder for B {
+        fn move_to(&mut self, x: f32, y: f32) {
+            self.0.move_to((x as f64, y as f64));
+        }
+        fn line_to(&mut self, x: f32, y: f32) {
+            self.0.line_to((x as f64, y as f64));
+        }
+        fn quad_to(&mut self, a: f32, b: f32, x: f32, y: f32) {
+            self.0.quad_to((a as f64, b as f64), (x as f64, y as f64));
+        }
+        fn curve_to(&mut self, a: f32, b: f32, c: f32, d: f32, x: f32, y: f32) {
+            self.0.curve_to(
+                (a as f64, b as f64),
+                (c as f64, d as f64),
+                (x as f64, y as f64),
+            );
+        }
+        fn close(&mut self) {
+            self.0.close_path();
+        }
+    }
+    let mut b = B(BezPath::new());
+    face.outline_glyph(face.glyph_index(c).unwrap(), &mut b);
+    b.0
+}
+
+fn distance(p: Point, segs: &[(PathSeg, Rect)]) -> f64 {
+    let mut best = f64::INFINITY;
+    for (seg, bb) in segs {
+        let dx = (bb.x0 - p.x).max(p.x - bb.x1).max(0.0);
+        let dy = (bb.y0 - p.y).max(p.y - bb.y1).max(0.0);
+        if dx * dx + dy * dy < best {
+            best = best.min(seg.nearest(p, 1e-9).distance_sq);
+        }
+    }
+    best.sqrt()
+}
+
+/// Segments of a path without single-point contours (DejaVu has a few, e.g. in `u`: they
+/// enclose nothing and are not imported).
+fn segments(path: &BezPath) -> impl Iterator<Item = PathSeg> + '_ {
+    path.segments()
+        .filter(|s| !matches!(s, PathSeg::Line(l) if l.p0 == l.p1))
+}
+
+fn with_boxes(path: &BezPath) -> Vec<(PathSeg, Rect)> {
+    segments(path).map(|s| (s, s.bounding_box())).collect()
+}
+
+/// Largest distance from `per` samples per segment of `a` to the path `b`.
+fn one_sided(a: &BezPath, b: &BezPath, per: usize) -> f64 {
+    let target = with_boxes(b);
+    segments(a)
+        .flat_map(|s| (0..per).map(move |i| s.eval(i as f64 / per as f64)))
+        .map(|p| distance(p, &target))
+        .fold(0.0, f64::max)
+}
+
+fn two_sided(a: &BezPath, b: &BezPath) -> f64 {
+    one_sided(a, b, 32).max(one_sided(b, a, 32))
+}
+
+/// X-splines as a fine polyline (256 samples per segment; the chord error at that density
+/// is far below a thousandth of a unit for these glyphs).
+fn polyline(splines: &[XSpline]) -> BezPath {
+    let mut path = BezPath::new();
+    for s in splines {
+        let n = s.segment_count() * 256;
+        path.move_to(s.eval(0.0));
+        for k in 1..n {
+            path.line_to(s.eval(k as f64 / 256.0));
+        }
+        path.close_path();
+    }
+    path
+}
+
+#[test]
+fn dejavu_within_tolerance_with_fewer_points() {
+    let (imp, seconds) = imported();
+    let report = &imp.report;
+    let data = font_bytes();
+    let face = ttf_parser::Face::parse(&data, 0).unwrap();
+    assert_eq!(report.rows.len(), 62);
+    assert_eq!(imp.font.glyphs.len(), 62);
+    assert_eq!(report.tolerance, T);
+    let mut worst = (0.0, String::new());
+    for glyph in &imp.font.glyphs {
+        let c = glyph.unicodes[0];
+        let splines: Vec<XSpline> = glyph
+            .contours
+            .iter()
+            .map(|k| XSpline::new(k.points.clone()).unwrap())
+            .collect();
+        let orig = original(&face, c);
+        let err = two_sided(&polyline(&splines), &orig);
+        let row = report.rows.iter().find(|r| r.name == glyph.name).unwrap();
+        assert!(
+            err <= IMPORT_SHARE * T + 0.01,
+            "glyph {}: measured {err}, bound {}",
+            glyph.name,
+            IMPORT_SHARE * T
+        );
+        // The report's own measurement agrees with this independent one.
+        assert!(
+            (err - row.max_error).abs() < 0.05,
+            "glyph {}: report says {}, measured {err}",
+            glyph.name,
+            row.max_error
+        );
+        if err > worst.0 {
+            worst = (err, glyph.name.clone());
+        }
+    }
+    let (before, after) = (report.original_points(), report.xspline_points());
+    eprintln!(
+        "{}\nworst glyph {} at {:.3} units; import took {seconds:.1} s",
+        report.summary(),
+        worst.1,
+        worst.0
+    );
+    // On+off points as stored (TrueType implied midpoints not counted; explicit points that
+    // sit exactly on a midpoint are not counted either, so this undercounts a little).
+    assert_eq!(before, 1229);
+    assert!(
+        after <= before,
+        "{after} X-spline points > {before} original"
+    );
+}
+
+#[test]
+fn dejavu_shapes_are_clean() {
+    let (imp, _) = imported();
+    let glyph = |name: &str| imp.font.glyph(name).unwrap();
+    // Straight-edged glyphs: exactly the original corners, all sharp, no error.
+    for (name, count) in [("A", 11), ("l", 4), ("H", 12), ("seven", 7)] {
+        let g = glyph(name);
+        let pts: Vec<_> = g.contours.iter().flat_map(|c| &c.points).collect();
+        assert_eq!(pts.len(), count, "{name}");
+        assert!(pts.iter().all(|p| p.s == 0.0), "{name}");
+        let row = imp.report.rows.iter().find(|r| r.name == name).unwrap();
+        assert_eq!(row.original_points, count, "{name}");
+        assert!(row.max_error < 1e-9, "{name}: {}", row.max_error);
+    }
+    // 'o': two smooth loops, no sharp point.
+    let o = glyph("o");
+    assert_eq!(o.contours.len(), 2);
+    assert!(o.contours.iter().flat_map(|c| &c.points).all(|p| p.s > 0.0));
+    // Metrics and names from the font.
+    let info = &imp.font.info;
+    assert_eq!(info.family, "DejaVu Sans");
+    assert_eq!(info.style, "Book");
+    assert_eq!(info.units_per_em, 2048);
+    assert_eq!((info.ascender, info.descender), (1901.0, -483.0));
+    assert_eq!((info.x_height, info.cap_height), (1120.0, 1493.0));
+    assert_eq!(info.tolerance, 0.512);
+    assert_eq!(glyph("A").advance, 1401.0);
+    assert_eq!(glyph("A").unicodes, vec!['A']);
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xglyph-import-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn write(imp: &Imported, dir: &Path) {
+    std::fs::create_dir_all(dir).unwrap();
+    for (name, text) in font_sources(&imp.font) {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+}
+
+#[test]
+fn report_matches_written_files() {
+    let (imp, _) = imported();
+    let dir = temp_dir("report");
+    write(imp, &dir);
+    let (font, warnings) = load_font(&dir).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let text = imp.report.render();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "glyph  original   xspline  max error"
+    );
+    let mut rows = 0;
+    let mut sum = (0, 0);
+    for line in lines.by_ref().take(62) {
+        let cols: Vec<&str> = line.split_whitespace().collect();
+        let g = font.glyph(cols[0]).unwrap();
+        let points: usize = g.contours.iter().map(|c| c.points.len()).sum();
+        assert_eq!(cols[2].parse::<usize>().unwrap(), points, "{line}");
+        let err: f64 = cols[3].parse().unwrap();
+        assert!(err <= IMPORT_SHARE * T, "{line}");
+        sum.0 += cols[1].parse::<usize>().unwrap();
+        sum.1 += points;
+        rows += 1;
+    }
+    assert_eq!(rows, 62);
+    let summary = lines.next().unwrap();
+    assert!(
+        summary.starts_with(&format!(
+            "total: 62 glyphs, {} original points, {} X-spline points, max error ",
+            sum.0, sum.1
+        )),
+        "{summary}"
+    );
+    assert!(summary.ends_with("(tolerance 2.048, build tolerance 0.512)"));
+    assert_eq!(lines.next(), None);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn round_trip_import_build_within_tolerance() {
+    let (imp, _) = imported();
+    let dir = temp_dir("roundtrip");
+    write(imp, &dir);
+    let (font, _) = load_font(&dir).unwrap();
+    assert_eq!(
+        font, imp.font,
+        "the written sources load back to the same model"
+    );
+    let built = outline_font(&font, font.info.tolerance).unwrap();
+    let data = font_bytes();
+    let face = ttf_parser::Face::parse(&data, 0).unwrap();
+    let mut worst: f64 = 0.0;
+    for g in &built.glyphs {
+        let err = two_sided(&g.path, &original(&face, g.unicodes[0]));
+        assert!(
+            err <= T,
+            "glyph {}: built outline {err} from the original",
+            g.name
+        );
+        worst = worst.max(err);
+    }
+    eprintln!("round trip: worst {worst:.3} font units (T = {T})");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// At joins that are smooth in the original (a straight segment meeting a curve along its
+/// tangent, which becomes an `s = 0` point), the imported X-spline turns by at most 2°.
+#[test]
+fn smooth_joins_stay_smooth() {
+    let (imp, _) = imported();
+    let data = font_bytes();
+    let face = ttf_parser::Face::parse(&data, 0).unwrap();
+    let angle = |a: kurbo::Vec2, b: kurbo::Vec2| {
+        (a.dot(b) / (a.hypot() * b.hypot()))
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees()
+    };
+    let tangents = |s: PathSeg| -> (kurbo::Vec2, kurbo::Vec2) {
+        let pts: Vec<Point> = match s {
+            PathSeg::Line(l) => vec![l.p0, l.p1],
+            PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+            PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+        };
+        let n = pts.len();
+        (pts[1] - pts[0], pts[n - 1] - pts[n - 2])
+    };
+    let (mut joins, mut worst) = (0, (0.0, String::new()));
+    for glyph in &imp.font.glyphs {
+        let segs: Vec<PathSeg> = segments(&original(&face, glyph.unicodes[0])).collect();
+        for contour in &glyph.contours {
+            let spline = XSpline::new(contour.points.clone()).unwrap();
+            let n = spline.segment_count();
+            for k in 0..n {
+                if contour.points[k].s != 0.0 {
+                    continue;
+                }
+                let p = contour.points[k].pos;
+                // The original join at this point: a segment ending here, one starting here.
+                let ins = segs.iter().find(|s| (s.end() - p).hypot() < 1e-6);
+                let outs = segs.iter().find(|s| (s.start() - p).hypot() < 1e-6);
+                let (Some(&a), Some(&b)) = (ins, outs) else {
+                    continue;
+                };
+                if angle(tangents(a).1, tangents(b).0) > 0.5 {
+                    continue;
+                }
+                let turn = angle(
+                    spline.segment(k + n - 1).end_direction(),
+                    spline.segment(k).start_direction(),
+                );
+                joins += 1;
+                if turn > worst.0 {
+                    worst = (turn, glyph.name.clone());
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{joins} smooth joins, worst turn {:.2}° in {}",
+        worst.0, worst.1
+    );
+    assert!(joins > 50, "{joins}");
+    assert!(worst.0 <= 2.0, "{worst:?}");
+}

@@ -1,0 +1,164 @@
+//! `xglyph import` of SVG drawings (tests/fixtures/import: transforms, arcs, a skewed
+//! rounded rectangle, holes by even-odd and by nonzero): the imported glyphs, built to
+//! Béziers, render like the originals.
+//!
+//! Both are rasterised at 240 px per canvas height: the original with resvg, the glyph
+//! (import -> sources -> load -> outline_font) with tiny-skia, in the same frame. At most
+//! 0.05 % of the pixels may differ in coverage by more than half, and 0.1 % by more than a
+//! quarter (the import tolerance, 1 unit of a 1000-unit em, is a quarter pixel here, so
+//! only a few edge pixels may change much). A 2-pixel shift of the same glyph is checked
+//! to fail by far, so the comparison can fail.
+
+use std::path::{Path, PathBuf};
+
+use kurbo::{BezPath, PathEl};
+use tiny_skia::{FillRule, Paint, PathBuilder, Pixmap, Transform};
+use xglyph::import::{import_svgs, ImportOptions};
+use xglyph::outline::outline_font;
+use xglyph::source::emit::font_sources;
+use xglyph::source::load_font;
+
+const PX: f64 = 240.0;
+const DIR: &str = "tests/fixtures/import";
+
+fn fixture(name: &str) -> (PathBuf, Vec<u8>) {
+    let path = Path::new(DIR).join(name);
+    let data = std::fs::read(&path).unwrap();
+    (path, data)
+}
+
+fn render_original(data: &[u8]) -> Pixmap {
+    let tree = usvg::Tree::from_data(data, &usvg::Options::default()).unwrap();
+    let size = tree.size();
+    let k = PX as f32 / size.height();
+    let mut pixmap = Pixmap::new(
+        (size.width() * k).round() as u32,
+        (size.height() * k).round() as u32,
+    )
+    .unwrap();
+    resvg::render(&tree, Transform::from_scale(k, k), &mut pixmap.as_mut());
+    pixmap
+}
+
+/// The glyph in the original's pixel frame: font units (y up, canvas top at the ascender
+/// 800, canvas height = 1000 units) -> pixels, shifted right by `shift` pixels.
+fn render_glyph(path: &BezPath, width: u32, height: u32, shift: f64) -> Pixmap {
+    let k = PX / 1000.0;
+    let map = |p: kurbo::Point| ((p.x * k + shift) as f32, ((800.0 - p.y) * k) as f32);
+    let mut pb = PathBuilder::new();
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) => {
+                let (x, y) = map(p);
+                pb.move_to(x, y);
+            }
+            PathEl::LineTo(p) => {
+                let (x, y) = map(p);
+                pb.line_to(x, y);
+            }
+            PathEl::QuadTo(a, p) => {
+                let ((ax, ay), (x, y)) = (map(a), map(p));
+                pb.quad_to(ax, ay, x, y);
+            }
+            PathEl::CurveTo(a, b, p) => {
+                let ((ax, ay), (bx, by), (x, y)) = (map(a), map(b), map(p));
+                pb.cubic_to(ax, ay, bx, by, x, y);
+            }
+            PathEl::ClosePath => pb.close(),
+        }
+    }
+    let mut pixmap = Pixmap::new(width, height).unwrap();
+    let mut paint = Paint::default();
+    paint.set_color_rgba8(0, 0, 0, 255);
+    paint.anti_alias = true;
+    pixmap.fill_path(
+        &pb.finish().unwrap(),
+        &paint,
+        FillRule::Winding,
+        Transform::identity(),
+        None,
+    );
+    pixmap
+}
+
+/// Pixels whose alpha differs by more than `threshold` (of 255), and pixels covered at
+/// least half in `a`.
+fn compare(a: &Pixmap, b: &Pixmap, threshold: u8) -> (usize, usize) {
+    let alpha = |p: &Pixmap| p.pixels().iter().map(|c| c.alpha()).collect::<Vec<u8>>();
+    let (aa, bb) = (alpha(a), alpha(b));
+    let differ = aa
+        .iter()
+        .zip(&bb)
+        .filter(|(x, y)| x.abs_diff(**y) > threshold)
+        .count();
+    let covered = aa.iter().filter(|&&x| x > 127).count();
+    (differ, covered)
+}
+
+#[test]
+fn svg_icons_render_like_the_originals() {
+    let names = ["ring.svg", "house.svg", "drop.svg"];
+    let files: Vec<(PathBuf, Vec<u8>)> = names.iter().map(|n| fixture(n)).collect();
+    let mut opts = ImportOptions::default();
+    opts.codepoints.insert("ring".into(), '\u{E100}');
+    opts.codepoints.insert("house".into(), 'h');
+    let imp = import_svgs(&files, &opts).unwrap();
+    eprint!("{}", imp.report.render());
+
+    // Through the sources: write, load (as `xglyph check` does), build.
+    let dir = std::env::temp_dir().join(format!("xglyph-import-svg-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in font_sources(&imp.font) {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let (font, warnings) = load_font(&dir).unwrap();
+    assert!(warnings.is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+    let built = outline_font(&font, font.info.tolerance).unwrap();
+
+    assert_eq!(font.info.units_per_em, 1000);
+    assert_eq!(font.info.family, "Imported Icons");
+    assert_eq!(font.info.tolerance, 0.25);
+    let unicodes: Vec<(&str, Vec<char>, f64)> = font
+        .glyphs
+        .iter()
+        .map(|g| (g.name.as_str(), g.unicodes.clone(), g.advance))
+        .collect();
+    assert_eq!(
+        unicodes,
+        vec![
+            ("drop", vec!['\u{E000}'], 1333.3),
+            ("house", vec!['h'], 1000.0),
+            ("ring", vec!['\u{E100}'], 1000.0),
+        ]
+    );
+    // Contours: ring 2 (outer, hole); house 3 (outline, door, rounded rect); drop 3.
+    let contours: Vec<usize> = font.glyphs.iter().map(|g| g.contours.len()).collect();
+    assert_eq!(contours, vec![3, 3, 2]);
+    for row in &imp.report.rows {
+        assert!(row.max_error <= 0.75, "{}: {}", row.name, row.max_error);
+    }
+
+    for (name, (_, data)) in names.iter().zip(&files) {
+        let stem = name.trim_end_matches(".svg");
+        let original = render_original(data);
+        let glyph = built.glyph(stem).unwrap();
+        let (w, h) = (original.width(), original.height());
+        let rendered = render_glyph(&glyph.path, w, h, 0.0);
+        let (differ, covered) = compare(&original, &rendered, 127);
+        let (edge, _) = compare(&original, &rendered, 63);
+        let total = (w * h) as usize;
+        let limit = total / 2000;
+        eprintln!(
+            "{name}: {differ} of {total} pixels differ by > 1/2 (limit {limit}), \
+             {edge} by > 1/4 (limit {}), {covered} covered",
+            2 * limit
+        );
+        assert!(covered > total / 10, "{name}: the drawing covers too little");
+        assert!(differ <= limit, "{name}: {differ} pixels differ");
+        assert!(edge <= 2 * limit, "{name}: {edge} pixels differ by a quarter");
+        let (shifted, _) = compare(&original, &render_glyph(&glyph.path, w, h, 2.0), 127);
+        assert!(shifted > 20 * limit.max(1), "{name}: a shift gives only {shifted}");
+    }
+}
