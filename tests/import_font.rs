@@ -1,4 +1,4 @@
-//! `xglyph import` of a real font: DejaVu Sans A–Z, a–z, 0–9 (Debian fonts-dejavu-core).
+//! `xglyph import` of a real font: DejaVu Sans A–Z, a–z, 0–9 (a copy of Debian fonts-dejavu-core, in tests/fixtures/import).
 //!
 //! Asserts, against outlines read here directly with ttf-parser: every imported X-spline
 //! within 0.75 T of the original (two-sided, dense sampling, T = 1/1000 em), fewer control
@@ -16,14 +16,15 @@ use xglyph::source::emit::font_sources;
 use xglyph::source::load_font;
 use xglyph::xspline::XSpline;
 
-const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+/// A copy of Debian fonts-dejavu-core 2.37 (license next to it), so the numbers are fixed.
+const DEJAVU: &str = "tests/fixtures/import/DejaVuSans.ttf";
 const LIST: &str = "A-Z,a-z,0-9";
 /// The default import tolerance: 1/1000 of DejaVu's 2048-unit em.
 const T: f64 = 2.048;
 
 fn font_bytes() -> Vec<u8> {
     std::fs::read(DEJAVU).unwrap_or_else(|e| {
-        panic!("{DEJAVU} is needed for this test (Debian package fonts-dejavu-core): {e}")
+        panic!("{DEJAVU} is needed for this test (a copy of Debian fonts-dejavu-core): {e}")
     })
 }
 

@@ -13,7 +13,8 @@ use xglyph::import::{import_font, import_svgs, ImportOptions};
 use xglyph::source::emit::font_sources;
 use xglyph::source::load_font;
 
-const DEJAVU: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+/// A copy of Debian fonts-dejavu-core 2.37 (license next to it), so the numbers are fixed.
+const DEJAVU: &str = "tests/fixtures/import/DejaVuSans.ttf";
 const FIXTURES: &str = "tests/fixtures/import";
 
 fn dejavu() -> Vec<u8> {

@@ -155,10 +155,19 @@ fn svg_icons_render_like_the_originals() {
              {edge} by > 1/4 (limit {}), {covered} covered",
             2 * limit
         );
-        assert!(covered > total / 10, "{name}: the drawing covers too little");
+        assert!(
+            covered > total / 10,
+            "{name}: the drawing covers too little"
+        );
         assert!(differ <= limit, "{name}: {differ} pixels differ");
-        assert!(edge <= 2 * limit, "{name}: {edge} pixels differ by a quarter");
+        assert!(
+            edge <= 2 * limit,
+            "{name}: {edge} pixels differ by a quarter"
+        );
         let (shifted, _) = compare(&original, &render_glyph(&glyph.path, w, h, 2.0), 127);
-        assert!(shifted > 20 * limit.max(1), "{name}: a shift gives only {shifted}");
+        assert!(
+            shifted > 20 * limit.max(1),
+            "{name}: a shift gives only {shifted}"
+        );
     }
 }
