@@ -195,14 +195,20 @@ pub fn cff_table(info: &CffInfo, glyph_names: &[&str], charstrings: &[Vec<u8>]) 
     if let Some(copyright) = info.copyright {
         fields.push((OP_COPYRIGHT, vec![Operand::Int(strings.sid(copyright))]));
     }
-    fields.push((OP_FULL_NAME, vec![Operand::Int(strings.sid(info.full_name))]));
+    fields.push((
+        OP_FULL_NAME,
+        vec![Operand::Int(strings.sid(info.full_name))],
+    ));
     fields.push((
         OP_FAMILY_NAME,
         vec![Operand::Int(strings.sid(info.family_name))],
     ));
     fields.push((
         OP_FONT_BBOX,
-        info.bbox.iter().map(|&v| Operand::Int(i32::from(v))).collect(),
+        info.bbox
+            .iter()
+            .map(|&v| Operand::Int(i32::from(v)))
+            .collect(),
     ));
     if info.units_per_em != 1000 {
         let scale = 1.0 / f64::from(info.units_per_em);
@@ -246,14 +252,11 @@ pub fn cff_table(info: &CffInfo, glyph_names: &[&str], charstrings: &[Vec<u8>]) 
     };
     // The Top DICT INDEX has the same size whatever the (fixed-width) offsets are.
     let top_len = with_offsets(0, 0, 0).len();
-    let charset_at = header.len() + name_index.len() + top_len + string_index.len() + gsubr_index.len();
+    let charset_at =
+        header.len() + name_index.len() + top_len + string_index.len() + gsubr_index.len();
     let charstrings_at = charset_at + charset.len();
     let private_at = charstrings_at + charstrings_index.len();
-    let top_index = with_offsets(
-        charset_at as i32,
-        charstrings_at as i32,
-        private_at as i32,
-    );
+    let top_index = with_offsets(charset_at as i32, charstrings_at as i32, private_at as i32);
 
     let mut out = Vec::with_capacity(private_at + private.len());
     out.extend(header);

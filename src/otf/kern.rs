@@ -1,9 +1,9 @@
 //! Kerning: GPOS `kern` feature (one PairPosFormat1 lookup) and a legacy `kern` table.
 //!
 //! Pairs are by glyph, as in the model (no classes). The value adjusts the first glyph's
-//! advance, negative = tighter. The legacy table (version 0, one format 0 subtable) is for
-//! consumers that predate GPOS; it is left out when its pairs overflow the 16-bit subtable
-//! length (more than 10 920 pairs), GPOS still carries them all.
+//! advance, negative = tighter. The legacy table (version 0, one format 0 subtable, TTF
+//! only) is for consumers that predate GPOS; it is left out when its pairs overflow the
+//! 16-bit subtable length (more than 10 920 pairs), GPOS still carries them all.
 
 use std::collections::BTreeMap;
 
@@ -101,14 +101,14 @@ pub fn legacy_kern(pairs: &KernPairs) -> Option<Vec<u8>> {
     let search_range = 6 * (1usize << entry_selector);
     let mut out = Vec::with_capacity(4 + length);
     for v in [
-        0u16,                    // table version
-        1,                       // number of subtables
-        0,                       // subtable version
-        length as u16,           // subtable length
-        0x0001,                  // coverage: horizontal, format 0
-        n as u16,                // nPairs
-        search_range as u16,     // searchRange
-        entry_selector as u16,   // entrySelector
+        0u16,                          // table version
+        1,                             // number of subtables
+        0,                             // subtable version
+        length as u16,                 // subtable length
+        0x0001,                        // coverage: horizontal, format 0
+        n as u16,                      // nPairs
+        search_range as u16,           // searchRange
+        entry_selector as u16,         // entrySelector
         (6 * n - search_range) as u16, // rangeShift
     ] {
         out.extend(v.to_be_bytes());

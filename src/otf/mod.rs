@@ -13,8 +13,8 @@
 //! convex combination of its control points, so grid rounding moves any outline point by at
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
 //!
-//! Kerning goes into GPOS (`kern` feature, pair adjustment) and a legacy `kern` table
-//! ([`kern`]). Components are already resolved into the outlines; no composite glyphs.
+//! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
+//! `kern` table ([`kern`]). Components are already resolved into the outlines; no composite glyphs.
 
 mod cff;
 mod charstring;
@@ -96,15 +96,25 @@ impl GlyphSet {
     /// `.notdef` first (synthesised as an empty box when the model has none), then the
     /// model's order.
     pub fn new(font: &Font, outlines: &FontOutlines) -> Result<Self, OtfError> {
-        let mut glyphs = Vec::with_capacity(font.glyphs.len() + 1);
-        if font.glyph(".notdef").is_none() {
+        let has_notdef = font.glyph(".notdef").is_some();
+        let count = font.glyphs.len() + usize::from(!has_notdef);
+        if count > usize::from(u16::MAX) {
+            return Err(OtfError::TooManyGlyphs(count));
+        }
+        let mut glyphs = Vec::with_capacity(count);
+        if !has_notdef {
             glyphs.push(synthetic_notdef(font));
         }
-        let notdef = font.glyphs.iter().filter(|g| g.name == ".notdef");
-        let rest = font.glyphs.iter().filter(|g| g.name != ".notdef");
-        for glyph in notdef.chain(rest) {
+        let indexed = font.glyphs.iter().enumerate();
+        let notdef = indexed.clone().filter(|(_, g)| g.name == ".notdef");
+        let rest = indexed.filter(|(_, g)| g.name != ".notdef");
+        for (index, glyph) in notdef.chain(rest) {
+            // Outlines come in model order; search only if they do not.
             let outline = outlines
-                .glyph(&glyph.name)
+                .glyphs
+                .get(index)
+                .filter(|o| o.name == glyph.name)
+                .or_else(|| outlines.glyph(&glyph.name))
                 .ok_or_else(|| OtfError::MissingOutline(glyph.name.clone()))?;
             let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
             glyphs.push(OtGlyph {
@@ -114,9 +124,6 @@ impl GlyphSet {
                 advance,
                 path: outline.path.clone(),
             });
-        }
-        if glyphs.len() > usize::from(u16::MAX) {
-            return Err(OtfError::TooManyGlyphs(glyphs.len()));
         }
         let names = glyph_names::ps_names(&glyphs);
         for (glyph, name) in glyphs.iter_mut().zip(names) {
@@ -192,16 +199,29 @@ pub fn otf(font: &Font, outlines: &FontOutlines) -> Result<Vec<u8>, OtfError> {
     tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
 }
 
-/// The glyph order, PostScript names, code points and advances both fonts are built with,
-/// for external checks (`.ci/check-fonts`): `[(name, code points, advance)]`.
-pub fn glyph_order(
-    font: &Font,
-    outlines: &FontOutlines,
-) -> Result<Vec<(String, Vec<char>, u16)>, OtfError> {
+/// One glyph as both fonts hold it (for external checks and reports).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrderedGlyph {
+    /// The model's name (`.notdef` for a synthesised one).
+    pub model_name: String,
+    /// The PostScript name in `post` / the CFF charset.
+    pub ps_name: String,
+    pub unicodes: Vec<char>,
+    /// Advance on the grid, font units.
+    pub advance: u16,
+}
+
+/// The glyph order, PostScript names, code points and advances both fonts are built with.
+pub fn glyph_order(font: &Font, outlines: &FontOutlines) -> Result<Vec<OrderedGlyph>, OtfError> {
     let set = GlyphSet::new(font, outlines)?;
     Ok(set
         .glyphs
         .into_iter()
-        .map(|g| (g.ps_name, g.unicodes, g.advance))
+        .map(|g| OrderedGlyph {
+            model_name: g.model_name,
+            ps_name: g.ps_name,
+            unicodes: g.unicodes,
+            advance: g.advance,
+        })
         .collect())
 }

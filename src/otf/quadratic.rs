@@ -36,8 +36,7 @@ pub fn truetype_contours(path: &BezPath, accuracy: f64) -> Vec<Vec<SplinePoint>>
         on_curve: false,
     };
     let mut finish = |points: &mut Vec<SplinePoint>| {
-        if points.len() > 1 && points.last().map(|p| p.point) == points.first().map(|p| p.point)
-        {
+        if points.len() > 1 && points.last().map(|p| p.point) == points.first().map(|p| p.point) {
             points.pop();
         }
         if !points.is_empty() {

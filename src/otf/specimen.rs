@@ -166,7 +166,11 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
         ch = info.cap_height,
     );
     for glyph in &font.glyphs {
-        let shown: String = glyph.unicodes.first().map(|c| c.to_string()).unwrap_or_default();
+        let shown: String = glyph
+            .unicodes
+            .first()
+            .map(|c| c.to_string())
+            .unwrap_or_default();
         let codes: Vec<String> = glyph
             .unicodes
             .iter()

@@ -3,8 +3,7 @@
 //!
 //! Vertical metrics are the model's ascender and descender everywhere (hhea, OS/2 typo with
 //! USE_TYPO_METRICS, line gap 0); OS/2 win ascent/descent additionally cover the union of
-//! the glyph boxes so no glyph is clipped on Windows. Dates are 0 (1904-01-01) so the same
-//! model always gives the same bytes.
+//! the glyph boxes so no glyph is clipped on Windows.
 //!
 //! Limits: OS/2 Unicode ranges cover the Latin, Greek, Cyrillic and punctuation blocks
 //! listed in [`UNICODE_RANGES`] plus the supplementary-plane bit; code page ranges mark
@@ -19,7 +18,9 @@ use write_fonts::tables::maxp::Maxp;
 use write_fonts::tables::name::{Name, NameRecord};
 use write_fonts::tables::os2::{Os2, SelectionFlags};
 use write_fonts::tables::post::Post;
-use write_fonts::types::{FWord, Fixed, GlyphId, LongDateTime, NameId, Tag, UfWord, Version16Dot16};
+use write_fonts::types::{
+    FWord, Fixed, GlyphId, LongDateTime, NameId, Tag, UfWord, Version16Dot16,
+};
 use write_fonts::FontBuilder;
 
 use super::cff::{cff_table, CffInfo};
@@ -52,6 +53,11 @@ const UNICODE_RANGES: &[(u32, u32, u32)] = &[
     (33, 0x20A0, 0x20CF), // Currency Symbols
     (60, 0xE000, 0xF8FF), // Private Use Area
 ];
+
+/// `head.created` and `head.modified`: a fixed 2020-01-01T00:00:00Z (seconds since
+/// 1904), not the build time, so the same model always gives the same bytes. (Zero would
+/// do too, but fontTools then warns that the date "seems very low".)
+const FIXED_DATE: i64 = 3_660_681_600;
 
 /// Names and style facts derived from `font.toml`.
 struct Naming {
@@ -123,9 +129,7 @@ fn parse_version(version: Option<&str>) -> (f64, String) {
     };
     let bare = text.strip_prefix("Version ").unwrap_or(text);
     match bare.parse::<f64>() {
-        Ok(v) if v.is_finite() && (0.0..32768.0).contains(&v) => {
-            (v, format!("Version {v:.3}"))
-        }
+        Ok(v) if v.is_finite() && (0.0..32768.0).contains(&v) => (v, format!("Version {v:.3}")),
         _ => (1.0, format!("Version 1.000; {text}")),
     }
 }
@@ -272,8 +276,8 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         0,
         Flags::BASELINE_AT_Y_0 | Flags::LSB_AT_X_0 | Flags::FORCE_INTEGER_PPEM,
         upm,
-        LongDateTime::new(0),
-        LongDateTime::new(0),
+        LongDateTime::new(FIXED_DATE),
+        LongDateTime::new(FIXED_DATE),
         bbox.0,
         bbox.1,
         bbox.2,
@@ -290,7 +294,12 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         .zip(&boxes)
         .map(|(&adv, b)| LongMetric::new(adv, b.map_or(0, |b| b.0)))
         .collect();
-    let inked = || advances.iter().zip(&boxes).filter_map(|(&a, b)| b.map(|b| (a, b)));
+    let inked = || {
+        advances
+            .iter()
+            .zip(&boxes)
+            .filter_map(|(&a, b)| b.map(|b| (a, b)))
+    };
     let min_lsb = inked().map(|(_, b)| b.0).min().unwrap_or(0);
     let min_rsb = inked()
         .map(|(a, b)| (i32::from(a) - i32::from(b.2)).clamp(-32768, 32767) as i16)
@@ -316,11 +325,11 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         .map_err(table_err)?;
 
     // cmap
-    let mappings = set
-        .glyphs
-        .iter()
-        .enumerate()
-        .flat_map(|(gid, g)| g.unicodes.iter().map(move |&c| (c, GlyphId::new(gid as u32))));
+    let mappings = set.glyphs.iter().enumerate().flat_map(|(gid, g)| {
+        g.unicodes
+            .iter()
+            .map(move |&c| (c, GlyphId::new(gid as u32)))
+    });
     let cmap = Cmap::from_mappings(mappings).map_err(|e| OtfError::CmapConflict(e.to_string()))?;
     builder.add_table(&cmap).map_err(table_err)?;
 
@@ -329,8 +338,12 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
     if let Some(gpos) = gpos(&pairs) {
         builder.add_table(&gpos).map_err(table_err)?;
     }
-    if let Some(kern) = legacy_kern(&pairs) {
-        builder.add_raw(Tag::new(b"kern"), kern);
+    // The legacy table only in the TTF: OTS (and with it Chrome and Firefox) drops `kern`
+    // from CFF-flavoured fonts, and GPOS carries the same pairs.
+    if matches!(outlines, Outlines::TrueType(_)) {
+        if let Some(kern) = legacy_kern(&pairs) {
+            builder.add_raw(Tag::new(b"kern"), kern);
+        }
     }
 
     // OS/2
@@ -392,8 +405,14 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         ul_unicode_range_4: ranges[3],
         ach_vend_id: Tag::new(b"NONE"),
         fs_selection: selection,
-        us_first_char_index: code_points.iter().min().map_or(0, |&c| c.min(0xFFFF) as u16),
-        us_last_char_index: code_points.iter().max().map_or(0, |&c| c.min(0xFFFF) as u16),
+        us_first_char_index: code_points
+            .iter()
+            .min()
+            .map_or(0, |&c| c.min(0xFFFF) as u16),
+        us_last_char_index: code_points
+            .iter()
+            .max()
+            .map_or(0, |&c| c.min(0xFFFF) as u16),
         s_typo_ascender: ascender,
         s_typo_descender: descender,
         s_typo_line_gap: 0,

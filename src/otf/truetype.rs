@@ -41,7 +41,10 @@ pub fn glyphs(set: &GlyphSet, accuracy: f64) -> Result<Vec<TtGlyph>, OtfError> {
                     let point = CurvePoint::new(q.x as i16, q.y as i16, p.on_curve);
                     // A point that rounds onto its on-curve predecessor adds nothing.
                     if let Some(prev) = points.last() {
-                        if prev.on_curve && point.on_curve && (prev.x, prev.y) == (q.x as i16, q.y as i16) {
+                        if prev.on_curve
+                            && point.on_curve
+                            && (prev.x, prev.y) == (q.x as i16, q.y as i16)
+                        {
                             continue;
                         }
                     }
