@@ -149,7 +149,8 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
 .cell small {{ display: block; font-size: 11px; color: #555; overflow-wrap: anywhere; }}
 .waterfall p {{ margin: 0.2em 0; white-space: nowrap; overflow: hidden; }}
 .pairs td {{ padding: 4px 12px; }}
-#measure {{ position: absolute; visibility: hidden; white-space: pre; font-size: {upm}px; line-height: 1; }}
+.probe {{ position: absolute; left: 0; top: 0; width: 0; height: 0; overflow: hidden; }}
+#measure {{ white-space: pre; font-size: {upm}px; line-height: 1; }}
 </style>
 </head>
 <body>
@@ -193,6 +194,7 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
         );
     }
     html.push_str("</div>\n<h2>Kerning pairs</h2>\n<table class=\"pairs\">\n");
+    html.push_str("<tr><th>kerned</th><th>not kerned</th><th>value</th></tr>\n");
     for (pair, value) in kern_strings(font) {
         let _ = writeln!(
             html,
@@ -204,7 +206,7 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
     let _ = write!(
         html,
         r#"</table>
-<span id="measure" class="font">{measure}</span>
+<div class="probe" aria-hidden="true"><span id="measure" class="font">{measure}</span></div>
 <script>
 document.fonts.ready.then(function () {{
   var out = document.getElementById("font-check");
