@@ -375,3 +375,61 @@ fn specimen_escapes_and_expects_the_advances() {
     assert!(!html.contains("A<script>"));
     assert!(html.contains(r#"src: url("a%20b%22%29.ttf")"#));
 }
+
+#[test]
+fn names_styles_and_em_size_from_the_model() {
+    let (mut font, _) = mini();
+    font.info.style = "Light Italic".into();
+    font.info.copyright = Some("© 2026 The Mini Authors".into());
+    font.info.designer = Some("Ada Designer".into());
+    font.info.version = Some("2.5".into());
+    font.info.units_per_em = 2048;
+    let outlines = outline_font(&font, font.info.tolerance).unwrap();
+    for (bytes, cff) in [
+        (ttf(&font, &outlines).unwrap(), false),
+        (otf(&font, &outlines).unwrap(), true),
+    ] {
+        let face = Face::parse(&bytes, 0).unwrap();
+        let names: Vec<(u16, String)> = face
+            .names()
+            .into_iter()
+            .filter_map(|n| Some((n.name_id, n.to_string()?)))
+            .collect();
+        let want: Vec<(u16, String)> = [
+            (0, "© 2026 The Mini Authors"),
+            (1, "Mini Test Light"),
+            (2, "Italic"),
+            (3, "2.500;NONE;MiniTest-LightItalic"),
+            (4, "Mini Test Light Italic"),
+            (5, "Version 2.500"),
+            (6, "MiniTest-LightItalic"),
+            (9, "Ada Designer"),
+            (16, "Mini Test"),
+            (17, "Light Italic"),
+        ]
+        .into_iter()
+        .map(|(id, s)| (id, s.to_owned()))
+        .collect();
+        assert_eq!(names, want);
+        assert_eq!(face.units_per_em(), 2048);
+        assert!(face.is_italic());
+        assert!(!face.is_bold());
+        assert_eq!(face.weight(), ttf_parser::Weight::Light);
+        let head = face.tables().head;
+        assert_eq!(head.units_per_em, 2048);
+        // Outlines stay in font units (the model's coordinates, not rescaled).
+        let a = face.glyph_bounding_box(GlyphId(1)).unwrap();
+        assert_eq!((a.x_min, a.x_max, a.y_max), (20, 620, 700));
+        let raw = face.raw_face().table(ttf_parser::Tag::from_bytes(b"CFF "));
+        assert_eq!(raw.is_some(), cff);
+        if let Some(cff_table) = raw {
+            // FontMatrix [1/2048 0 0 1/2048 0 0]: 4.8828125E-4 as a DICT real, then `12 7`.
+            let scale = [0x1e, 0x4a, 0x88, 0x28, 0x12, 0x5c, 0x4f];
+            let zero = [0x1e, 0x0f];
+            let matrix: Vec<u8> =
+                [&scale[..], &zero, &zero, &scale, &zero, &zero, &[12, 7]].concat();
+            assert!(cff_table.windows(matrix.len()).any(|w| w == matrix));
+            assert_eq!(&cff_table[..4], [1, 0, 4, 4]);
+        }
+    }
+}

@@ -72,11 +72,12 @@ def check(path, expected, problems):
         if got != want:
             fail(f"{what} is {got}, expected {want}")
 
+    # Typographic family/style (IDs 16/17) when present, else the legacy IDs 1/2.
     names = font["name"]
-    for name_id, want in ((1, expected["family"]), (2, expected["style"])):
-        got = names.getDebugName(name_id)
+    for ids, want in (((16, 1), expected["family"]), ((17, 2), expected["style"])):
+        got = next((n for n in map(names.getDebugName, ids) if n is not None), None)
         if got != want:
-            fail(f"name ID {name_id} is {got!r}, expected {want!r}")
+            fail(f"name ID {ids[0]}/{ids[1]} is {got!r}, expected {want!r}")
 
     pairs = gpos_pairs(font)
     want_pairs = {(l, r): v for l, r, v in expected["kerning"]}
@@ -86,6 +87,18 @@ def check(path, expected, problems):
         features = [r.FeatureTag for r in font["GPOS"].table.FeatureList.FeatureRecord]
         if features != ["kern"]:
             fail(f"GPOS features {features}, expected ['kern']")
+
+    if "CFF " in font:
+        # Type 2 widths must agree with hmtx (nominalWidthX + first operand, or default).
+        top = font["CFF "].cff.topDictIndex[0]
+        for g in order:
+            charstring = top.CharStrings[g]
+            charstring.decompile()
+            charstring.draw(BoundsPen(None))
+            private = charstring.private
+            width = getattr(charstring, "width", private.defaultWidthX)
+            if width != advances[g]:
+                fail(f"CFF width of {g} is {width}, hmtx advance {advances[g]}")
 
     glyph_set = font.getGlyphSet()
     for g in order:
