@@ -26,6 +26,8 @@ mod specimen;
 mod tables;
 mod truetype;
 
+use std::collections::BTreeMap;
+
 use kurbo::BezPath;
 
 use crate::model::Font;
@@ -90,6 +92,8 @@ pub(crate) struct OtGlyph {
 /// The glyph order shared by both flavours.
 pub(crate) struct GlyphSet {
     pub glyphs: Vec<OtGlyph>,
+    /// Model name -> glyph id.
+    ids: BTreeMap<String, u16>,
 }
 
 impl GlyphSet {
@@ -129,15 +133,18 @@ impl GlyphSet {
         for (glyph, name) in glyphs.iter_mut().zip(names) {
             glyph.ps_name = name;
         }
-        Ok(GlyphSet { glyphs })
+        // At most 65535 glyphs (checked above), so every index fits.
+        let ids = glyphs
+            .iter()
+            .enumerate()
+            .map(|(i, g)| (g.model_name.clone(), i as u16))
+            .collect();
+        Ok(GlyphSet { glyphs, ids })
     }
 
     /// Glyph id of the glyph with this model name.
     pub fn gid(&self, model_name: &str) -> Option<u16> {
-        self.glyphs
-            .iter()
-            .position(|g| g.model_name == model_name)
-            .and_then(|i| u16::try_from(i).ok())
+        self.ids.get(model_name).copied()
     }
 }
 
