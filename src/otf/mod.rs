@@ -21,6 +21,8 @@ mod charstring;
 mod glyph_names;
 mod grid;
 mod kern;
+mod naming;
+mod os2;
 mod quadratic;
 mod specimen;
 mod tables;

@@ -2,12 +2,9 @@
 //! GPOS, kern), assembled with write-fonts' `FontBuilder` around the outline tables.
 //!
 //! Vertical metrics are the model's ascender and descender everywhere (hhea, OS/2 typo with
-//! USE_TYPO_METRICS, line gap 0); OS/2 win ascent/descent additionally cover the union of
-//! the glyph boxes so no glyph is clipped on Windows.
-//!
-//! Limits: OS/2 Unicode ranges cover the Latin, Greek, Cyrillic and punctuation blocks
-//! listed in [`UNICODE_RANGES`] plus the supplementary-plane bit; code page ranges mark
-//! Latin 1 only. Weight class and style bits are read from the style name's words.
+//! USE_TYPO_METRICS, line gap 0; see [`super::os2`]); names come from [`super::naming`].
+//! Glyph boxes: the control box of the points for `glyf` (what TrueType stores), the tight
+//! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
 use kurbo::{BezPath, Shape};
 use write_fonts::tables::cmap::Cmap;
@@ -15,17 +12,15 @@ use write_fonts::tables::head::{Flags, Head, MacStyle};
 use write_fonts::tables::hhea::Hhea;
 use write_fonts::tables::hmtx::{Hmtx, LongMetric};
 use write_fonts::tables::maxp::Maxp;
-use write_fonts::tables::name::{Name, NameRecord};
-use write_fonts::tables::os2::{Os2, SelectionFlags};
 use write_fonts::tables::post::Post;
-use write_fonts::types::{
-    FWord, Fixed, GlyphId, LongDateTime, NameId, Tag, UfWord, Version16Dot16,
-};
+use write_fonts::types::{FWord, Fixed, GlyphId, LongDateTime, Tag, UfWord, Version16Dot16};
 use write_fonts::FontBuilder;
 
 use super::cff::{cff_table, CffInfo};
 use super::charstring::charstring;
 use super::kern::{gpos, kern_pairs, legacy_kern};
+use super::naming::{name_table, Naming};
+use super::os2::os2_table;
 use super::truetype::{glyf_loca, TtGlyph};
 use super::{GlyphSet, OtfError};
 use crate::model::Font;
@@ -37,127 +32,24 @@ pub enum Outlines {
     Cff(Vec<BezPath>),
 }
 
-/// OS/2 Unicode range bits for the blocks xglyph knows about: (bit, first, last).
-const UNICODE_RANGES: &[(u32, u32, u32)] = &[
-    (0, 0x0000, 0x007F),  // Basic Latin
-    (1, 0x0080, 0x00FF),  // Latin-1 Supplement
-    (2, 0x0100, 0x017F),  // Latin Extended-A
-    (3, 0x0180, 0x024F),  // Latin Extended-B
-    (4, 0x0250, 0x02AF),  // IPA Extensions
-    (5, 0x02B0, 0x02FF),  // Spacing Modifier Letters
-    (6, 0x0300, 0x036F),  // Combining Diacritical Marks
-    (7, 0x0370, 0x03FF),  // Greek and Coptic
-    (9, 0x0400, 0x04FF),  // Cyrillic
-    (29, 0x1E00, 0x1EFF), // Latin Extended Additional
-    (31, 0x2000, 0x206F), // General Punctuation
-    (33, 0x20A0, 0x20CF), // Currency Symbols
-    (60, 0xE000, 0xF8FF), // Private Use Area
-];
+/// Vertical metrics on the grid and the union of the glyph boxes (head, hhea, OS/2).
+#[derive(Clone, Copy, Debug)]
+pub struct Metrics {
+    pub upm: u16,
+    pub ascender: i16,
+    pub descender: i16,
+    pub x_height: i16,
+    pub cap_height: i16,
+    pub bbox: GridBox,
+}
 
 /// `head.created` and `head.modified`: a fixed 2020-01-01T00:00:00Z (seconds since
 /// 1904), not the build time, so the same model always gives the same bytes. (Zero would
 /// do too, but fontTools then warns that the date "seems very low".)
 const FIXED_DATE: i64 = 3_660_681_600;
 
-/// Names and style facts derived from `font.toml`.
-struct Naming {
-    family: String,
-    style: String,
-    ps_name: String,
-    full_name: String,
-    version_text: String,
-    revision: f64,
-    weight: u16,
-    italic: bool,
-    /// Style is one of Regular, Italic, Bold, Bold Italic.
-    ribbi: bool,
-}
-
-impl Naming {
-    fn new(font: &Font) -> Self {
-        let family = font.info.family.trim().to_owned();
-        let style = font.info.style.trim().to_owned();
-        let (revision, version_text) = parse_version(font.info.version.as_deref());
-        let words: Vec<String> = style.split_whitespace().map(str::to_lowercase).collect();
-        let compact: String = words.concat();
-        let italic = words.iter().any(|w| w == "italic" || w == "oblique");
-        const WEIGHTS: &[(&str, u16)] = &[
-            ("extralight", 200),
-            ("ultralight", 200),
-            ("semibold", 600),
-            ("demibold", 600),
-            ("extrabold", 800),
-            ("ultrabold", 800),
-            ("thin", 100),
-            ("light", 300),
-            ("medium", 500),
-            ("bold", 700),
-            ("black", 900),
-            ("heavy", 900),
-        ];
-        let weight = WEIGHTS
-            .iter()
-            .find(|(w, _)| compact.contains(w))
-            .map_or(400, |&(_, v)| v);
-        let ribbi = matches!(
-            style.as_str(),
-            "Regular" | "Italic" | "Bold" | "Bold Italic"
-        );
-        Naming {
-            ps_name: ps_font_name(&family, &style),
-            full_name: format!("{family} {style}"),
-            family,
-            style,
-            version_text,
-            revision,
-            weight,
-            italic,
-            ribbi,
-        }
-    }
-
-    fn bold(&self) -> bool {
-        self.ribbi && self.weight == 700
-    }
-}
-
-/// `(font revision, name ID 5 text)`: `1.2` gives `(1.2, "Version 1.200")`; text that is
-/// not a number is kept after a default `Version 1.000; `.
-fn parse_version(version: Option<&str>) -> (f64, String) {
-    let Some(text) = version.map(str::trim) else {
-        return (1.0, "Version 1.000".into());
-    };
-    let bare = text.strip_prefix("Version ").unwrap_or(text);
-    match bare.parse::<f64>() {
-        Ok(v) if v.is_finite() && (0.0..32768.0).contains(&v) => (v, format!("Version {v:.3}")),
-        _ => (1.0, format!("Version 1.000; {text}")),
-    }
-}
-
-/// PostScript font name: `Family-Style` without spaces, printable ASCII other than
-/// `[](){}<>/%`, at most 63 characters.
-fn ps_font_name(family: &str, style: &str) -> String {
-    let clean = |s: &str| -> String {
-        s.chars()
-            .filter(|c| c.is_ascii_graphic() && !"[](){}<>/%".contains(*c))
-            .collect()
-    };
-    let mut family = clean(family);
-    if family.is_empty() {
-        family = "Untitled".into();
-    }
-    let style = clean(style);
-    let mut name = if style.is_empty() {
-        family
-    } else {
-        format!("{family}-{style}")
-    };
-    name.truncate(63);
-    name
-}
-
-/// A glyph's box on the grid: `(x_min, y_min, x_max, y_max)`.
-type GridBox = (i16, i16, i16, i16);
+/// A box on the grid: `(x_min, y_min, x_max, y_max)`.
+pub type GridBox = (i16, i16, i16, i16);
 
 fn glyph_boxes(outlines: &Outlines) -> Vec<Option<GridBox>> {
     match outlines {
@@ -202,6 +94,14 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         .copied()
         .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3)))
         .unwrap_or((0, 0, 0, 0));
+    let metrics = Metrics {
+        upm,
+        ascender,
+        descender,
+        x_height,
+        cap_height,
+        bbox,
+    };
     let advances: Vec<u16> = set.glyphs.iter().map(|g| g.advance).collect();
 
     let mut builder = FontBuilder::new();
@@ -289,7 +189,7 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
     builder.add_table(&head).map_err(table_err)?;
 
     // hhea + hmtx
-    let metrics: Vec<LongMetric> = advances
+    let h_metrics: Vec<LongMetric> = advances
         .iter()
         .zip(&boxes)
         .map(|(&adv, b)| LongMetric::new(adv, b.map_or(0, |b| b.0)))
@@ -321,7 +221,7 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
     );
     builder.add_table(&hhea).map_err(table_err)?;
     builder
-        .add_table(&Hmtx::new(metrics, Vec::new()))
+        .add_table(&Hmtx::new(h_metrics, Vec::new()))
         .map_err(table_err)?;
 
     // cmap
@@ -346,91 +246,9 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
         }
     }
 
-    // OS/2
-    let code_points: Vec<u32> = set
-        .glyphs
-        .iter()
-        .flat_map(|g| g.unicodes.iter().map(|&c| u32::from(c)))
-        .collect();
-    let mut ranges = [0u32; 4];
-    for &(bit, first, last) in UNICODE_RANGES {
-        if code_points.iter().any(|&c| (first..=last).contains(&c)) {
-            ranges[(bit / 32) as usize] |= 1 << (bit % 32);
-        }
-    }
-    if code_points.iter().any(|&c| c > 0xFFFF) {
-        ranges[1] |= 1 << (57 - 32);
-    }
-    let nonzero: Vec<f64> = advances
-        .iter()
-        .filter(|&&a| a > 0)
-        .map(|&a| f64::from(a))
-        .collect();
-    let avg_width = if nonzero.is_empty() {
-        0
-    } else {
-        (nonzero.iter().sum::<f64>() / nonzero.len() as f64).round() as i16
-    };
-    let mut selection = SelectionFlags::USE_TYPO_METRICS;
-    if naming.italic {
-        selection |= SelectionFlags::ITALIC;
-    }
-    if naming.bold() {
-        selection |= SelectionFlags::BOLD;
-    }
-    if !naming.italic && !naming.bold() {
-        selection |= SelectionFlags::REGULAR;
-    }
-    let scaled = |f: f64| (em * f).round() as i16;
-    let os2 = Os2 {
-        x_avg_char_width: avg_width,
-        us_weight_class: naming.weight,
-        us_width_class: 5,
-        fs_type: 0,
-        y_subscript_x_size: scaled(0.65),
-        y_subscript_y_size: scaled(0.6),
-        y_subscript_x_offset: 0,
-        y_subscript_y_offset: scaled(0.075),
-        y_superscript_x_size: scaled(0.65),
-        y_superscript_y_size: scaled(0.6),
-        y_superscript_x_offset: 0,
-        y_superscript_y_offset: scaled(0.35),
-        y_strikeout_size: scaled(0.05),
-        y_strikeout_position: (f64::from(x_height) * 0.6).round() as i16,
-        s_family_class: 0,
-        panose_10: [0; 10],
-        ul_unicode_range_1: ranges[0],
-        ul_unicode_range_2: ranges[1],
-        ul_unicode_range_3: ranges[2],
-        ul_unicode_range_4: ranges[3],
-        ach_vend_id: Tag::new(b"NONE"),
-        fs_selection: selection,
-        us_first_char_index: code_points
-            .iter()
-            .min()
-            .map_or(0, |&c| c.min(0xFFFF) as u16),
-        us_last_char_index: code_points
-            .iter()
-            .max()
-            .map_or(0, |&c| c.min(0xFFFF) as u16),
-        s_typo_ascender: ascender,
-        s_typo_descender: descender,
-        s_typo_line_gap: 0,
-        us_win_ascent: ascender.max(bbox.3).max(0) as u16,
-        us_win_descent: (-i32::from(descender.min(bbox.1))).max(0) as u16,
-        ul_code_page_range_1: Some(u32::from(
-            code_points.iter().any(|&c| (0x20..=0xFF).contains(&c)),
-        )),
-        ul_code_page_range_2: Some(0),
-        sx_height: Some(x_height),
-        s_cap_height: Some(cap_height),
-        us_default_char: Some(0),
-        us_break_char: Some(0x20),
-        us_max_context: Some(if pairs.is_empty() { 0 } else { 2 }),
-        us_lower_optical_point_size: None,
-        us_upper_optical_point_size: None,
-    };
-    builder.add_table(&os2).map_err(table_err)?;
+    builder
+        .add_table(&os2_table(&naming, &metrics, set, !pairs.is_empty()))
+        .map_err(table_err)?;
 
     // name
     builder
@@ -447,88 +265,11 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
             ..Default::default()
         },
     };
+    let scaled = |f: f64| (em * f).round() as i16;
     post.underline_position = FWord::new(-scaled(0.075));
     post.underline_thickness = FWord::new(scaled(0.05));
     post.is_fixed_pitch = u32::from(fixed_pitch);
     builder.add_table(&post).map_err(table_err)?;
 
     Ok(builder.build())
-}
-
-/// Windows (3, 1, en-US) name records, sorted by name ID.
-fn name_table(font: &Font, naming: &Naming) -> Name {
-    let mut records: Vec<(u16, String)> = Vec::new();
-    if let Some(c) = &font.info.copyright {
-        records.push((0, c.clone()));
-    }
-    let (family1, style2) = if naming.ribbi {
-        (naming.family.clone(), naming.style.clone())
-    } else {
-        let rest: Vec<&str> = naming
-            .style
-            .split_whitespace()
-            .filter(|w| !w.eq_ignore_ascii_case("italic"))
-            .collect();
-        let style2 = if naming.italic { "Italic" } else { "Regular" };
-        let family1 = if rest.is_empty() {
-            naming.family.clone()
-        } else {
-            format!("{} {}", naming.family, rest.join(" "))
-        };
-        (family1, style2.to_owned())
-    };
-    records.push((1, family1));
-    records.push((2, style2));
-    let short_version = naming
-        .version_text
-        .strip_prefix("Version ")
-        .unwrap_or(&naming.version_text)
-        .split(';')
-        .next()
-        .unwrap_or("1.000")
-        .to_owned();
-    records.push((3, format!("{short_version};NONE;{}", naming.ps_name)));
-    records.push((4, naming.full_name.clone()));
-    records.push((5, naming.version_text.clone()));
-    records.push((6, naming.ps_name.clone()));
-    if let Some(d) = &font.info.designer {
-        records.push((9, d.clone()));
-    }
-    if !naming.ribbi {
-        records.push((16, naming.family.clone()));
-        records.push((17, naming.style.clone()));
-    }
-    Name::new(
-        records
-            .into_iter()
-            .map(|(id, text)| NameRecord::new(3, 1, 0x409, NameId::new(id), text.into()))
-            .collect(),
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn versions() {
-        assert_eq!(parse_version(None), (1.0, "Version 1.000".into()));
-        assert_eq!(parse_version(Some("1.2")), (1.2, "Version 1.200".into()));
-        assert_eq!(
-            parse_version(Some("Version 2.015")),
-            (2.015, "Version 2.015".into())
-        );
-        assert_eq!(
-            parse_version(Some("beta 3")),
-            (1.0, "Version 1.000; beta 3".into())
-        );
-    }
-
-    #[test]
-    fn postscript_font_names() {
-        assert_eq!(ps_font_name("Mini Test", "Regular"), "MiniTest-Regular");
-        assert_eq!(ps_font_name("A (b) c%", "Bold Italic"), "Abc-BoldItalic");
-        assert_eq!(ps_font_name("Größe", ""), "Gre");
-        assert_eq!(ps_font_name(&"x".repeat(80), "Regular").len(), 63);
-    }
 }
