@@ -433,3 +433,57 @@ fn names_styles_and_em_size_from_the_model() {
         }
     }
 }
+
+#[test]
+fn bold_style_bits_and_overlap_flag() {
+    let (mut font, _) = mini();
+    font.info.style = "Bold".into();
+    let outlines = outline_font(&font, font.info.tolerance).unwrap();
+    let bytes = ttf(&font, &outlines).unwrap();
+    let face = Face::parse(&bytes, 0).unwrap();
+    assert!(face.is_bold());
+    assert!(!face.is_italic());
+    // OS/2.fsSelection (offset 62): BOLD | USE_TYPO_METRICS, not REGULAR.
+    let os2 = face
+        .raw_face()
+        .table(ttf_parser::Tag::from_bytes(b"OS/2"))
+        .unwrap();
+    assert_eq!(u16::from_be_bytes([os2[62], os2[63]]), 0x00A0);
+    assert_eq!(face.weight(), ttf_parser::Weight::Bold);
+    let ids: Vec<u16> = face.names().into_iter().map(|n| n.name_id).collect();
+    assert_eq!(ids, [1, 2, 3, 4, 5, 6]);
+    // head.macStyle (offset 44): bold bit.
+    let head = face
+        .raw_face()
+        .table(ttf_parser::Tag::from_bytes(b"head"))
+        .unwrap();
+    assert_eq!(u16::from_be_bytes([head[44], head[45]]), 1);
+    // oacute (gid 5) is built from components: OVERLAP_SIMPLE on its first point's flags;
+    // o (gid 4) is not.
+    let glyf = face
+        .raw_face()
+        .table(ttf_parser::Tag::from_bytes(b"glyf"))
+        .unwrap();
+    let loca = face
+        .raw_face()
+        .table(ttf_parser::Tag::from_bytes(b"loca"))
+        .unwrap();
+    let offset = |gid: usize| -> usize {
+        if face.tables().head.index_to_location_format
+            == ttf_parser::head::IndexToLocationFormat::Short
+        {
+            usize::from(u16::from_be_bytes([loca[2 * gid], loca[2 * gid + 1]])) * 2
+        } else {
+            u32::from_be_bytes(loca[4 * gid..4 * gid + 4].try_into().unwrap()) as usize
+        }
+    };
+    let first_flag = |gid: usize| {
+        let g = &glyf[offset(gid)..];
+        let contours = usize::from(u16::from_be_bytes([g[0], g[1]]));
+        let ins_at = 10 + 2 * contours;
+        let ins_len = usize::from(u16::from_be_bytes([g[ins_at], g[ins_at + 1]]));
+        g[ins_at + 2 + ins_len]
+    };
+    assert_eq!(first_flag(5) & 0x40, 0x40);
+    assert_eq!(first_flag(4) & 0x40, 0);
+}

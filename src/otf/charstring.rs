@@ -173,6 +173,19 @@ mod tests {
     }
 
     #[test]
+    fn quadratic_segments_are_degree_elevated() {
+        let mut path = BezPath::new();
+        path.move_to((0.0, 0.0));
+        path.quad_to((30.0, 60.0), (90.0, 0.0));
+        path.close_path();
+        // Controls (20, 40) and (50, 40): deltas 20 40, 30 0, 40 -40.
+        assert_eq!(
+            charstring(&path, 0),
+            [0x8b, 0x8b, RMOVETO, 0x9f, 0xb3, 0xa9, 0x8b, 0xb3, 0x63, RRCURVETO, ENDCHAR]
+        );
+    }
+
+    #[test]
     fn empty_glyph_is_width_and_endchar() {
         assert_eq!(charstring(&BezPath::new(), 260), [0xf7, 0x98, ENDCHAR]);
         assert_eq!(charstring(&BezPath::new(), 0), [ENDCHAR]);

@@ -71,6 +71,7 @@ mod tests {
             unicodes: unicodes.to_vec(),
             advance: 0,
             path: kurbo::BezPath::new(),
+            from_components: false,
         }
     }
 

@@ -89,6 +89,8 @@ pub(crate) struct OtGlyph {
     pub advance: u16,
     /// y-up outline, outer contours counter-clockwise, not yet rounded.
     pub path: BezPath,
+    /// The outline includes resolved components, whose contours may overlap.
+    pub from_components: bool,
 }
 
 /// The glyph order shared by both flavours.
@@ -129,6 +131,7 @@ impl GlyphSet {
                 unicodes: glyph.unicodes.clone(),
                 advance,
                 path: outline.path.clone(),
+                from_components: !glyph.components.is_empty(),
             });
         }
         let names = glyph_names::ps_names(&glyphs);
@@ -191,6 +194,7 @@ fn synthetic_notdef(font: &Font) -> OtGlyph {
         unicodes: Vec::new(),
         advance: advance.clamp(0.0, f64::from(u16::MAX)) as u16,
         path,
+        from_components: false,
     }
 }
 

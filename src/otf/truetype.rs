@@ -68,8 +68,11 @@ pub fn glyphs(set: &GlyphSet, accuracy: f64) -> Result<Vec<TtGlyph>, OtfError> {
             if contours.is_empty() {
                 return Ok(TtGlyph { glyph: None });
             }
+            // Resolved components may overlap each other: set OVERLAP_SIMPLE so rasterizers
+            // that need the hint (macOS) fill the overlap without dropouts.
             let mut glyph = SimpleGlyph {
                 contours,
+                overlaps: g.from_components,
                 ..Default::default()
             };
             glyph.recompute_bounding_box();
