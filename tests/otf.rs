@@ -487,3 +487,59 @@ fn bold_style_bits_and_overlap_flag() {
     assert_eq!(first_flag(5) & 0x40, 0x40);
     assert_eq!(first_flag(4) & 0x40, 0);
 }
+
+#[test]
+fn large_kerning_survives_packing() {
+    let (mut font, _) = mini();
+    for i in 0..400u32 {
+        let c = char::from_u32(0x4E00 + i).unwrap();
+        font.glyphs
+            .push(glyph(&format!("g{i:03}"), &[c], 500.0, Vec::new()));
+    }
+    for i in 0..400 {
+        for j in 0..100 {
+            font.kerning.push(KernPair {
+                left: format!("g{i:03}"),
+                right: format!("g{:03}", (i + j) % 400),
+                value: -10.0 - f64::from(j),
+            });
+        }
+    }
+    let outlines = outline_font(&font, 0.5).unwrap();
+    let bytes = otf(&font, &outlines).unwrap();
+    let face = Face::parse(&bytes, 0).unwrap();
+    let gpos = face.tables().gpos.unwrap();
+    let lookup = gpos.lookups.get(0).unwrap();
+    // 40 002 pairs do not fit one 16-bit-offset subtable: write-fonts splits them (and
+    // promotes the lookup to Extension); every pair must still be found.
+    assert!(lookup.subtables.len() > 1);
+    let kern = |l: u16, r: u16| {
+        (0..lookup.subtables.len()).find_map(|i| {
+            match lookup
+                .subtables
+                .get::<ttf_parser::gpos::PositioningSubtable>(i)?
+            {
+                ttf_parser::gpos::PositioningSubtable::Pair(
+                    ttf_parser::gpos::PairAdjustment::Format1 { coverage, sets },
+                ) => sets
+                    .get(coverage.get(GlyphId(l))?)?
+                    .get(GlyphId(r))
+                    .map(|(v, _)| v.x_advance),
+                _ => None,
+            }
+        })
+    };
+    // Glyph ids: .notdef, A, V, acutecomb, o, oacute, period, space, g000 = 8, ...
+    assert_eq!(kern(8, 9), Some(-11));
+    assert_eq!(kern(8 + 399, 8 + 98), Some(-109));
+    assert_eq!(kern(8 + 399, 8 + 99), None);
+    assert_eq!(kern(1, 2), Some(-60));
+    let pairs: usize = (0..400u16)
+        .flat_map(|l| (0..400u16).map(move |r| (l, r)))
+        .filter(|&(l, r)| kern(8 + l, 8 + r).is_some())
+        .count();
+    assert_eq!(pairs, 40_000);
+    // The legacy table cannot hold them: left out of the TTF.
+    let ttf_bytes = ttf(&font, &outlines).unwrap();
+    assert!(Face::parse(&ttf_bytes, 0).unwrap().tables().kern.is_none());
+}
