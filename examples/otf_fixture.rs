@@ -19,7 +19,7 @@ use xglyph::write::write_all_atomic;
 
 fn run(font_dir: &Path, out_dir: &Path) -> Result<Vec<String>, String> {
     let (font, _warnings) = load_font(font_dir).map_err(|diags| {
-        let lines: Vec<String> = diags.iter().map(|d| format!("{d:?}")).collect();
+        let lines: Vec<String> = diags.iter().map(ToString::to_string).collect();
         format!("{} has errors:\n{}", font_dir.display(), lines.join("\n"))
     })?;
     let outlines = outline_font(&font, font.info.tolerance).map_err(|e| e.to_string())?;

@@ -238,8 +238,9 @@ pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec
     if let Some(gpos) = gpos(&pairs) {
         builder.add_table(&gpos).map_err(table_err)?;
     }
-    // The legacy table only in the TTF: OTS (and with it Chrome and Firefox) drops `kern`
-    // from CFF-flavoured fonts, and GPOS carries the same pairs.
+    // The legacy table only in the TTF: OTS (the sanitizer in Chrome and Firefox) drops
+    // `kern` from fonts without `glyf` ("this table is not for CFF fonts"), and GPOS
+    // carries the same pairs.
     if matches!(outlines, Outlines::TrueType(_)) {
         if let Some(kern) = legacy_kern(&pairs) {
             builder.add_raw(Tag::new(b"kern"), kern);
