@@ -1,0 +1,171 @@
+//! Sources out: the typed model -> canonical TOML text (the inverse of [`super::load_font`]).
+//!
+//! One layout for everything xglyph writes (`fmt`, `import`): keys in a fixed order, one
+//! control point per line, numbers in their shortest round-tripping form (`280`, `12.5`,
+//! never `280.0` or `-0`), code points as `0x` hex. Loading the text gives back the same model.
+//! Written by hand rather than through `toml::to_string`: serde output cannot put one point
+//! per line or choose hex for code points.
+
+use std::fmt::Write;
+
+use crate::model::{Font, FontInfo, Glyph, KernPair};
+use crate::names::file_stems;
+
+/// Every source file of `font` as `(file name, text)`: `font.toml`, one `<stem>.toml` per
+/// glyph (stems by [`crate::names::file_stems`]), and `kerning.toml` when there is kerning.
+pub fn font_sources(font: &Font) -> Vec<(String, String)> {
+    let mut files = vec![("font.toml".to_string(), font_toml(&font.info))];
+    let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));
+    for (glyph, stem) in font.glyphs.iter().zip(stems) {
+        files.push((format!("{stem}.toml"), glyph_toml(glyph)));
+    }
+    if !font.kerning.is_empty() {
+        files.push(("kerning.toml".to_string(), kerning_toml(&font.kerning)));
+    }
+    files
+}
+
+/// `font.toml`: metadata and metrics.
+pub fn font_toml(info: &FontInfo) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "family = {}", string(&info.family));
+    let _ = writeln!(out, "style = {}", string(&info.style));
+    let _ = writeln!(out, "units_per_em = {}", info.units_per_em);
+    let _ = writeln!(out, "ascender = {}", number(info.ascender));
+    let _ = writeln!(out, "descender = {}", number(info.descender));
+    let _ = writeln!(out, "x_height = {}", number(info.x_height));
+    let _ = writeln!(out, "cap_height = {}", number(info.cap_height));
+    let _ = writeln!(out, "tolerance = {}", number(info.tolerance));
+    for (key, value) in [
+        ("copyright", &info.copyright),
+        ("designer", &info.designer),
+        ("version", &info.version),
+    ] {
+        if let Some(value) = value {
+            let _ = writeln!(out, "{key} = {}", string(value));
+        }
+    }
+    out
+}
+
+/// One glyph file: name, code points, advance, contours, components.
+pub fn glyph_toml(glyph: &Glyph) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "name = {}", string(&glyph.name));
+    match glyph.unicodes.as_slice() {
+        [] => {}
+        [c] => {
+            let _ = writeln!(out, "unicode = {}", code_point(*c));
+        }
+        many => {
+            let list: Vec<_> = many.iter().map(|&c| code_point(c)).collect();
+            let _ = writeln!(out, "unicode = [{}]", list.join(", "));
+        }
+    }
+    let _ = writeln!(out, "advance = {}", number(glyph.advance));
+    for contour in &glyph.contours {
+        out.push_str("\n[[contour]]\npoints = [\n");
+        for p in &contour.points {
+            let _ = writeln!(
+                out,
+                "  [{}, {}, {}],",
+                number(p.pos.x),
+                number(p.pos.y),
+                number(p.s)
+            );
+        }
+        out.push_str("]\n");
+    }
+    for component in &glyph.components {
+        let _ = writeln!(out, "\n[[component]]");
+        let _ = writeln!(out, "base = {}", string(&component.base));
+        let (x, y) = component.offset;
+        let _ = writeln!(out, "offset = [{}, {}]", number(x), number(y));
+    }
+    out
+}
+
+/// `kerning.toml`: one `[[pair]]` table per pair, in model order.
+pub fn kerning_toml(pairs: &[KernPair]) -> String {
+    let mut out = String::new();
+    for (i, pair) in pairs.iter().enumerate() {
+        if i > 0 {
+            out.push('\n');
+        }
+        let _ = writeln!(out, "[[pair]]");
+        let _ = writeln!(out, "left = {}", string(&pair.left));
+        let _ = writeln!(out, "right = {}", string(&pair.right));
+        let _ = writeln!(out, "value = {}", number(pair.value));
+    }
+    out
+}
+
+/// The shortest decimal that reads back as the same `f64`, without `.0` or `-0`.
+///
+/// Limit: the model never holds non-finite numbers (the loader rejects them); one would be
+/// written as `nan`/`inf`, which TOML reads back but the loader refuses.
+pub fn number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if x.is_nan() {
+        return "nan".to_string();
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { "inf" } else { "-inf" }.to_string();
+    }
+    // `Display` for f64 is the shortest round-tripping form and never uses an exponent.
+    format!("{x}")
+}
+
+/// A code point as TOML hex, at least four digits (`0x0041`).
+pub fn code_point(c: char) -> String {
+    format!("0x{:04X}", u32::from(c))
+}
+
+/// A TOML basic string with every character that needs it escaped.
+pub fn string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\t' => out.push_str("\\t"),
+            '\r' => out.push_str("\\r"),
+            c if c.is_control() => {
+                let _ = write!(out, "\\u{:04X}", u32::from(c));
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_shortest_round_trip() {
+        assert_eq!(number(280.0), "280");
+        assert_eq!(number(-0.0), "0");
+        assert_eq!(number(12.5), "12.5");
+        assert_eq!(number(0.1), "0.1");
+        assert_eq!(number(-1.0 / 3.0), "-0.3333333333333333");
+        assert_eq!(number(1e-7), "0.0000001");
+        for x in [0.1, 1.0 / 3.0, 123456.789, 1e-12, 9.5e15, -2.5e-3] {
+            assert_eq!(number(x).parse::<f64>().ok(), Some(x));
+        }
+    }
+
+    #[test]
+    fn strings_escape() {
+        assert_eq!(string(r#"a"b\c"#), r#""a\"b\\c""#);
+        assert_eq!(string("x\u{7}y\nz"), r#""x\u0007y\nz""#);
+        assert_eq!(code_point('A'), "0x0041");
+        assert_eq!(code_point('\u{1F600}'), "0x1F600");
+    }
+}
