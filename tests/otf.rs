@@ -543,3 +543,46 @@ fn large_kerning_survives_packing() {
     let ttf_bytes = ttf(&font, &outlines).unwrap();
     assert!(Face::parse(&ttf_bytes, 0).unwrap().tables().kern.is_none());
 }
+
+/// Every glyph of the bundled typeface (glyphs/) reads back within the bounds.
+#[test]
+fn bundled_typeface_reads_back_within_bounds() {
+    let (font, _) = load_font(Path::new("glyphs")).expect("glyphs/ loads");
+    let outlines = outline_font(&font, font.info.tolerance).unwrap();
+    let order = glyph_order(&font, &outlines).unwrap();
+    let mut worst = [0.0f64; 2];
+    for (i, (bytes, bound)) in [
+        (ttf(&font, &outlines).unwrap(), font.info.tolerance + GRID),
+        (otf(&font, &outlines).unwrap(), GRID),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let face = Face::parse(&bytes, 0).unwrap();
+        assert_eq!(usize::from(face.number_of_glyphs()), order.len());
+        for (gid, g) in order.iter().enumerate() {
+            let Some(exact) = outlines.glyph(&g.model_name).map(|o| &o.path) else {
+                continue; // synthesised .notdef
+            };
+            assert_eq!(
+                face.glyph_name(GlyphId(gid as u16)),
+                Some(g.ps_name.as_str())
+            );
+            assert_eq!(face.glyph_hor_advance(GlyphId(gid as u16)), Some(g.advance));
+            let built = outline(&face, gid as u16);
+            assert_eq!(
+                contour_count(&built),
+                contour_count(exact),
+                "{}",
+                g.model_name
+            );
+            let d = distance(&built, exact);
+            assert!(d <= bound, "{}: {d} > {bound}", g.model_name);
+            worst[i] = worst[i].max(d);
+        }
+    }
+    eprintln!(
+        "bundled typeface: TTF worst {:.4}, OTF worst {:.4}",
+        worst[0], worst[1]
+    );
+}
