@@ -13,6 +13,7 @@ pub mod cli;
 pub mod commands;
 pub mod fit;
 pub mod import;
+pub mod layout;
 pub mod model;
 pub mod names;
 pub mod orient;

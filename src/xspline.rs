@@ -84,6 +84,8 @@ impl std::error::Error for XSplineError {}
 #[derive(Clone, Debug, PartialEq)]
 pub struct XSpline {
     points: Vec<ControlPoint>,
+    /// Diagonal of the control points' bounding box: the contour's length scale.
+    extent: f64,
 }
 
 impl XSpline {
@@ -110,11 +112,22 @@ impl XSpline {
                 return Err(XSplineError::CoincidentPoints { index, next });
             }
         }
-        Ok(XSpline { points })
+        let bbox = points.iter().skip(1).fold(
+            kurbo::Rect::from_points(points[0].pos, points[0].pos),
+            |r, p| r.union_pt(p.pos),
+        );
+        let extent = bbox.size().to_vec2().hypot();
+        Ok(XSpline { points, extent })
     }
 
     pub fn points(&self) -> &[ControlPoint] {
         &self.points
+    }
+
+    /// The diagonal of the control points' bounding box (never zero: the points are not
+    /// all coincident). A length scale for relative thresholds.
+    pub fn extent(&self) -> f64 {
+        self.extent
     }
 
     /// Number of segments, equal to the number of control points.

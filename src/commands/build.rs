@@ -1,12 +1,214 @@
-//! `xglyph build` (not yet implemented).
+//! `xglyph build`: the main job. Load, outline, render every output in memory, write them
+//! all atomically, print a summary.
+//!
+//! Nothing is written unless every output rendered: a source error or a render error
+//! leaves OUT untouched (not even created).
 
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use kurbo::PathEl;
+
 use super::CommandError;
+use crate::model::Font;
+use crate::outline::{outline_font, FontOutlines};
+use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
+use crate::source::{load_font, Diagnostic, Severity};
+use crate::svg::{glyph_set, output_stem, svg_font};
+use crate::write::write_all_atomic;
 
 #[derive(Debug, clap::Args)]
-pub struct BuildArgs {}
+#[command(after_help = "\
+Writes into OUT:
+  <Family>-<Style>.svg   SVG 1.1 font (FontForge, svg2ttf)
+  svg/<glyph>.svg        one standalone SVG per glyph
+  sheet.png              glyph sheet with metric guides
+  proof.png              text proof at several sizes
 
-pub fn run(_args: BuildArgs) -> Result<ExitCode, CommandError> {
-    Err("`xglyph build` is not implemented yet".into())
+Examples:
+  xglyph build                            # glyphs/ -> out/
+  xglyph build my-font -o dist
+  xglyph build --tolerance 0.1 --text 'Hamburgefonstiv'")]
+pub struct BuildArgs {
+    /// Font directory (font.toml and one TOML file per glyph).
+    #[arg(default_value = "glyphs")]
+    pub font_dir: PathBuf,
+    /// Output directory (created if needed).
+    #[arg(short, long, default_value = "out")]
+    pub out: PathBuf,
+    /// Fitting tolerance in font units; overrides `tolerance` in font.toml.
+    #[arg(long, value_name = "T")]
+    pub tolerance: Option<f64>,
+    /// Proof text (default: lines the font covers); `\n` in the text starts a new line.
+    #[arg(long)]
+    pub text: Option<String>,
+}
+
+/// A font loaded and outlined, ready for every output.
+pub struct Loaded {
+    pub font: Font,
+    pub outlines: FontOutlines,
+}
+
+/// Prints a diagnostic with its source line and a caret under the column (to stderr).
+pub fn print_diagnostic(d: &Diagnostic) {
+    eprintln!("{d}");
+    if let Ok(text) = std::fs::read_to_string(&d.path) {
+        if let Some(line) = text.lines().nth(d.line.saturating_sub(1)) {
+            eprintln!("  | {line}");
+            eprintln!("  | {}^", " ".repeat(d.col.saturating_sub(1)));
+        }
+    }
+}
+
+/// Loads `font_dir` (printing its diagnostics) and fits every glyph, with `tolerance`
+/// overriding the font's own.
+pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandError> {
+    if let Some(t) = tolerance {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(format!("--tolerance must be a positive number, got {t}").into());
+        }
+    }
+    let font = match load_font(font_dir) {
+        Ok((font, warnings)) => {
+            warnings.iter().for_each(print_diagnostic);
+            font
+        }
+        Err(diags) => {
+            diags.iter().for_each(print_diagnostic);
+            let errors = diags
+                .iter()
+                .filter(|d| d.severity == Severity::Error)
+                .count();
+            return Err(format!(
+                "{errors} error(s) in {}; nothing was written",
+                font_dir.display()
+            )
+            .into());
+        }
+    };
+    if font.glyphs.is_empty() {
+        return Err(format!(
+            "{} has no glyph files yet (only font.toml); add one TOML file per glyph",
+            font_dir.display()
+        )
+        .into());
+    }
+    let outlines = outline_font(&font, tolerance.unwrap_or(font.info.tolerance))?;
+    Ok(Loaded { font, outlines })
+}
+
+/// Options for every output of a build.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BuildOptions {
+    pub sheet: SheetOptions,
+    pub proof: ProofOptions,
+}
+
+/// Every output of a build, rendered in memory: paths relative to OUT, and bytes.
+/// This is the one list of build outputs; add a new output here.
+pub fn outputs(
+    font: &Font,
+    outlines: &FontOutlines,
+    opts: &BuildOptions,
+) -> Result<Vec<(PathBuf, Vec<u8>)>, CommandError> {
+    let mut files = Vec::new();
+    files.extend(svg_outputs(font, outlines));
+    files.push((
+        PathBuf::from("sheet.png"),
+        encode_png(&render_sheet(font, outlines, &opts.sheet)?)?,
+    ));
+    files.push((
+        PathBuf::from("proof.png"),
+        encode_png(&render_proof(font, outlines, &opts.proof)?)?,
+    ));
+    Ok(files)
+}
+
+/// The SVG font and the SVG glyph set, paths relative to OUT.
+pub fn svg_outputs(font: &Font, outlines: &FontOutlines) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut files = vec![(
+        PathBuf::from(format!("{}.svg", output_stem(&font.info))),
+        svg_font(font, outlines).into_bytes(),
+    )];
+    for g in glyph_set(&font.info, outlines) {
+        files.push((
+            Path::new("svg").join(format!("{}.svg", g.stem)),
+            g.svg.into_bytes(),
+        ));
+    }
+    files
+}
+
+/// Writes `files` (relative paths) under `out`, each atomically.
+pub fn write_outputs(out: &Path, files: &[(PathBuf, Vec<u8>)]) -> Result<(), CommandError> {
+    let joined: Vec<(PathBuf, Vec<u8>)> = files
+        .iter()
+        .map(|(p, b)| (out.join(p), b.clone()))
+        .collect();
+    write_all_atomic(&joined).map_err(|e| format!("cannot write to {}: {e}", out.display()))?;
+    Ok(())
+}
+
+/// Counts for the summary: `(contours, segments)` over all glyph outlines.
+pub fn count_contours_segments(outlines: &FontOutlines) -> (usize, usize) {
+    let mut contours = 0;
+    let mut segments = 0;
+    for g in &outlines.glyphs {
+        for el in g.path.elements() {
+            match el {
+                PathEl::MoveTo(_) => contours += 1,
+                PathEl::LineTo(_) | PathEl::QuadTo(..) | PathEl::CurveTo(..) => segments += 1,
+                PathEl::ClosePath => {}
+            }
+        }
+    }
+    (contours, segments)
+}
+
+/// The summary printed after a build.
+pub fn summary(loaded: &Loaded, out: &Path, files: &[(PathBuf, Vec<u8>)]) -> String {
+    let (contours, segments) = count_contours_segments(&loaded.outlines);
+    let worst = loaded
+        .outlines
+        .glyphs
+        .iter()
+        .max_by(|a, b| a.max_error.total_cmp(&b.max_error));
+    let worst = match worst {
+        Some(g) => format!("{:.3} font units (glyph `{}`)", g.max_error, g.name),
+        None => "none".into(),
+    };
+    let top: Vec<String> = files
+        .iter()
+        .filter(|(p, _)| p.parent() == Some(Path::new("")))
+        .map(|(p, _)| p.display().to_string())
+        .collect();
+    let in_svg = files.iter().filter(|(p, _)| p.starts_with("svg")).count();
+    format!(
+        "built {} {}: {} glyphs, {contours} contours, {segments} segments\n\
+         worst error against the X-splines: {worst}, tolerance {}\n\
+         wrote {} files to {}: {}, svg/ ({in_svg} glyph SVGs)\n",
+        loaded.font.info.family,
+        loaded.font.info.style,
+        loaded.outlines.glyphs.len(),
+        loaded.outlines.tolerance,
+        files.len(),
+        out.display(),
+        top.join(", "),
+    )
+}
+
+pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
+    let loaded = load(&args.font_dir, args.tolerance)?;
+    let opts = BuildOptions {
+        proof: ProofOptions {
+            text: args.text.map(|t| t.replace("\\n", "\n")),
+            ..ProofOptions::default()
+        },
+        ..BuildOptions::default()
+    };
+    let files = outputs(&loaded.font, &loaded.outlines, &opts)?;
+    write_outputs(&args.out, &files)?;
+    print!("{}", summary(&loaded, &args.out, &files));
+    Ok(ExitCode::SUCCESS)
 }

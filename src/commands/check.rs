@@ -1,27 +1,34 @@
 //! `xglyph check`: load and validate a font directory, printing every diagnostic.
+//!
+//! Exit code 1 when there is at least one error, 0 otherwise (warnings included), in both
+//! output formats.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use serde_json::json;
+
 use super::CommandError;
 use crate::source::{load_font, Diagnostic, Severity};
+
+/// How `check` prints its diagnostics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// `path:line:col: severity: message`, the source line with a caret, and a summary.
+    #[default]
+    Text,
+    /// One JSON object: `diagnostics` (path, line, column, severity, message) and counts.
+    Json,
+}
 
 #[derive(Debug, clap::Args)]
 pub struct CheckArgs {
     /// Font directory to check.
     #[arg(default_value = "glyphs")]
     pub font_dir: PathBuf,
-}
-
-/// Print one diagnostic with its source line and a caret under the column.
-fn print(d: &Diagnostic) {
-    println!("{d}");
-    if let Ok(text) = std::fs::read_to_string(&d.path) {
-        if let Some(line) = text.lines().nth(d.line.saturating_sub(1)) {
-            println!("  | {line}");
-            println!("  | {}^", " ".repeat(d.col.saturating_sub(1)));
-        }
-    }
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
 }
 
 pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
@@ -29,18 +36,68 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
         Ok((_, warnings)) => warnings,
         Err(diags) => diags,
     };
-    for d in &diags {
-        print(d);
-    }
     let errors = diags
         .iter()
         .filter(|d| d.severity == Severity::Error)
         .count();
     let warnings = diags.len() - errors;
-    println!("{errors} errors, {warnings} warnings");
+    match args.format {
+        Format::Text => {
+            for d in &diags {
+                print!("{}", text(d));
+            }
+            println!("{errors} errors, {warnings} warnings");
+        }
+        Format::Json => println!("{}", self::json(&diags, errors, warnings)),
+    }
     Ok(if errors > 0 {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// One diagnostic as text: its line, then the source line with a caret under the column.
+pub fn text(d: &Diagnostic) -> String {
+    let mut out = format!("{d}\n");
+    if !d.has_position() {
+        return out;
+    }
+    let source = std::fs::read(&d.path).unwrap_or_default();
+    let source = String::from_utf8_lossy(&source);
+    if let Some(line) = source.lines().nth(d.line - 1) {
+        // Tabs stay tabs so that the caret lines up with the character above it.
+        let indent: String = line
+            .chars()
+            .take(d.col - 1)
+            .map(|c| if c == '\t' { '\t' } else { ' ' })
+            .collect();
+        out.push_str(&format!("  | {line}\n  | {indent}^\n"));
+    }
+    out
+}
+
+/// Every diagnostic and the counts as one JSON document (pretty-printed, keys sorted).
+///
+/// `line` and `column` are 1-based, or `null` for a diagnostic about a whole file.
+pub fn json(diags: &[Diagnostic], errors: usize, warnings: usize) -> String {
+    let items: Vec<_> = diags
+        .iter()
+        .map(|d| {
+            let (line, column) = if d.has_position() {
+                (json!(d.line), json!(d.col))
+            } else {
+                (json!(null), json!(null))
+            };
+            json!({
+                "path": d.path.to_string_lossy(),
+                "line": line,
+                "column": column,
+                "severity": d.severity.as_str(),
+                "message": d.message,
+            })
+        })
+        .collect();
+    let doc = json!({ "diagnostics": items, "errors": errors, "warnings": warnings });
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
 }

@@ -1,12 +1,121 @@
-//! `xglyph fmt` (not yet implemented).
+//! `xglyph fmt`: rewrite the sources in the canonical layout of [`crate::source::emit`].
+//!
+//! Only when the sources load without errors (otherwise the diagnostics are printed and
+//! nothing is touched); only the files whose text changes; each glyph stays in its file;
+//! every file is written atomically. `--check` writes nothing and lists the files that
+//! would change (exit 1 if any), for CI.
+//!
+//! Comments: a file's leading comment block is kept. Any other comment would be lost, so
+//! `fmt` then refuses to write anything (exit 1, listing each such comment) unless
+//! `--force` is given, which drops them.
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 
+use super::check;
 use super::CommandError;
+use crate::source::format::{rewrites, Rewrite};
+use crate::source::{
+    line_col, load_glyph_text, load_info_text, load_kerning_text, load_sources, LoadedFont,
+    SourceKind,
+};
+use crate::write::write_atomic;
 
 #[derive(Debug, clap::Args)]
-pub struct FmtArgs {}
+pub struct FmtArgs {
+    /// Font directory to format.
+    #[arg(default_value = "glyphs")]
+    pub font_dir: PathBuf,
+    /// Write nothing; list the files that are not canonical and exit 1 if there are any.
+    #[arg(long)]
+    pub check: bool,
+    /// Rewrite files even when that drops comments (the leading comment block is kept).
+    #[arg(long)]
+    pub force: bool,
+}
 
-pub fn run(_args: FmtArgs) -> Result<ExitCode, CommandError> {
-    Err("`xglyph fmt` is not implemented yet".into())
+pub fn run(args: FmtArgs) -> Result<ExitCode, CommandError> {
+    let loaded = match load_sources(&args.font_dir) {
+        Ok(loaded) => loaded,
+        Err(diags) => {
+            for d in &diags {
+                eprint!("{}", check::text(d));
+            }
+            eprintln!("fmt: the sources have errors; nothing was changed");
+            return Ok(ExitCode::FAILURE);
+        }
+    };
+    for d in &loaded.warnings {
+        eprint!("{}", check::text(d));
+    }
+    let changes: Vec<Rewrite> = rewrites(&loaded)
+        .into_iter()
+        .filter(Rewrite::changes)
+        .collect();
+
+    if args.check {
+        for r in &changes {
+            println!("{}", r.path.display());
+        }
+        if changes.is_empty() {
+            return Ok(ExitCode::SUCCESS);
+        }
+        eprintln!("fmt --check: {} files are not formatted", changes.len());
+        return Ok(ExitCode::FAILURE);
+    }
+
+    let with_comments: Vec<&Rewrite> = changes
+        .iter()
+        .filter(|r| !r.dropped_comments.is_empty())
+        .collect();
+    if !args.force && !with_comments.is_empty() {
+        for r in &with_comments {
+            for &off in &r.dropped_comments {
+                let (line, col) = line_col(&r.old, off);
+                eprintln!(
+                    "{}:{line}:{col}: error: fmt would drop this comment",
+                    r.path.display()
+                );
+            }
+        }
+        eprintln!(
+            "fmt: only the comment block at the top of a file survives formatting; move these \
+             comments there, or run `xglyph fmt --force` to drop them. Nothing was changed."
+        );
+        return Ok(ExitCode::FAILURE);
+    }
+
+    verify(&loaded, &changes)?;
+    for r in &changes {
+        write_atomic(&r.path, r.new.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", r.path.display()))?;
+        println!("{}", r.path.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A safety net before writing: every new text loads back to the same model (the writer
+/// is the loader's inverse; this guards against a bug in it breaking a font).
+fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> {
+    let font = &loaded.font;
+    let names = font.glyphs.iter().map(|g| g.name.clone()).collect();
+    for r in changes {
+        let same = match &r.kind {
+            SourceKind::Info => load_info_text(&r.path, &r.new).is_ok_and(|(i, _)| i == font.info),
+            SourceKind::Glyph(name) => {
+                load_glyph_text(&r.path, &r.new).is_ok_and(|(g, _)| font.glyph(name) == Some(&g))
+            }
+            SourceKind::Kerning => {
+                load_kerning_text(&r.path, &r.new, &names).is_ok_and(|k| k == font.kerning)
+            }
+        };
+        if !same {
+            return Err(format!(
+                "internal error: the formatted {} would not load back the same; nothing was changed",
+                r.path.display()
+            )
+            .into());
+        }
+    }
+    Ok(())
 }

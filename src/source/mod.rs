@@ -1,7 +1,24 @@
 //! Sources: TOML text -> typed [`crate::model::Font`], with spans and diagnostics; and the
 //! canonical text back ([`emit`]) for `fmt` and `import`.
+//!
+//! The format is documented in `docs/format.md`. One file per job: [`load`] reads a
+//! directory and runs the checks across files; `info`, `glyph` and `kerning` read one file
+//! each; `value` reads typed TOML values; `geometry` holds the point checks; [`format`]
+//! plans the rewrite that `xglyph fmt` performs.
 
+mod diagnostic;
 pub mod emit;
+pub mod format;
+mod geometry;
+mod glyph;
+mod info;
+mod kerning;
 mod load;
+mod value;
 
-pub use load::{line_col, load_font, Diagnostic, Severity};
+pub use diagnostic::{line_col, Diagnostic, Severity};
+pub use geometry::{FAR_EMS, FLAT_RELATIVE};
+pub use glyph::load_glyph_text;
+pub use info::{load_info_text, DEFAULT_TOLERANCE};
+pub use kerning::load_kerning_text;
+pub use load::{load_font, load_sources, LoadedFont, SourceFile, SourceKind};

@@ -1,1 +1,0 @@
-//! Glyph sheets and text proofs (tiny-skia).

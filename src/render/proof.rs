@@ -1,0 +1,154 @@
+//! The text proof: lines of text set in the font, at several sizes (a waterfall).
+//!
+//! Black text on white, with the font's advances and kerning ([`crate::layout`]).
+//! Sizes are pixels per em (`units_per_em` font units). Each size sets every line of the
+//! text; the image is as wide as the longest line (plus margins) up to a maximum width,
+//! and lines longer than that are cut at the right edge (no wrapping).
+
+use tiny_skia::{Color, Pixmap};
+
+use super::draw::{fill_glyph, Placement};
+use super::{white_pixmap, RenderError};
+use crate::layout::{fallback_box, Layout};
+use crate::model::Font;
+use crate::outline::FontOutlines;
+
+/// How to set the proof.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProofOptions {
+    /// The text; `None` picks [`default_text`]. `'\n'` separates lines.
+    pub text: Option<String>,
+    /// Pixels per em, one block per size, top to bottom (each 1..=1000).
+    pub sizes: Vec<f64>,
+    /// Largest image width, pixels; the image is as wide as its longest line plus margins,
+    /// up to this (longer lines are cut).
+    pub width_px: u32,
+}
+
+impl Default for ProofOptions {
+    fn default() -> Self {
+        ProofOptions {
+            text: None,
+            sizes: vec![12.0, 16.0, 24.0, 36.0, 48.0, 72.0],
+            width_px: 1200,
+        }
+    }
+}
+
+/// Texts tried in order; each one the font covers fully becomes a proof line.
+const CANDIDATES: &[&str] = &[
+    "The quick brown fox jumps over the lazy dog.",
+    "SPHINX OF BLACK QUARTZ, JUDGE MY VOW",
+    "Hamburgefonstiv nonooonnoon HOHOOHHOOH",
+    "0123456789 (1,234.56)",
+];
+
+/// A text for the font: the candidate lines it covers; if it covers none, every character
+/// it has (in code-point order, marks and spaces left out) followed by its kerning pairs.
+pub fn default_text(font: &Font) -> String {
+    let layout = Layout::new(font);
+    let lines: Vec<&str> = CANDIDATES
+        .iter()
+        .copied()
+        .filter(|t| t.chars().all(|c| layout.covers(c)))
+        .collect();
+    if !lines.is_empty() {
+        return lines.join("\n");
+    }
+    let mut chars: Vec<char> = font
+        .glyphs
+        .iter()
+        .filter(|g| g.advance > 0.0)
+        .flat_map(|g| g.unicodes.iter().copied())
+        .filter(|c| !c.is_whitespace() && !c.is_control())
+        .collect();
+    chars.sort_unstable();
+    chars.dedup();
+    let mut text: String = chars.into_iter().collect();
+    let pairs: Vec<String> = font
+        .kerning
+        .iter()
+        .filter_map(|k| {
+            let l = font.glyph(&k.left)?.unicodes.iter().min()?;
+            let r = font.glyph(&k.right)?.unicodes.iter().min()?;
+            Some(format!("{l}{r}"))
+        })
+        .collect();
+    if !pairs.is_empty() {
+        text.push('\n');
+        text.push_str(&pairs.join(" "));
+    }
+    text
+}
+
+/// Left and top margin, pixels.
+const MARGIN: f64 = 16.0;
+
+/// Renders the proof of `font`; `outlines` is `outline_font(font, ..)`.
+pub fn render_proof(
+    font: &Font,
+    outlines: &FontOutlines,
+    opts: &ProofOptions,
+) -> Result<Pixmap, RenderError> {
+    if opts.sizes.is_empty() {
+        return Err(RenderError::Option("at least one size is needed".into()));
+    }
+    if let Some(bad) = opts
+        .sizes
+        .iter()
+        .find(|s| !(s.is_finite() && (1.0..=1000.0).contains(*s)))
+    {
+        return Err(RenderError::Option(format!(
+            "size {bad} px is out of range 1..=1000"
+        )));
+    }
+    let text = opts.text.clone().unwrap_or_else(|| default_text(font));
+    let lines: Vec<&str> = text.lines().collect();
+    let info = &font.info;
+    let upm = f64::from(info.units_per_em);
+    let em = info.ascender - info.descender;
+    let layout = Layout::new(font);
+    let laid: Vec<_> = lines.iter().map(|l| layout.line(l)).collect();
+    let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
+    // Pass 1: baselines, the image height and width.
+    let mut y = MARGIN;
+    let mut blocks = Vec::new();
+    let mut width = 2.0 * MARGIN + 1.0;
+    for &size in &opts.sizes {
+        let scale = size / upm;
+        width = width.max((2.0 * MARGIN + widest * scale).ceil());
+        let leading = (em * scale * 1.2).ceil();
+        let mut baselines = Vec::new();
+        for _ in &lines {
+            baselines.push((y + info.ascender * scale).round());
+            y += leading;
+        }
+        blocks.push((scale, baselines));
+        y += (size * 0.5).round();
+    }
+    let height = (y + MARGIN).ceil() as u64;
+    let width = (width as u64).min(u64::from(opts.width_px));
+    let mut img = white_pixmap(width, height)?;
+    let fallback = fallback_box(info);
+    for (scale, baselines) in blocks {
+        for (line, baseline) in laid.iter().zip(baselines) {
+            for placed in &line.glyphs {
+                let origin_x = MARGIN + placed.x * scale;
+                if origin_x > width as f64 {
+                    break;
+                }
+                let at = Placement {
+                    scale,
+                    origin_x,
+                    baseline_y: baseline,
+                };
+                let path = match placed.glyph {
+                    Some(i) => &outlines.glyphs[i].path,
+                    None => &fallback,
+                };
+                fill_glyph(&mut img, path, at, Color::BLACK);
+            }
+        }
+    }
+    Ok(img)
+}

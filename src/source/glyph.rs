@@ -1,0 +1,327 @@
+//! One glyph file -> [`Glyph`]: name, code points, advance, contours, components.
+//!
+//! Checks here need only the file itself; the checks across files (duplicate names and
+//! code points, component bases and cycles, points far outside the metrics) are in
+//! [`super::load`].
+
+use std::path::Path;
+
+use toml::de::{DeTable, DeValue};
+use toml::Spanned;
+
+use super::diagnostic::{Ctx, Diagnostic, Severity};
+use super::geometry::{no_area, NoArea};
+use super::value::{
+    check_keys, first_offset, get, integer, number, parse, require, string, tables, type_name,
+};
+use crate::model::{Component, Contour, Glyph};
+use crate::xspline::ControlPoint;
+
+/// Every key a glyph file may contain at the top level.
+const KEYS: &[&str] = &["name", "unicode", "advance", "contour", "component"];
+
+/// Where the parts of a glyph were written (byte offsets), for diagnostics across files.
+#[derive(Clone, Debug, Default)]
+pub(super) struct GlyphSpans {
+    pub name: usize,
+    pub unicodes: Vec<usize>,
+    pub bases: Vec<usize>,
+    /// Per contour, per point.
+    pub points: Vec<Vec<usize>>,
+}
+
+/// Loads one glyph file from memory. `path` labels the diagnostics and its stem is the
+/// glyph name when the file has no `name`. Only the checks that need this file alone run
+/// (see [`super::load_font`] for the rest). Returns the glyph and its warnings, or every
+/// diagnostic when there is an error.
+pub fn load_glyph_text(
+    path: &Path,
+    text: &str,
+) -> Result<(Glyph, Vec<Diagnostic>), Vec<Diagnostic>> {
+    let mut out = Vec::new();
+    let glyph = load_glyph(&mut Ctx {
+        path,
+        text,
+        out: &mut out,
+    });
+    match glyph {
+        Some(loaded) if loaded.complete && !out.iter().any(|d| d.severity == Severity::Error) => {
+            Ok((loaded.glyph, out))
+        }
+        _ => Err(out),
+    }
+}
+
+/// A glyph as far as it could be read.
+pub(super) struct Loaded {
+    /// When not `complete`: the parts that were well-formed (an unreadable advance is 0).
+    pub glyph: Glyph,
+    pub spans: GlyphSpans,
+    /// Whether the file had no error of its own.
+    pub complete: bool,
+}
+
+/// Reads a glyph file, reporting every problem of the file itself. `None` only when the
+/// file is not TOML or its name is unusable; otherwise the glyph, possibly incomplete, so
+/// that the checks across files still see its name, code points and components.
+pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
+    let stem = ctx
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let text = ctx.text;
+    let table = parse(ctx, text)?;
+    let t = table.get_ref();
+    let suggested = check_keys(ctx, t, KEYS);
+    let at = first_offset(t, 0);
+    let mut ok = true;
+    let mut spans = GlyphSpans::default();
+
+    let name = match get(t, "name") {
+        None => Some(stem),
+        Some(v) => {
+            spans.name = v.span().start;
+            match string(ctx, v, "name") {
+                Some(n) if n.is_empty() => {
+                    ctx.err(
+                        v.span().start,
+                        "`name` must not be empty; remove it to use the file name",
+                    );
+                    None
+                }
+                other => other,
+            }
+        }
+    };
+
+    let mut unicodes = Vec::new();
+    if let Some(v) = get(t, "unicode") {
+        let items: Vec<&Spanned<DeValue<'_>>> = match v.get_ref() {
+            DeValue::Array(a) => a.iter().collect(),
+            _ => vec![v],
+        };
+        for item in items {
+            match integer(ctx, item, "unicode").and_then(|n| code_point(ctx, item, n)) {
+                Some(c) => {
+                    unicodes.push(c);
+                    spans.unicodes.push(item.span().start);
+                }
+                None => ok = false,
+            }
+        }
+    }
+
+    let advance = require(ctx, t, "advance", "advance = 500", at, &suggested)
+        .and_then(|v| Some((number(ctx, v, "advance")?, v.span().start)))
+        .and_then(|(a, off)| {
+            if a < 0.0 {
+                ctx.err(off, format!("`advance` must not be negative, found {a}"));
+                None
+            } else {
+                Some(a)
+            }
+        });
+
+    let mut contours = Vec::new();
+    if let Some(v) = get(t, "contour") {
+        for (ct, header) in tables(ctx, v, "contour", &mut ok) {
+            match load_contour(ctx, ct, header) {
+                Some((points, offs)) => {
+                    contours.push(Contour { points });
+                    spans.points.push(offs);
+                }
+                None => ok = false,
+            }
+        }
+    }
+
+    let mut components = Vec::new();
+    if let Some(v) = get(t, "component") {
+        for (ct, header) in tables(ctx, v, "component", &mut ok) {
+            match load_component(ctx, ct, header) {
+                Some((component, base_off)) => {
+                    components.push(component);
+                    spans.bases.push(base_off);
+                }
+                None => ok = false,
+            }
+        }
+    }
+
+    let name = name?;
+    let complete = ok && advance.is_some();
+    let advance = advance.unwrap_or(0.0);
+    if complete && contours.is_empty() && components.is_empty() && advance == 0.0 {
+        ctx.warn(
+            at,
+            format!("glyph `{name}` is empty: no contours, no components and advance 0"),
+        );
+    }
+    let glyph = Glyph {
+        name,
+        unicodes,
+        advance,
+        contours,
+        components,
+    };
+    Some(Loaded {
+        glyph,
+        spans,
+        complete,
+    })
+}
+
+/// A Unicode scalar value, or `None` with a diagnostic saying why `n` is not one.
+fn code_point(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, n: i64) -> Option<char> {
+    let why = if n < 0 {
+        format!("invalid code point {n}: code points are 0x0..0x10FFFF")
+    } else if n > 0x10FFFF {
+        format!("invalid code point {n:#X}: the largest is 0x10FFFF")
+    } else if (0xD800..=0xDFFF).contains(&n) {
+        format!("invalid code point {n:#X}: surrogates 0xD800..0xDFFF are not characters")
+    } else {
+        return u32::try_from(n).ok().and_then(char::from_u32);
+    };
+    ctx.err(v.span().start, why);
+    None
+}
+
+/// One `[[contour]]` table: its points and where each point was written.
+fn load_contour(
+    ctx: &mut Ctx<'_>,
+    ct: &DeTable<'_>,
+    header: usize,
+) -> Option<(Vec<ControlPoint>, Vec<usize>)> {
+    let suggested = check_keys(ctx, ct, &["points"]);
+    let example = "points = [[0, 0, 0], [100, 0, 0], [50, 100, 0]]";
+    let v = require(ctx, ct, "points", example, header, &suggested)?;
+    let DeValue::Array(arr) = v.get_ref() else {
+        ctx.err(
+            v.span().start,
+            format!(
+                "`points` must be an array of [x, y, s] points, found {}",
+                type_name(v.get_ref())
+            ),
+        );
+        return None;
+    };
+    let mut points = Vec::new();
+    let mut offs = Vec::new();
+    let mut ok = true;
+    for p in arr {
+        let items = match p.get_ref() {
+            DeValue::Array(a) if a.len() == 3 => a,
+            DeValue::Array(a) => {
+                ctx.err(
+                    p.span().start,
+                    format!("a point must be [x, y, s], found {} values", a.len()),
+                );
+                ok = false;
+                continue;
+            }
+            other => {
+                ctx.err(
+                    p.span().start,
+                    format!(
+                        "a point must be an array [x, y, s], found {}",
+                        type_name(other)
+                    ),
+                );
+                ok = false;
+                continue;
+            }
+        };
+        let x = number(ctx, &items[0], "x");
+        let y = number(ctx, &items[1], "y");
+        let s = number(ctx, &items[2], "s");
+        if let Some(s) = s {
+            if !(-1.0..=1.0).contains(&s) {
+                ctx.err(items[2].span().start, format!("s = {s} is outside [-1, 1]"));
+                ok = false;
+            }
+        }
+        match (x, y, s) {
+            (Some(x), Some(y), Some(s)) => {
+                points.push(ControlPoint::new(x, y, s));
+                offs.push(p.span().start);
+            }
+            _ => ok = false,
+        }
+    }
+    if !ok {
+        return None;
+    }
+    if points.len() < 3 {
+        ctx.err(
+            v.span().start,
+            format!("a contour needs at least 3 points, found {}", points.len()),
+        );
+        return None;
+    }
+    let n = points.len();
+    let mut coincident = false;
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if points[i].pos == points[j].pos {
+            ctx.err(
+                offs[j],
+                format!("point {j} coincides with point {i} before it"),
+            );
+            coincident = true;
+        }
+    }
+    if coincident {
+        return None;
+    }
+    if let Some(why) = no_area(&points) {
+        let how = match why {
+            NoArea::Collinear => format!("its {n} points lie on one straight line"),
+            NoArea::OutAndBack => "it runs out and back along itself".to_string(),
+        };
+        ctx.err(v.span().start, format!("contour encloses no area: {how}"));
+        return None;
+    }
+    Some((points, offs))
+}
+
+/// One `[[component]]` table and where its `base` was written.
+fn load_component(
+    ctx: &mut Ctx<'_>,
+    ct: &DeTable<'_>,
+    header: usize,
+) -> Option<(Component, usize)> {
+    let suggested = check_keys(ctx, ct, &["base", "offset"]);
+    let base = require(ctx, ct, "base", "base = \"acutecomb\"", header, &suggested)
+        .and_then(|b| Some((string(ctx, b, "base")?, b.span().start)));
+    let offset = match get(ct, "offset") {
+        None => Some((0.0, 0.0)),
+        Some(o) => match o.get_ref() {
+            DeValue::Array(xy) if xy.len() == 2 => {
+                match (number(ctx, &xy[0], "x"), number(ctx, &xy[1], "y")) {
+                    (Some(x), Some(y)) => Some((x, y)),
+                    _ => None,
+                }
+            }
+            DeValue::Array(xy) => {
+                ctx.err(
+                    o.span().start,
+                    format!("`offset` must be [x, y], found {} values", xy.len()),
+                );
+                None
+            }
+            other => {
+                ctx.err(
+                    o.span().start,
+                    format!(
+                        "`offset` must be an array [x, y], found {}",
+                        type_name(other)
+                    ),
+                );
+                None
+            }
+        },
+    };
+    let ((base, base_off), offset) = (base?, offset?);
+    Some((Component { base, offset }, base_off))
+}

@@ -1,0 +1,157 @@
+//! `font.toml` -> [`FontInfo`]: family, style, metrics, tolerance, free-form metadata.
+
+use std::path::Path;
+
+use super::diagnostic::{Ctx, Diagnostic, Severity};
+use super::value::{check_keys, first_offset, get, integer, number, parse, require, string};
+use crate::model::FontInfo;
+
+/// Every key `font.toml` may contain.
+const KEYS: &[&str] = &[
+    "family",
+    "style",
+    "units_per_em",
+    "ascender",
+    "descender",
+    "x_height",
+    "cap_height",
+    "tolerance",
+    "copyright",
+    "designer",
+    "version",
+];
+
+/// Default `tolerance` in font units.
+pub const DEFAULT_TOLERANCE: f64 = 0.5;
+
+/// Loads one `font.toml` from memory (`path` only labels diagnostics): the info and its
+/// warnings, or every diagnostic when there is an error.
+pub fn load_info_text(
+    path: &Path,
+    text: &str,
+) -> Result<(FontInfo, Vec<Diagnostic>), Vec<Diagnostic>> {
+    let mut out = Vec::new();
+    let info = load_info(&mut Ctx {
+        path,
+        text,
+        out: &mut out,
+    });
+    match info {
+        Some(info) if !out.iter().any(|d| d.severity == Severity::Error) => Ok((info, out)),
+        _ => Err(out),
+    }
+}
+
+pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
+    let text = ctx.text;
+    let table = parse(ctx, text)?;
+    let t = table.get_ref();
+    let suggested = check_keys(ctx, t, KEYS);
+    let at = first_offset(t, 0);
+    let mut ok = true;
+
+    let family = require(ctx, t, "family", "family = \"My Sans\"", at, &suggested)
+        .and_then(|v| Some((string(ctx, v, "family")?, v.span().start)));
+    let family = match family {
+        Some((f, off)) if f.trim().is_empty() => {
+            ctx.err(off, "`family` must not be empty");
+            None
+        }
+        other => other.map(|(f, _)| f),
+    };
+
+    let upm = require(
+        ctx,
+        t,
+        "units_per_em",
+        "units_per_em = 1000",
+        at,
+        &suggested,
+    )
+    .and_then(|v| Some((integer(ctx, v, "units_per_em")?, v.span().start)))
+    .and_then(|(n, off)| match u16::try_from(n) {
+        Ok(n) if (16..=16384).contains(&n) => Some(n),
+        _ => {
+            ctx.err(off, "`units_per_em` must be an integer in 16..16384");
+            None
+        }
+    });
+
+    let metric = |ctx: &mut Ctx<'_>, key: &str, example: &str| {
+        require(ctx, t, key, example, at, &suggested)
+            .and_then(|v| Some((number(ctx, v, key)?, v.span().start)))
+    };
+    let ascender = metric(ctx, "ascender", "ascender = 800");
+    let descender = metric(ctx, "descender", "descender = -200");
+    let x_height = metric(ctx, "x_height", "x_height = 500");
+    let cap_height = metric(ctx, "cap_height", "cap_height = 700");
+    if let (Some((a, a_off)), Some((d, d_off))) = (ascender, descender) {
+        if a <= d {
+            ctx.err(a_off, "`ascender` must be greater than `descender`");
+            ok = false;
+        } else if d > 0.0 {
+            ctx.err(
+                d_off,
+                format!("`descender` must be 0 or negative (y up: below the baseline), found {d}"),
+            );
+            ok = false;
+        }
+    }
+
+    let tolerance = match get(t, "tolerance") {
+        None => Some(DEFAULT_TOLERANCE),
+        Some(v) => match number(ctx, v, "tolerance") {
+            Some(x) if x > 0.0 => Some(x),
+            Some(x) => {
+                ctx.err(
+                    v.span().start,
+                    format!("`tolerance` must be positive (font units), found {x}"),
+                );
+                None
+            }
+            None => None,
+        },
+    };
+
+    let optional = |ctx: &mut Ctx<'_>, key: &str| match get(t, key) {
+        None => Some(None),
+        Some(v) => string(ctx, v, key).map(Some),
+    };
+    let style = optional(ctx, "style");
+    let copyright = optional(ctx, "copyright");
+    let designer = optional(ctx, "designer");
+    let version = optional(ctx, "version");
+
+    let (
+        Some(family),
+        Some(units_per_em),
+        Some((ascender, _)),
+        Some((descender, _)),
+        Some((x_height, _)),
+        Some((cap_height, _)),
+        Some(tolerance),
+        Some(style),
+        Some(copyright),
+        Some(designer),
+        Some(version),
+    ) = (
+        family, upm, ascender, descender, x_height, cap_height, tolerance, style, copyright,
+        designer, version,
+    )
+    else {
+        return None;
+    };
+    ok.then(|| FontInfo {
+        family,
+        style: style.unwrap_or_else(|| "Regular".to_string()),
+        units_per_em,
+        ascender,
+        descender,
+        x_height,
+        cap_height,
+        tolerance,
+        copyright,
+        designer,
+        version,
+    })
+}

@@ -1,1 +1,0 @@
-//! SVG glyph set and SVG font.

@@ -1,0 +1,173 @@
+//! The SVG 1.1 font (`<font>`): for FontForge, svg2ttf and icon-font pipelines.
+//!
+//! Conventions real consumers need (see docs/design.md): integer `units-per-em`, `ascent`
+//! and a positive `descent` with `ascent + descent = units-per-em` (when the font's
+//! ascender - descender differs from the em, the descent is scaled to keep that sum);
+//! y-up path data with absolute `M L C Z`; `horiz-adv-x` on every glyph; code points as
+//! `&#xHEX;`; `.notdef` becomes the `<missing-glyph>` (a box when the font has none);
+//! `d=""` for empty glyphs; kerning as `<hkern g1 g2 k>` with `k = -value` (positive =
+//! tighter). Metadata (copyright, designer, version) goes into `<metadata>`.
+//!
+//! Limits: SVG `unicode` is a string (several characters mean a ligature), so a glyph with
+//! several code points is written once per code point, same name and outline. Code points
+//! XML cannot hold (C0 controls, U+FFFE/U+FFFF) are left out. `g1`/`g2` are
+//! comma-separated lists in SVG, so a glyph name containing a comma will be misread by
+//! consumers (the XML stays valid).
+
+use kurbo::{Affine, BezPath};
+
+use super::path_data::path_data;
+use super::xml::{escape, is_xml_char, num};
+use crate::layout::{fallback_advance, fallback_box};
+use crate::model::{Font, FontInfo};
+use crate::outline::FontOutlines;
+
+/// `(ascent, descent)` as positive integers with `ascent + descent = units_per_em`.
+pub fn ascent_descent(info: &FontInfo) -> (i64, i64) {
+    let upm = i64::from(info.units_per_em);
+    let span = info.ascender - info.descender;
+    let descent = if span > 0.0 {
+        (-info.descender * f64::from(info.units_per_em) / span).round() as i64
+    } else {
+        0
+    };
+    let descent = descent.clamp(0, upm);
+    (upm - descent, descent)
+}
+
+/// CSS `font-weight` and `font-style` guessed from the style name (`"Bold Italic"`).
+pub fn weight_and_style(style: &str) -> (u16, &'static str) {
+    let s = style.to_lowercase().replace([' ', '-', '_'], "");
+    const WEIGHTS: &[(&str, u16)] = &[
+        ("extralight", 200),
+        ("ultralight", 200),
+        ("semibold", 600),
+        ("demibold", 600),
+        ("extrabold", 800),
+        ("ultrabold", 800),
+        ("thin", 100),
+        ("light", 300),
+        ("medium", 500),
+        ("bold", 700),
+        ("black", 900),
+        ("heavy", 900),
+    ];
+    let weight = WEIGHTS
+        .iter()
+        .find(|(w, _)| s.contains(w))
+        .map_or(400, |&(_, w)| w);
+    let slant = if s.contains("italic") {
+        "italic"
+    } else if s.contains("oblique") {
+        "oblique"
+    } else {
+        "normal"
+    };
+    (weight, slant)
+}
+
+fn glyph_element(
+    out: &mut String,
+    tag: &str,
+    name: Option<&str>,
+    c: Option<char>,
+    adv: f64,
+    d: &str,
+) {
+    out.push('<');
+    out.push_str(tag);
+    if let Some(name) = name {
+        out.push_str(&format!(" glyph-name=\"{}\"", escape(name)));
+    }
+    if let Some(c) = c {
+        out.push_str(&format!(" unicode=\"&#x{:X};\"", u32::from(c)));
+    }
+    out.push_str(&format!(" horiz-adv-x=\"{}\" d=\"{d}\"/>\n", num(adv)));
+}
+
+/// The SVG font document for `font`; `outlines` is `outline_font(font, ..)`.
+pub fn svg_font(font: &Font, outlines: &FontOutlines) -> String {
+    let info = &font.info;
+    let (ascent, descent) = ascent_descent(info);
+    let (weight, slant) = weight_and_style(&info.style);
+    let notdef = outlines.glyph(".notdef");
+    let (missing_adv, missing_path): (f64, BezPath) = match notdef {
+        Some(g) => (g.advance, g.path.clone()),
+        None => (fallback_advance(info), fallback_box(info)),
+    };
+    let mut s = String::new();
+    s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n");
+    s.push_str("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\">\n");
+    let meta: Vec<String> = [
+        ("Copyright", &info.copyright),
+        ("Designer", &info.designer),
+        ("Version", &info.version),
+    ]
+    .into_iter()
+    .filter_map(|(k, v)| v.as_ref().map(|v| format!("{k}: {}", escape(v))))
+    .collect();
+    if !meta.is_empty() {
+        s.push_str(&format!("<metadata>{}</metadata>\n", meta.join("&#xA;")));
+    }
+    s.push_str("<defs>\n");
+    s.push_str(&format!(
+        "<font id=\"{}\" horiz-adv-x=\"{}\">\n",
+        escape(&super::output_stem(info)),
+        num(missing_adv)
+    ));
+    s.push_str(&format!(
+        "<font-face font-family=\"{}\" font-weight=\"{weight}\" font-style=\"{slant}\" \
+         units-per-em=\"{}\" ascent=\"{ascent}\" descent=\"{descent}\" x-height=\"{}\" \
+         cap-height=\"{}\"/>\n",
+        escape(&info.family),
+        info.units_per_em,
+        info.x_height.round(),
+        info.cap_height.round(),
+    ));
+    let d = path_data(&missing_path, Affine::IDENTITY);
+    glyph_element(&mut s, "missing-glyph", None, None, missing_adv, &d);
+    for g in outlines.glyphs.iter().filter(|g| g.name != ".notdef") {
+        let d = path_data(&g.path, Affine::IDENTITY);
+        let mut cps: Vec<char> = g
+            .unicodes
+            .iter()
+            .copied()
+            .filter(|&c| is_xml_char(c))
+            .collect();
+        cps.sort_unstable();
+        cps.dedup();
+        if cps.is_empty() {
+            glyph_element(&mut s, "glyph", Some(&g.name), None, g.advance, &d);
+        }
+        for c in cps {
+            glyph_element(&mut s, "glyph", Some(&g.name), Some(c), g.advance, &d);
+        }
+    }
+    for k in &font.kerning {
+        let known = |n: &str| n != ".notdef" && outlines.glyph(n).is_some();
+        if known(&k.left) && known(&k.right) {
+            s.push_str(&format!(
+                "<hkern g1=\"{}\" g2=\"{}\" k=\"{}\"/>\n",
+                escape(&k.left),
+                escape(&k.right),
+                num(-k.value)
+            ));
+        }
+    }
+    s.push_str("</font>\n</defs>\n</svg>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_and_slants_from_style_names() {
+        assert_eq!(weight_and_style("Regular"), (400, "normal"));
+        assert_eq!(weight_and_style("Bold Italic"), (700, "italic"));
+        assert_eq!(weight_and_style("Semi-Bold"), (600, "normal"));
+        assert_eq!(weight_and_style("ExtraLight Oblique"), (200, "oblique"));
+        assert_eq!(weight_and_style("Black"), (900, "normal"));
+    }
+}

@@ -1,0 +1,292 @@
+//! Reference-image tests for the glyph sheet and the text proof (tests/fixtures/mini).
+//!
+//! Each image is compared with `tests/reference/<name>.png`. A pixel differs when any
+//! channel differs by more than `CHANNEL_SLACK` (room for float rounding across platforms);
+//! the test fails on the first differing pixel and writes `<name>-actual.png` and
+//! `<name>-diff.png` (differing pixels red over a faded copy) to the target tmp dir.
+//! `XGLYPH_BLESS=1 cargo test --test render` regenerates the references.
+
+use std::path::{Path, PathBuf};
+
+use tiny_skia::Pixmap;
+use xglyph::layout::Layout;
+use xglyph::model::Font;
+use xglyph::outline::{outline_font, FontOutlines};
+use xglyph::render::{
+    default_text, encode_png, render_proof, render_sheet, sheet_order, ProofOptions, RenderError,
+    SheetOptions,
+};
+use xglyph::source::load_font;
+
+/// Largest per-channel difference that still counts as the same pixel.
+const CHANNEL_SLACK: u8 = 2;
+
+fn mini() -> (Font, FontOutlines) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
+    let (font, warnings) = load_font(&dir).expect("mini loads");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let outlines = outline_font(&font, font.info.tolerance).expect("mini outlines");
+    (font, outlines)
+}
+
+fn reference_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reference")
+        .join(format!("{name}.png"))
+}
+
+/// Number of pixels differing by more than `CHANNEL_SLACK` in some channel, and a diff image.
+fn diff(actual: &Pixmap, expected: &Pixmap) -> (usize, Pixmap) {
+    let mut img = actual.clone();
+    let mut count = 0;
+    let pairs = actual.pixels().iter().zip(expected.pixels());
+    for (out, (a, e)) in img.pixels_mut().iter_mut().zip(pairs) {
+        let channels = [
+            (a.red(), e.red()),
+            (a.green(), e.green()),
+            (a.blue(), e.blue()),
+            (a.alpha(), e.alpha()),
+        ];
+        let differs = channels.iter().any(|&(x, y)| x.abs_diff(y) > CHANNEL_SLACK);
+        *out = if differs {
+            count += 1;
+            tiny_skia::PremultipliedColorU8::from_rgba(255, 0, 0, 255).unwrap()
+        } else {
+            // Fade the image so the red stands out.
+            let f = |c: u8| 192 + c / 4;
+            tiny_skia::PremultipliedColorU8::from_rgba(f(a.red()), f(a.green()), f(a.blue()), 255)
+                .unwrap()
+        };
+    }
+    (count, img)
+}
+
+fn check_reference(name: &str, actual: &Pixmap) {
+    let path = reference_path(name);
+    if std::env::var("XGLYPH_BLESS").as_deref() == Ok("1") {
+        std::fs::write(&path, encode_png(actual).unwrap()).unwrap();
+        return;
+    }
+    let expected = Pixmap::load_png(&path).unwrap_or_else(|e| {
+        panic!(
+            "cannot read {} ({e}); run with XGLYPH_BLESS=1 to create it",
+            path.display()
+        )
+    });
+    assert_eq!(
+        (actual.width(), actual.height()),
+        (expected.width(), expected.height()),
+        "{name}: image size differs from the reference"
+    );
+    let (count, img) = diff(actual, &expected);
+    if count > 0 {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        let actual_path = dir.join(format!("{name}-actual.png"));
+        let diff_path = dir.join(format!("{name}-diff.png"));
+        std::fs::write(&actual_path, encode_png(actual).unwrap()).unwrap();
+        std::fs::write(&diff_path, encode_png(&img).unwrap()).unwrap();
+        panic!(
+            "{name}: {count} pixels differ from {} (diff: {}, actual: {})",
+            path.display(),
+            diff_path.display(),
+            actual_path.display()
+        );
+    }
+}
+
+#[test]
+fn sheet_matches_reference() {
+    let (font, outlines) = mini();
+    let opts = SheetOptions {
+        cell_px: 96,
+        columns: 4,
+        overlay: false,
+    };
+    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    assert_eq!((img.width(), img.height()), (384, 192));
+    check_reference("sheet", &img);
+}
+
+#[test]
+fn overlay_sheet_matches_reference() {
+    let (font, outlines) = mini();
+    let opts = SheetOptions {
+        cell_px: 128,
+        columns: 4,
+        overlay: true,
+    };
+    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    assert_eq!((img.width(), img.height()), (512, 256));
+    check_reference("sheet-overlay", &img);
+}
+
+#[test]
+fn proof_matches_reference() {
+    let (font, outlines) = mini();
+    let opts = ProofOptions {
+        text: None,
+        sizes: vec![12.0, 20.0, 36.0],
+        width_px: 200,
+    };
+    let img = render_proof(&font, &outlines, &opts).unwrap();
+    check_reference("proof", &img);
+}
+
+#[test]
+fn proof_with_missing_characters_matches_reference() {
+    let (font, outlines) = mini();
+    let opts = ProofOptions {
+        text: Some("AVo?.\nVo AV x".into()),
+        sizes: vec![24.0],
+        width_px: 200,
+    };
+    let img = render_proof(&font, &outlines, &opts).unwrap();
+    check_reference("proof-fallback", &img);
+}
+
+#[test]
+fn the_comparison_catches_a_changed_pixel() {
+    let (font, outlines) = mini();
+    let opts = SheetOptions {
+        cell_px: 96,
+        columns: 4,
+        overlay: false,
+    };
+    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    let mut changed = img.clone();
+    // Four pixels in the A's cell turned blue.
+    for x in 240..244 {
+        let i = (70 * changed.width() + x) as usize;
+        changed.pixels_mut()[i] = tiny_skia::PremultipliedColorU8::from_rgba(0, 0, 255, 255)
+            .expect("opaque colour is valid");
+    }
+    assert_eq!(diff(&changed, &img).0, 4);
+    assert_eq!(diff(&img, &img).0, 0);
+}
+
+#[test]
+fn sheet_order_and_default_text() {
+    let (font, _) = mini();
+    let names: Vec<&str> = sheet_order(&font)
+        .into_iter()
+        .map(|i| font.glyphs[i].name.as_str())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "space",
+            "period",
+            "A",
+            "V",
+            "o",
+            "oacute",
+            "acutecomb",
+            ".notdef"
+        ]
+    );
+    // Mini covers no candidate line: its characters (no marks, no space), then kerning pairs.
+    assert_eq!(default_text(&font), ".AVoó\nAV Vo");
+    // The proof's layout: kerning A-V -60 and V-o -40 applied.
+    let line = Layout::new(&font).line("AVo");
+    let xs: Vec<f64> = line.glyphs.iter().map(|p| p.x).collect();
+    assert_eq!(xs, [0.0, 580.0, 1140.0]);
+}
+
+#[test]
+fn a_tall_sheet_gets_more_columns() {
+    let (mut font, _) = mini();
+    // 400 glyphs of 2048 px: one column would be 819,200 px tall; 14 rows fit in 30,000.
+    let template = font.glyph("A").unwrap().clone();
+    font.glyphs = (0..400)
+        .map(|i| {
+            let mut g = template.clone();
+            g.name = format!("g{i:03}");
+            g.unicodes = vec![];
+            g
+        })
+        .collect();
+    font.kerning.clear();
+    let outlines = outline_font(&font, 0.5).unwrap();
+    let err = render_sheet(
+        &font,
+        &outlines,
+        &SheetOptions {
+            cell_px: 2048,
+            columns: 1,
+            overlay: false,
+        },
+    )
+    .unwrap_err();
+    // 400 / 14 = 29 columns: too wide as well, so a clear size error instead of a panic.
+    assert_eq!(
+        err,
+        RenderError::Size {
+            width: 29 * 2048,
+            height: 14 * 2048
+        }
+    );
+    let img = render_sheet(
+        &font,
+        &outlines,
+        &SheetOptions {
+            cell_px: 256,
+            columns: 1,
+            overlay: false,
+        },
+    )
+    .unwrap();
+    // 117 rows of 256 px fit in 30,000 px: 4 columns of 100 rows.
+    assert_eq!((img.width(), img.height()), (4 * 256, 100 * 256));
+}
+
+#[test]
+fn bad_options_are_errors_not_panics() {
+    let (font, outlines) = mini();
+    let sheet = |cell_px, columns| {
+        render_sheet(
+            &font,
+            &outlines,
+            &SheetOptions {
+                cell_px,
+                columns,
+                overlay: false,
+            },
+        )
+        .err()
+    };
+    assert_eq!(
+        sheet(8, 4),
+        Some(RenderError::Option(
+            "cell size 8 px is out of range 32..=2048".into()
+        ))
+    );
+    assert_eq!(
+        sheet(64, 0),
+        Some(RenderError::Option("columns must be at least 1".into()))
+    );
+    let proof = |sizes: Vec<f64>, width_px| {
+        render_proof(
+            &font,
+            &outlines,
+            &ProofOptions {
+                text: Some("A".into()),
+                sizes,
+                width_px,
+            },
+        )
+        .err()
+    };
+    assert_eq!(
+        proof(vec![f64::NAN], 100),
+        Some(RenderError::Option(
+            "size NaN px is out of range 1..=1000".into()
+        ))
+    );
+    assert_eq!(
+        proof(vec![12.0], 0),
+        Some(RenderError::Size {
+            width: 0,
+            height: 53
+        })
+    );
+}
