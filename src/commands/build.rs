@@ -50,15 +50,9 @@ pub struct Loaded {
     pub outlines: FontOutlines,
 }
 
-/// Prints a diagnostic with its source line and a caret under the column (to stderr).
+/// Prints a diagnostic as `check` does (source line and caret), to stderr.
 pub fn print_diagnostic(d: &Diagnostic) {
-    eprintln!("{d}");
-    if let Ok(text) = std::fs::read_to_string(&d.path) {
-        if let Some(line) = text.lines().nth(d.line.saturating_sub(1)) {
-            eprintln!("  | {line}");
-            eprintln!("  | {}^", " ".repeat(d.col.saturating_sub(1)));
-        }
-    }
+    eprint!("{}", crate::commands::check::text(d));
 }
 
 /// Loads `font_dir` (printing its diagnostics) and fits every glyph, with `tolerance`
@@ -70,6 +64,13 @@ pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandEr
         }
     }
     let font = match load_font(font_dir) {
+        Ok((font, _)) if font.glyphs.is_empty() => {
+            return Err(format!(
+                "{} has no glyph files yet (only font.toml); add one TOML file per glyph",
+                font_dir.display()
+            )
+            .into());
+        }
         Ok((font, warnings)) => {
             warnings.iter().for_each(print_diagnostic);
             font
@@ -80,20 +81,14 @@ pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandEr
                 .iter()
                 .filter(|d| d.severity == Severity::Error)
                 .count();
+            let noun = if errors == 1 { "error" } else { "errors" };
             return Err(format!(
-                "{errors} error(s) in {}; nothing was written",
+                "{errors} {noun} in {}; nothing was written",
                 font_dir.display()
             )
             .into());
         }
     };
-    if font.glyphs.is_empty() {
-        return Err(format!(
-            "{} has no glyph files yet (only font.toml); add one TOML file per glyph",
-            font_dir.display()
-        )
-        .into());
-    }
     let outlines = outline_font(&font, tolerance.unwrap_or(font.info.tolerance))?;
     Ok(Loaded { font, outlines })
 }
