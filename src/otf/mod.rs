@@ -1,1 +1,240 @@
-//! TTF and OTF export.
+//! TTF and OTF export: the fitted outlines as installable OpenType fonts.
+//!
+//! Both flavours share one glyph order (`.notdef` first, then the model's order), one set
+//! of PostScript glyph names and the same metrics tables ([`tables`]); they differ only in
+//! the outline table:
+//!
+//! - TTF: `glyf`/`loca` with the cubics converted to quadratic splines within the font's
+//!   tolerance ([`quadratic`]), points on the integer grid, outer contours clockwise.
+//! - OTF: a `CFF ` table ([`cff`], [`charstring`]) holding the cubics exactly, points
+//!   rounded to the integer grid, outer contours counter-clockwise.
+//!
+//! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
+//! convex combination of its control points, so grid rounding moves any outline point by at
+//! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
+//!
+//! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
+//! `kern` table ([`kern`]). Components are already resolved into the outlines; no composite glyphs.
+
+mod cff;
+mod charstring;
+mod glyph_names;
+mod grid;
+mod kern;
+mod naming;
+mod os2;
+mod quadratic;
+mod specimen;
+mod tables;
+mod truetype;
+
+use std::collections::BTreeMap;
+
+use kurbo::BezPath;
+
+use crate::model::Font;
+use crate::outline::FontOutlines;
+
+pub use cff::{encode_dict_int, encode_dict_real, encode_index};
+pub use charstring::encode_charstring_int;
+pub use glyph_names::is_valid_glyph_name;
+pub use specimen::{specimen_html, specimen_text};
+
+/// Something the model holds that an OpenType font cannot.
+#[derive(Debug)]
+pub enum OtfError {
+    /// More glyphs than the 65 535 an OpenType font can address.
+    TooManyGlyphs(usize),
+    /// A coordinate, advance or metric outside the signed 16-bit range of the tables.
+    OutOfRange {
+        what: String,
+        value: f64,
+        range: &'static str,
+    },
+    /// A glyph in the model with no outline (model and outlines out of step).
+    MissingOutline(String),
+    /// Two glyphs mapped to one code point.
+    CmapConflict(String),
+    /// write-fonts rejected a table.
+    Table(String),
+}
+
+impl std::fmt::Display for OtfError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OtfError::TooManyGlyphs(n) => {
+                write!(f, "{n} glyphs: an OpenType font holds at most 65535")
+            }
+            OtfError::OutOfRange { what, value, range } => {
+                write!(f, "{what} is {value}, outside the OpenType range {range}")
+            }
+            OtfError::MissingOutline(name) => write!(f, "glyph '{name}' has no outline"),
+            OtfError::CmapConflict(msg) => write!(f, "cmap: {msg}"),
+            OtfError::Table(msg) => write!(f, "{msg}"),
+        }
+    }
+}
+
+impl std::error::Error for OtfError {}
+
+/// One glyph as both flavours see it: final name, code points, advance and outline.
+#[derive(Clone, Debug)]
+pub(crate) struct OtGlyph {
+    /// The model's name (used for kerning lookups).
+    pub model_name: String,
+    /// The PostScript name written into `post` / the CFF charset.
+    pub ps_name: String,
+    pub unicodes: Vec<char>,
+    /// Advance in font units, on the grid.
+    pub advance: u16,
+    /// y-up outline, outer contours counter-clockwise, not yet rounded.
+    pub path: BezPath,
+    /// The outline includes resolved components, whose contours may overlap.
+    pub from_components: bool,
+}
+
+/// The glyph order shared by both flavours.
+pub(crate) struct GlyphSet {
+    pub glyphs: Vec<OtGlyph>,
+    /// Model name -> glyph id.
+    ids: BTreeMap<String, u16>,
+}
+
+impl GlyphSet {
+    /// `.notdef` first (synthesised as an empty box when the model has none), then the
+    /// model's order.
+    pub fn new(font: &Font, outlines: &FontOutlines) -> Result<Self, OtfError> {
+        let has_notdef = font.glyph(".notdef").is_some();
+        let count = font.glyphs.len() + usize::from(!has_notdef);
+        if count > usize::from(u16::MAX) {
+            return Err(OtfError::TooManyGlyphs(count));
+        }
+        let mut glyphs = Vec::with_capacity(count);
+        if !has_notdef {
+            glyphs.push(synthetic_notdef(font));
+        }
+        let indexed = font.glyphs.iter().enumerate();
+        let notdef = indexed.clone().filter(|(_, g)| g.name == ".notdef");
+        let rest = indexed.filter(|(_, g)| g.name != ".notdef");
+        for (index, glyph) in notdef.chain(rest) {
+            // Outlines come in model order; search only if they do not.
+            let outline = outlines
+                .glyphs
+                .get(index)
+                .filter(|o| o.name == glyph.name)
+                .or_else(|| outlines.glyph(&glyph.name))
+                .ok_or_else(|| OtfError::MissingOutline(glyph.name.clone()))?;
+            let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
+            glyphs.push(OtGlyph {
+                model_name: glyph.name.clone(),
+                ps_name: String::new(),
+                unicodes: glyph.unicodes.clone(),
+                advance,
+                path: outline.path.clone(),
+                from_components: !glyph.components.is_empty(),
+            });
+        }
+        let names = glyph_names::ps_names(&glyphs);
+        for (glyph, name) in glyphs.iter_mut().zip(names) {
+            glyph.ps_name = name;
+        }
+        // At most 65535 glyphs (checked above), so every index fits.
+        let ids = glyphs
+            .iter()
+            .enumerate()
+            .map(|(i, g)| (g.model_name.clone(), i as u16))
+            .collect();
+        Ok(GlyphSet { glyphs, ids })
+    }
+
+    /// Glyph id of the glyph with this model name.
+    pub fn gid(&self, model_name: &str) -> Option<u16> {
+        self.ids.get(model_name).copied()
+    }
+}
+
+/// A hollow box, half an em wide and cap-height tall: the conventional missing glyph.
+fn synthetic_notdef(font: &Font) -> OtGlyph {
+    let upm = f64::from(font.info.units_per_em);
+    let advance = (upm / 2.0).round();
+    let height = if font.info.cap_height > 0.0 {
+        font.info.cap_height
+    } else {
+        font.info.ascender
+    };
+    let margin = (upm / 20.0).round();
+    let stroke = (upm / 20.0).round().max(1.0);
+    let mut path = BezPath::new();
+    let rect = |path: &mut BezPath, x0: f64, y0: f64, x1: f64, y1: f64, ccw: bool| {
+        path.move_to((x0, y0));
+        if ccw {
+            path.line_to((x1, y0));
+            path.line_to((x1, y1));
+            path.line_to((x0, y1));
+        } else {
+            path.line_to((x0, y1));
+            path.line_to((x1, y1));
+            path.line_to((x1, y0));
+        }
+        path.close_path();
+    };
+    let (x0, x1) = (margin, advance - margin);
+    rect(&mut path, x0, 0.0, x1, height, true);
+    rect(
+        &mut path,
+        x0 + stroke,
+        stroke,
+        x1 - stroke,
+        height - stroke,
+        false,
+    );
+    OtGlyph {
+        model_name: ".notdef".into(),
+        ps_name: ".notdef".into(),
+        unicodes: Vec::new(),
+        advance: advance.clamp(0.0, f64::from(u16::MAX)) as u16,
+        path,
+        from_components: false,
+    }
+}
+
+/// The font as TrueType (`glyf` outlines, quadratic splines on the integer grid).
+pub fn ttf(font: &Font, outlines: &FontOutlines) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::new(font, outlines)?;
+    let glyphs = truetype::glyphs(&set, outlines.tolerance)?;
+    tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
+}
+
+/// The font as OpenType/CFF (cubic outlines, points rounded to the integer grid).
+pub fn otf(font: &Font, outlines: &FontOutlines) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::new(font, outlines)?;
+    let glyphs = grid::round_glyph_paths(&set)?;
+    tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
+}
+
+/// One glyph as both fonts hold it (for external checks and reports).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrderedGlyph {
+    /// The model's name (`.notdef` for a synthesised one).
+    pub model_name: String,
+    /// The PostScript name in `post` / the CFF charset.
+    pub ps_name: String,
+    pub unicodes: Vec<char>,
+    /// Advance on the grid, font units.
+    pub advance: u16,
+}
+
+/// The glyph order, PostScript names, code points and advances both fonts are built with.
+pub fn glyph_order(font: &Font, outlines: &FontOutlines) -> Result<Vec<OrderedGlyph>, OtfError> {
+    let set = GlyphSet::new(font, outlines)?;
+    Ok(set
+        .glyphs
+        .into_iter()
+        .map(|g| OrderedGlyph {
+            model_name: g.model_name,
+            ps_name: g.ps_name,
+            unicodes: g.unicodes,
+            advance: g.advance,
+        })
+        .collect())
+}

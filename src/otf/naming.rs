@@ -1,0 +1,188 @@
+//! Font naming from `font.toml`: the `name` table, the PostScript font name, the version
+//! and the style facts (weight class, italic, bold) the other tables need.
+//!
+//! Records are Windows (3, 1, en-US) only, which every current consumer reads. A style
+//! other than Regular, Italic, Bold or Bold Italic gets the typographic family/style
+//! (IDs 16/17) and a legacy family with the style's non-italic words (ID 1) plus
+//! Regular or Italic (ID 2). Weight class is read from the style's words (Thin … Black).
+
+use write_fonts::tables::name::{Name, NameRecord};
+use write_fonts::types::NameId;
+
+use crate::model::Font;
+
+/// Names and style facts derived from `font.toml`.
+pub struct Naming {
+    pub family: String,
+    pub style: String,
+    pub ps_name: String,
+    pub full_name: String,
+    pub version_text: String,
+    pub revision: f64,
+    pub weight: u16,
+    pub italic: bool,
+    /// Style is one of Regular, Italic, Bold, Bold Italic.
+    pub ribbi: bool,
+}
+
+impl Naming {
+    pub fn new(font: &Font) -> Self {
+        let family = font.info.family.trim().to_owned();
+        let style = font.info.style.trim().to_owned();
+        let (revision, version_text) = parse_version(font.info.version.as_deref());
+        let words: Vec<String> = style.split_whitespace().map(str::to_lowercase).collect();
+        let compact: String = words.concat();
+        let italic = words.iter().any(|w| w == "italic" || w == "oblique");
+        const WEIGHTS: &[(&str, u16)] = &[
+            ("extralight", 200),
+            ("ultralight", 200),
+            ("semibold", 600),
+            ("demibold", 600),
+            ("extrabold", 800),
+            ("ultrabold", 800),
+            ("thin", 100),
+            ("light", 300),
+            ("medium", 500),
+            ("bold", 700),
+            ("black", 900),
+            ("heavy", 900),
+        ];
+        let weight = WEIGHTS
+            .iter()
+            .find(|(w, _)| compact.contains(w))
+            .map_or(400, |&(_, v)| v);
+        let ribbi = matches!(
+            style.as_str(),
+            "Regular" | "Italic" | "Bold" | "Bold Italic"
+        );
+        Naming {
+            ps_name: ps_font_name(&family, &style),
+            full_name: format!("{family} {style}"),
+            family,
+            style,
+            version_text,
+            revision,
+            weight,
+            italic,
+            ribbi,
+        }
+    }
+
+    /// Bold in the RIBBI sense (style "Bold" or "Bold Italic").
+    pub fn bold(&self) -> bool {
+        self.ribbi && self.weight == 700
+    }
+}
+
+/// `(font revision, name ID 5 text)`: `1.2` gives `(1.2, "Version 1.200")`; text that is
+/// not a number is kept after a default `Version 1.000; `.
+fn parse_version(version: Option<&str>) -> (f64, String) {
+    let Some(text) = version.map(str::trim) else {
+        return (1.0, "Version 1.000".into());
+    };
+    let bare = text.strip_prefix("Version ").unwrap_or(text);
+    match bare.parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..32768.0).contains(&v) => (v, format!("Version {v:.3}")),
+        _ => (1.0, format!("Version 1.000; {text}")),
+    }
+}
+
+/// PostScript font name: `Family-Style` without spaces, printable ASCII other than
+/// `[](){}<>/%`, at most 63 characters.
+fn ps_font_name(family: &str, style: &str) -> String {
+    let clean = |s: &str| -> String {
+        s.chars()
+            .filter(|c| c.is_ascii_graphic() && !"[](){}<>/%".contains(*c))
+            .collect()
+    };
+    let mut family = clean(family);
+    if family.is_empty() {
+        family = "Untitled".into();
+    }
+    let style = clean(style);
+    let mut name = if style.is_empty() {
+        family
+    } else {
+        format!("{family}-{style}")
+    };
+    name.truncate(63);
+    name
+}
+
+/// Windows (3, 1, en-US) name records, sorted by name ID.
+pub fn name_table(font: &Font, naming: &Naming) -> Name {
+    let mut records: Vec<(u16, String)> = Vec::new();
+    if let Some(c) = &font.info.copyright {
+        records.push((0, c.clone()));
+    }
+    let (family1, style2) = if naming.ribbi {
+        (naming.family.clone(), naming.style.clone())
+    } else {
+        let rest: Vec<&str> = naming
+            .style
+            .split_whitespace()
+            .filter(|w| !w.eq_ignore_ascii_case("italic"))
+            .collect();
+        let style2 = if naming.italic { "Italic" } else { "Regular" };
+        let family1 = if rest.is_empty() {
+            naming.family.clone()
+        } else {
+            format!("{} {}", naming.family, rest.join(" "))
+        };
+        (family1, style2.to_owned())
+    };
+    records.push((1, family1));
+    records.push((2, style2));
+    let short_version = naming
+        .version_text
+        .strip_prefix("Version ")
+        .unwrap_or(&naming.version_text)
+        .split(';')
+        .next()
+        .unwrap_or("1.000")
+        .to_owned();
+    records.push((3, format!("{short_version};NONE;{}", naming.ps_name)));
+    records.push((4, naming.full_name.clone()));
+    records.push((5, naming.version_text.clone()));
+    records.push((6, naming.ps_name.clone()));
+    if let Some(d) = &font.info.designer {
+        records.push((9, d.clone()));
+    }
+    if !naming.ribbi {
+        records.push((16, naming.family.clone()));
+        records.push((17, naming.style.clone()));
+    }
+    Name::new(
+        records
+            .into_iter()
+            .map(|(id, text)| NameRecord::new(3, 1, 0x409, NameId::new(id), text.into()))
+            .collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn versions() {
+        assert_eq!(parse_version(None), (1.0, "Version 1.000".into()));
+        assert_eq!(parse_version(Some("1.2")), (1.2, "Version 1.200".into()));
+        assert_eq!(
+            parse_version(Some("Version 2.015")),
+            (2.015, "Version 2.015".into())
+        );
+        assert_eq!(
+            parse_version(Some("beta 3")),
+            (1.0, "Version 1.000; beta 3".into())
+        );
+    }
+
+    #[test]
+    fn postscript_font_names() {
+        assert_eq!(ps_font_name("Mini Test", "Regular"), "MiniTest-Regular");
+        assert_eq!(ps_font_name("A (b) c%", "Bold Italic"), "Abc-BoldItalic");
+        assert_eq!(ps_font_name("Größe", ""), "Gre");
+        assert_eq!(ps_font_name(&"x".repeat(80), "Regular").len(), 63);
+    }
+}
