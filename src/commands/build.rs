@@ -11,6 +11,7 @@ use kurbo::PathEl;
 
 use super::CommandError;
 use crate::model::Font;
+use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
 use crate::source::{load_font, Diagnostic, Severity};
@@ -116,6 +117,19 @@ pub fn outputs(
     files.push((
         PathBuf::from("proof.png"),
         encode_png(&render_proof(font, outlines, &opts.proof)?)?,
+    ));
+    let stem = output_stem(&font.info);
+    files.push((
+        PathBuf::from(format!("{stem}.ttf")),
+        otf::ttf(font, outlines)?,
+    ));
+    files.push((
+        PathBuf::from(format!("{stem}.otf")),
+        otf::otf(font, outlines)?,
+    ));
+    files.push((
+        PathBuf::from("specimen.html"),
+        otf::specimen_html(font, &format!("{stem}.otf")).into_bytes(),
     ));
     Ok(files)
 }
