@@ -22,9 +22,9 @@ use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 use crate::xspline::XSpline;
 
 /// Curve samples per unit of parameter (one X-spline segment) when measuring a span.
-const SAMPLES_PER_SEGMENT: f64 = 24.0;
+const SAMPLES_PER_SEGMENT: f64 = 20.0;
 /// Fewest curve samples per measured span.
-const MIN_SAMPLES: usize = 16;
+const MIN_SAMPLES: usize = 12;
 /// Fraction of the tolerance a candidate must meet by measurement.
 const SAFETY: f64 = 0.99;
 /// The span search stops when the longest fitting span is known within this ratio.
@@ -449,8 +449,9 @@ fn polish(
         };
         if best.is_none_or(|b| worst < b.2) {
             // Stop when progress stalls, or when the span is clearly out of reach.
-            let stalled = best.is_some_and(|b| worst > 0.99 * b.2);
-            let hopeless = round >= LAWSON_AFTER && worst > 3.0 * goal;
+            let stalled = best.is_some_and(|b| worst > 0.97 * b.2);
+            let hopeless = (round >= 1 && worst > 10.0 * goal)
+                || (round >= LAWSON_AFTER && worst > 2.0 * goal);
             best = Some((alpha, beta, worst, step.0, step.1));
             damping = 1.0;
             if stalled || hopeless {
