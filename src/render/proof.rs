@@ -5,6 +5,7 @@
 //! text; the image is as wide as the longest line (plus margins) up to a maximum width,
 //! and lines longer than that are cut at the right edge (no wrapping).
 
+use kurbo::Shape;
 use tiny_skia::{Color, Pixmap};
 
 use super::draw::{fill_glyph, Placement};
@@ -106,7 +107,17 @@ pub fn render_proof(
     let lines: Vec<&str> = text.lines().collect();
     let info = &font.info;
     let upm = f64::from(info.units_per_em);
-    let em = info.ascender - info.descender;
+    // Lines are spaced by the em box, widened to the font's ink (accented capitals reach
+    // above the ascender), so no glyph is cut off or touches the next line.
+    let (mut top, mut bottom) = (info.ascender, info.descender);
+    for g in &outlines.glyphs {
+        if !g.path.elements().is_empty() {
+            let bbox = g.path.bounding_box();
+            top = top.max(bbox.y1);
+            bottom = bottom.min(bbox.y0);
+        }
+    }
+    let em = (info.ascender - info.descender).max(top - bottom);
     let layout = Layout::new(font);
     let laid: Vec<_> = lines.iter().map(|l| layout.line(l)).collect();
     let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
@@ -120,7 +131,7 @@ pub fn render_proof(
         let leading = (em * scale * 1.2).ceil();
         let mut baselines = Vec::new();
         for _ in &lines {
-            baselines.push((y + info.ascender * scale).round());
+            baselines.push((y + top * scale).round());
             y += leading;
         }
         blocks.push((scale, baselines));
