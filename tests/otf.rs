@@ -171,8 +171,9 @@ fn check_font(bytes: &[u8], font: &Font, outlines: &FontOutlines, cff: bool) -> 
     let global = face.global_bounding_box();
     // The o's bottom passes through y = -12. CFF stores the tight box of the rounded
     // cubics; glyf the box of all points, off-curve ones included (may reach lower).
+    // The fitted cubics may pass up to the tolerance (0.5) below it, then round.
     if cff {
-        assert_eq!(global.y_min, -12);
+        assert!((-13..=-12).contains(&global.y_min), "{}", global.y_min);
     } else {
         assert!((-14..=-12).contains(&global.y_min), "{}", global.y_min);
     }
