@@ -236,7 +236,13 @@ fn check_binary_prints_the_same_and_exits_1_on_errors() {
             );
         }
         let warnings = expected.len() - errors;
-        let summary = format!("{errors} errors, {warnings} warnings");
+        let noun =
+            |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+        let summary = format!(
+            "{}, {}",
+            noun(errors, "error", "errors"),
+            noun(warnings, "warning", "warnings")
+        );
         assert!(
             stdout.ends_with(&format!("{summary}\n")),
             "case {case}: {stdout}"
@@ -259,7 +265,7 @@ fn check_caret_points_at_the_column() {
         [
             "  | points = [[0, 0, 0], [100, 0, 2], [100, 100, 0]]",
             "  |                               ^",
-            "1 errors, 0 warnings",
+            "1 error, 0 warnings",
         ]
     );
 }

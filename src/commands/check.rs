@@ -46,7 +46,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
             for d in &diags {
                 print!("{}", text(d));
             }
-            println!("{errors} errors, {warnings} warnings");
+            println!("{}", summary(errors, warnings));
         }
         Format::Json => println!("{}", self::json(&diags, errors, warnings)),
     }
@@ -100,4 +100,20 @@ pub fn json(diags: &[Diagnostic], errors: usize, warnings: usize) -> String {
         .collect();
     let doc = json!({ "diagnostics": items, "errors": errors, "warnings": warnings });
     serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
+/// `1 error, 2 warnings`: the counts with singular or plural nouns.
+pub fn summary(errors: usize, warnings: usize) -> String {
+    let plural = |n: usize, word: &str| {
+        if n == 1 {
+            format!("{n} {word}")
+        } else {
+            format!("{n} {word}s")
+        }
+    };
+    format!(
+        "{}, {}",
+        plural(errors, "error"),
+        plural(warnings, "warning")
+    )
 }
