@@ -124,3 +124,49 @@ impl Font {
             .map_or(0.0, |k| k.value)
     }
 }
+
+/// The OpenType weight class (100..900) a style name stands for: `"Bold Italic"` -> 700,
+/// `"Semi-Bold"` -> 600; 400 when it names no weight. Used by the SVG font (CSS weight) and
+/// the OS/2 table, so both read the style the same way.
+pub fn weight_class(style: &str) -> u16 {
+    const WEIGHTS: &[(&str, u16)] = &[
+        // Compound names first: "extralight" also contains "light".
+        ("extralight", 200),
+        ("ultralight", 200),
+        ("semibold", 600),
+        ("demibold", 600),
+        ("extrabold", 800),
+        ("ultrabold", 800),
+        ("thin", 100),
+        ("light", 300),
+        ("medium", 500),
+        ("bold", 700),
+        ("black", 900),
+        ("heavy", 900),
+    ];
+    let compact: String = style
+        .chars()
+        .filter(|c| c.is_alphanumeric())
+        .flat_map(char::to_lowercase)
+        .collect();
+    WEIGHTS
+        .iter()
+        .find(|(name, _)| compact.contains(name))
+        .map_or(400, |&(_, weight)| weight)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::weight_class;
+
+    #[test]
+    fn style_names_to_weight_classes() {
+        assert_eq!(weight_class("Regular"), 400);
+        assert_eq!(weight_class("Bold Italic"), 700);
+        assert_eq!(weight_class("Semi-Bold"), 600);
+        assert_eq!(weight_class("ExtraLight"), 200);
+        assert_eq!(weight_class("Light Oblique"), 300);
+        assert_eq!(weight_class("Black"), 900);
+        assert_eq!(weight_class("Condensed"), 400);
+    }
+}

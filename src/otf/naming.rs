@@ -31,26 +31,8 @@ impl Naming {
         let style = font.info.style.trim().to_owned();
         let (revision, version_text) = parse_version(font.info.version.as_deref());
         let words: Vec<String> = style.split_whitespace().map(str::to_lowercase).collect();
-        let compact: String = words.concat();
         let italic = words.iter().any(|w| w == "italic" || w == "oblique");
-        const WEIGHTS: &[(&str, u16)] = &[
-            ("extralight", 200),
-            ("ultralight", 200),
-            ("semibold", 600),
-            ("demibold", 600),
-            ("extrabold", 800),
-            ("ultrabold", 800),
-            ("thin", 100),
-            ("light", 300),
-            ("medium", 500),
-            ("bold", 700),
-            ("black", 900),
-            ("heavy", 900),
-        ];
-        let weight = WEIGHTS
-            .iter()
-            .find(|(w, _)| compact.contains(w))
-            .map_or(400, |&(_, v)| v);
+        let weight = crate::model::weight_class(&style);
         let ribbi = matches!(
             style.as_str(),
             "Regular" | "Italic" | "Bold" | "Bold Italic"

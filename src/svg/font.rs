@@ -38,24 +38,7 @@ pub fn ascent_descent(info: &FontInfo) -> (i64, i64) {
 /// CSS `font-weight` and `font-style` guessed from the style name (`"Bold Italic"`).
 pub fn weight_and_style(style: &str) -> (u16, &'static str) {
     let s = style.to_lowercase().replace([' ', '-', '_'], "");
-    const WEIGHTS: &[(&str, u16)] = &[
-        ("extralight", 200),
-        ("ultralight", 200),
-        ("semibold", 600),
-        ("demibold", 600),
-        ("extrabold", 800),
-        ("ultrabold", 800),
-        ("thin", 100),
-        ("light", 300),
-        ("medium", 500),
-        ("bold", 700),
-        ("black", 900),
-        ("heavy", 900),
-    ];
-    let weight = WEIGHTS
-        .iter()
-        .find(|(w, _)| s.contains(w))
-        .map_or(400, |&(_, w)| w);
+    let weight = crate::model::weight_class(style);
     let slant = if s.contains("italic") {
         "italic"
     } else if s.contains("oblique") {
