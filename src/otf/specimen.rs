@@ -22,22 +22,10 @@ const CSS_FAMILY: &str = "xglyph-specimen";
 /// Waterfall sizes in CSS pixels.
 const WATERFALL: &[u32] = &[12, 16, 20, 24, 32, 48, 64, 96];
 
+/// HTML text and attribute values use the XML escaping of the SVG outputs (HTML5 reads
+/// every entity it writes).
 fn escape_html(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c if c.is_control() => {
-                let _ = write!(out, "&#x{:X};", u32::from(c));
-            }
-            c => out.push(c),
-        }
-    }
-    out
+    crate::svg::xml::escape(text)
 }
 
 /// Percent-encodes everything but unreserved URL characters (RFC 3986).
@@ -235,7 +223,7 @@ mod tests {
     fn escapes() {
         assert_eq!(
             escape_html("<a href=\"x\">&'\u{7}"),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&#x7;"
+            "&lt;a href=&quot;x&quot;&gt;&amp;&apos;\u{FFFD}"
         );
         assert_eq!(escape_url("Mini Test\").ttf"), "Mini%20Test%22%29.ttf");
         assert_eq!(escape_url("é.otf"), "%C3%A9.otf");
