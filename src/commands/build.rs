@@ -25,6 +25,9 @@ Writes into OUT:
   svg/<glyph>.svg        one standalone SVG per glyph
   sheet.png              glyph sheet with metric guides
   proof.png              text proof at several sizes
+  <Family>-<Style>.ttf   TrueType font (quadratic outlines within the tolerance)
+  <Family>-<Style>.otf   OpenType CFF font (the cubics)
+  specimen.html          specimen page loading the OTF with @font-face
 
 Examples:
   xglyph build                            # glyphs/ -> out/
