@@ -46,20 +46,21 @@ const LINES: &[&str] = &[
     "\"Quoted\" text, it's #1 and 3/4 < 7 > 2.",
 ];
 
+/// One differing character: `(expected, read)`, `None` for a missing side.
+type Edit = (Option<char>, Option<char>);
+
 /// Levenshtein distance in characters (unit cost for insert, delete, substitute) and the
-/// edits of one cheapest alignment, as `(expected, read)` with `None` for a missing side.
+/// edits of one cheapest alignment.
 ///
 /// Hand-written: a dozen lines, and no crate in Cargo.toml returns the alignment.
-fn edit_distance(expected: &[char], read: &[char]) -> (usize, Vec<(Option<char>, Option<char>)>) {
+fn edit_distance(expected: &[char], read: &[char]) -> (usize, Vec<Edit>) {
     let (n, m) = (expected.len(), read.len());
     // cost[i][j]: distance between expected[..i] and read[..j].
     let mut cost = vec![vec![0usize; m + 1]; n + 1];
     for (i, row) in cost.iter_mut().enumerate() {
         row[0] = i;
     }
-    for j in 0..=m {
-        cost[0][j] = j;
-    }
+    cost[0] = (0..=m).collect();
     for i in 1..=n {
         for j in 1..=m {
             let sub = cost[i - 1][j - 1] + usize::from(expected[i - 1] != read[j - 1]);
@@ -145,7 +146,7 @@ struct Reading {
     expected: String,
     read: String,
     distance: usize,
-    edits: Vec<(Option<char>, Option<char>)>,
+    edits: Vec<Edit>,
 }
 
 fn shown(c: Option<char>) -> String {
