@@ -5,7 +5,8 @@
 //! on white, one size, its usual margins), written to a PNG under the target tmp dir and read
 //! with `tesseract <png> - --psm 7` (one text line). Accuracy is
 //! `1 - edit distance / expected length`, summed over all lines; every line, its reading and
-//! the differing characters are printed (`cargo test --test ocr -- --nocapture`).
+//! the confusions (which character read as what, how often) are printed
+//! (`cargo test --test ocr -- --nocapture`).
 //!
 //! Tesseract is not a Rust dependency: when it is not on PATH the test prints
 //! `skipped: tesseract not installed` and passes, unless `XGLYPH_REQUIRE_TOOLS=1` (CI),
@@ -18,10 +19,13 @@
 //! legibility of ordinary text, not of isolated look-alikes (`Il1|`, `O0`), which even
 //! well-drawn fonts leave ambiguous without context.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use xglyph::layout::Layout;
+use xglyph::model::Font;
+use xglyph::outline::{outline_font, FontOutlines};
 use xglyph::render::{encode_png, render_proof, ProofOptions};
 use xglyph::source::load_font;
 
@@ -31,8 +35,8 @@ const MIN_ACCURACY: f64 = 0.98;
 /// Pixels per em of the acceptance check.
 const SIZE_PX: f64 = 48.0;
 
-/// The text read back: pangrams in lowercase, mixed case and capitals, figures and the
-/// common punctuation.
+/// The text read back: pangrams in lowercase, mixed case and capitals, figures, the
+/// common punctuation and words full of look-alike letters.
 const LINES: &[&str] = &[
     "The quick brown fox jumps over the lazy dog.",
     "Pack my box with five dozen liquor jugs!",
@@ -44,6 +48,10 @@ const LINES: &[&str] = &[
     "0123456789 (a+b)=[c/d]; 50% & $12.99?",
     "Call 555-0199 at 10:45, or write to me@xglyph.org",
     "\"Quoted\" text, it's #1 and 3/4 < 7 > 2.",
+    // The look-alikes of the brief (I l 1, rn m, cl d, vv w) inside real words.
+    "Illegal minimum illumination: 1 mill, 11 lumens.",
+    "A rare modern corner: burn, turn, curl, clear, clock.",
+    "We were waiting in the warm, windy evening.",
 ];
 
 /// One differing character: `(expected, read)`, `None` for a missing side.
@@ -109,7 +117,7 @@ fn tesseract_missing() -> Option<String> {
     match Command::new("tesseract").arg("--version").output() {
         Ok(out) if out.status.success() => None,
         Ok(out) => Some(format!("`tesseract --version` exited with {}", out.status)),
-        Err(e) => Some(format!("tesseract not installed ({e})")),
+        Err(e) => Some(format!("`tesseract` cannot be run: {e}")),
     }
 }
 
@@ -132,6 +140,45 @@ fn tesseract(png: &Path, psm: u32) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
+/// What to read and how: the acceptance check, or the development switches.
+struct Settings {
+    font_dir: PathBuf,
+    size: f64,
+    psm: u32,
+    /// Each block becomes one image (one line each for `--psm 7`).
+    blocks: Vec<String>,
+}
+
+fn settings() -> Settings {
+    let font_dir = std::env::var_os("XGLYPH_OCR_FONT")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs"));
+    let size = env_or("XGLYPH_OCR_SIZE", SIZE_PX);
+    let psm = env_or("XGLYPH_OCR_PSM", 7);
+    let lines: Vec<String> = match std::env::var_os("XGLYPH_OCR_TEXT") {
+        Some(f) => std::fs::read_to_string(&f)
+            .unwrap_or_else(|e| panic!("XGLYPH_OCR_TEXT: cannot read {f:?}: {e}"))
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(str::to_owned)
+            .collect(),
+        None => LINES.iter().map(|&l| l.to_owned()).collect(),
+    };
+    // --psm 6 reads one block of all lines; the others one line per image.
+    let blocks = if psm == 6 {
+        vec![lines.join("\n")]
+    } else {
+        lines
+    };
+    Settings {
+        font_dir,
+        size,
+        psm,
+        blocks,
+    }
+}
+
+/// The variable `name` parsed, or `default` when it is not set.
 fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
     match std::env::var(name) {
         Ok(v) => v
@@ -141,12 +188,42 @@ fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
     }
 }
 
-/// How one text block read back.
+/// How one block read back.
 struct Reading {
     expected: String,
     read: String,
     distance: usize,
     edits: Vec<Edit>,
+}
+
+/// Renders `text` with the proof at `size` px per em into `png` and reads it back.
+fn read_back(
+    font: &Font,
+    outlines: &FontOutlines,
+    text: &str,
+    size: f64,
+    psm: u32,
+    png: &Path,
+) -> Reading {
+    let opts = ProofOptions {
+        text: Some(text.to_owned()),
+        sizes: vec![size],
+        width_px: 10_000,
+    };
+    let img = render_proof(font, outlines, &opts).expect("the proof renders");
+    std::fs::write(png, encode_png(&img).expect("PNG encodes")).expect("PNG writes");
+    // A block's line breaks count as spaces on both sides.
+    let expected = normalize(text);
+    let read = normalize(&tesseract(png, psm));
+    let e: Vec<char> = expected.chars().collect();
+    let r: Vec<char> = read.chars().collect();
+    let (distance, edits) = edit_distance(&e, &r);
+    Reading {
+        expected,
+        read,
+        distance,
+        edits,
+    }
 }
 
 fn shown(c: Option<char>) -> String {
@@ -156,106 +233,89 @@ fn shown(c: Option<char>) -> String {
     }
 }
 
+/// Prints every reading and the confusions over all of them; the total accuracy.
+fn report(readings: &[Reading]) -> f64 {
+    let (mut errors, mut total) = (0, 0);
+    let mut confusions: BTreeMap<Edit, usize> = BTreeMap::new();
+    for r in readings {
+        let len = r.expected.chars().count();
+        errors += r.distance;
+        total += len;
+        println!(
+            "  {:6.2} %  expected {:?}\n            read     {:?}",
+            100.0 * (1.0 - r.distance as f64 / len.max(1) as f64),
+            r.expected,
+            r.read
+        );
+        for &edit in &r.edits {
+            *confusions.entry(edit).or_default() += 1;
+        }
+    }
+    let accuracy = 1.0 - errors as f64 / total.max(1) as f64;
+    println!(
+        "total: {:.2} % ({errors} edits in {total} characters)",
+        100.0 * accuracy
+    );
+    for ((want, got), n) in confusions {
+        println!("  {} read as {} x{n}", shown(want), shown(got));
+    }
+    accuracy
+}
+
 #[test]
 fn pangrams_read_back_through_tesseract() {
     if let Some(why) = tesseract_missing() {
         if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
             panic!("XGLYPH_REQUIRE_TOOLS=1 but {why}; install tesseract-ocr");
         }
-        println!("skipped: tesseract not installed ({why})");
+        println!(
+            "skipped: tesseract not installed ({why}); XGLYPH_REQUIRE_TOOLS=1 makes this fail"
+        );
         return;
     }
-    let font_dir = std::env::var_os("XGLYPH_OCR_FONT")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs"));
-    let size: f64 = env_or("XGLYPH_OCR_SIZE", SIZE_PX);
-    let psm: u32 = env_or("XGLYPH_OCR_PSM", 7);
-    let own_text = std::env::var_os("XGLYPH_OCR_TEXT").map(|f| {
-        std::fs::read_to_string(&f)
-            .unwrap_or_else(|e| panic!("XGLYPH_OCR_TEXT: cannot read {f:?}: {e}"))
-    });
-    let lines: Vec<&str> = match &own_text {
-        Some(t) => t.lines().filter(|l| !l.trim().is_empty()).collect(),
-        None => LINES.to_vec(),
+    let set = settings();
+    let font = match load_font(&set.font_dir) {
+        Ok((font, _warnings)) => font,
+        Err(diags) => {
+            let text: String = diags.iter().map(xglyph::commands::check::text).collect();
+            panic!("{} does not load:\n{text}", set.font_dir.display());
+        }
     };
-
-    let (font, _warnings) = load_font(&font_dir)
-        .unwrap_or_else(|d| panic!("{} does not load: {d:?}", font_dir.display()));
     // The text must be set in the font itself, not in .notdef boxes.
     let layout = Layout::new(&font);
-    let mut missing: Vec<char> = lines
+    let missing: BTreeSet<char> = set
+        .blocks
         .iter()
-        .flat_map(|l| l.chars())
-        .filter(|&c| !layout.covers(c))
+        .flat_map(|b| b.chars())
+        .filter(|&c| c != '\n' && !layout.covers(c))
         .collect();
-    missing.sort_unstable();
-    missing.dedup();
     assert!(
         missing.is_empty(),
         "{} has no glyph for {:?}",
-        font_dir.display(),
+        set.font_dir.display(),
         missing.iter().collect::<String>()
     );
-    let outlines =
-        xglyph::outline::outline_font(&font, font.info.tolerance).expect("the font outlines");
+    let outlines = outline_font(&font, font.info.tolerance).expect("the font outlines");
 
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("ocr");
     std::fs::create_dir_all(&dir).expect("target tmp dir");
-    // psm 7 reads one line per image; psm 6 one block of all lines.
-    let blocks: Vec<String> = if psm == 6 {
-        vec![lines.join("\n")]
-    } else {
-        lines.iter().map(|l| l.to_string()).collect()
-    };
-    let mut readings = Vec::new();
-    for (k, text) in blocks.iter().enumerate() {
-        let opts = ProofOptions {
-            text: Some(text.clone()),
-            sizes: vec![size],
-            width_px: 10_000,
-        };
-        let img = render_proof(&font, &outlines, &opts).expect("the proof renders");
-        let png = dir.join(format!("line{k:02}-{size}px.png"));
-        std::fs::write(&png, encode_png(&img).expect("PNG encodes")).expect("PNG writes");
-        let raw = tesseract(&png, psm);
-        // Lines compare one by one, so a block's line breaks count as spaces.
-        let read = normalize(&raw);
-        let expected = normalize(text);
-        let (e, r): (Vec<char>, Vec<char>) = (expected.chars().collect(), read.chars().collect());
-        let (distance, edits) = edit_distance(&e, &r);
-        readings.push(Reading {
-            expected,
-            read,
-            distance,
-            edits,
-        });
-    }
-
-    let (mut errors, mut total) = (0, 0);
+    let readings: Vec<Reading> = set
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(k, text)| {
+            let png = dir.join(format!("{}px-psm{}-{k:02}.png", set.size, set.psm));
+            read_back(&font, &outlines, text, set.size, set.psm, &png)
+        })
+        .collect();
     println!(
-        "OCR of {} at {size} px per em, --psm {psm}:",
-        font_dir.display()
-    );
-    for r in &readings {
-        let len = r.expected.chars().count();
-        errors += r.distance;
-        total += len;
-        println!(
-            "  {:6.2} %  expected {:?}\n            read     {:?}",
-            100.0 * (1.0 - r.distance as f64 / len as f64),
-            r.expected,
-            r.read
-        );
-        for &(want, got) in &r.edits {
-            println!("            {} read as {}", shown(want), shown(got));
-        }
-    }
-    let accuracy = 1.0 - errors as f64 / total as f64;
-    println!(
-        "total: {:.2} % ({errors} edits in {total} characters), images in {}",
-        100.0 * accuracy,
+        "OCR of {} at {} px per em, --psm {} (images in {}):",
+        set.font_dir.display(),
+        set.size,
+        set.psm,
         dir.display()
     );
+    let accuracy = report(&readings);
     assert!(
         accuracy >= MIN_ACCURACY,
         "character accuracy {:.2} % is below {:.0} %",
