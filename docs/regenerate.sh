@@ -9,4 +9,4 @@
 set -eu
 cd "$(dirname "$0")/.."
 cargo run --release --quiet -- render glyphs --out docs \
-    --cell 120 --columns 12 --sizes 12,16,24,36,48
+    --cell 120 --columns 12 --sizes 12,16,24,36,48 --width 1400

@@ -42,6 +42,8 @@ const CANDIDATES: &[&str] = &[
     "SPHINX OF BLACK QUARTZ, JUDGE MY VOW",
     "Hamburgefonstiv nonooonnoon HOHOOHHOOH",
     "0123456789 (1,234.56)",
+    "AVATAR Tower LT Yo Wave Type P.A.W. \"F,\"",
+    "Où est la forêt? Ça va, très bien! Äpfel, Öl, Übermut, Ñandú",
 ];
 
 /// A text for the font: the candidate lines it covers; if it covers none, every character
