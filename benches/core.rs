@@ -30,6 +30,23 @@ fn bench(c: &mut Criterion) {
                 .sum::<usize>()
         })
     });
+    // One contour at a time: a glyph-like bowl with a stem, and a random 10-point contour.
+    c.bench_function("fit one contour: D (5 points)", |b| {
+        b.iter(|| {
+            fit_contour(black_box(&splines[2]), TOLERANCE)
+                .path
+                .elements()
+                .len()
+        })
+    });
+    c.bench_function("fit one contour: S spine (12 points)", |b| {
+        b.iter(|| {
+            fit_contour(black_box(&splines[3]), TOLERANCE)
+                .path
+                .elements()
+                .len()
+        })
+    });
     let mut group = c.benchmark_group("fit corpus");
     group.sample_size(10);
     group.bench_function("xglyph fit_contour", |b| {
