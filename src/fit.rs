@@ -283,29 +283,48 @@ fn shortest_fit(
 }
 
 /// Tangent direction at `t` inside the stretch `[t0, t1]`, one-sided at the stretch ends
-/// (where a sharp point may sit and the derivative vanishes).
+/// (where a sharp point may sit and the derivative vanishes). Always a finite unit vector.
 fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
     let n = spline.segment_count();
     let at_knot = (t - t.round()).abs() < 1e-12;
-    if at_knot && (t - t0).abs() < 1e-12 {
-        return spline.segment((t.round() as usize) % n).start_direction();
-    }
-    if at_knot && (t - t1).abs() < 1e-12 {
-        let j = (t.round() as usize + n - 1) % n;
-        return spline.segment(j).end_direction();
-    }
-    let d = spline.eval_deriv(t).1;
-    let len = d.hypot();
-    if len > 1e-9 * spline.extent() {
-        return d / len;
-    }
-    // At (or next to) a cusp the derivative vanishes: take the one-sided secant direction
-    // into the stretch; the curve leaves a cusp quadratically, so the error is O(h).
-    let h = 1e-7;
-    if t - t0 < t1 - t {
-        (spline.eval(t + h) - spline.eval(t)).normalize()
+    let exact = if at_knot && (t - t0).abs() < 1e-12 {
+        spline.segment((t.round() as usize) % n).start_direction()
+    } else if at_knot && (t - t1).abs() < 1e-12 {
+        spline
+            .segment((t.round() as usize + n - 1) % n)
+            .end_direction()
     } else {
-        (spline.eval(t) - spline.eval(t - h)).normalize()
+        let d = spline.eval_deriv(t).1;
+        let len = d.hypot();
+        if len > 1e-9 * spline.extent() {
+            d / len
+        } else {
+            Vec2::ZERO
+        }
+    };
+    if exact.is_finite() && exact != Vec2::ZERO {
+        return exact;
+    }
+    // At (or next to) a cusp or a sharp point the derivative vanishes: take the one-sided
+    // secant direction into the stretch (the curve leaves a cusp quadratically, a sharp
+    // point cubically, so a tiny step can move nothing in floating point: widen it).
+    let forward = t - t0 < t1 - t;
+    for h in [1e-7, 1e-5, 1e-3, 1e-1] {
+        let v = if forward {
+            spline.eval(t + h) - spline.eval(t)
+        } else {
+            spline.eval(t) - spline.eval(t - h)
+        };
+        let len = v.hypot();
+        if len > 0.0 && len.is_finite() {
+            return v / len;
+        }
+    }
+    let chord = spline.eval(t1) - spline.eval(t0);
+    if chord.hypot() > 0.0 {
+        chord.normalize()
+    } else {
+        Vec2::new(1.0, 0.0)
     }
 }
 
@@ -381,7 +400,7 @@ fn fit_span(spline: &XSpline, a: f64, b: f64, t0: f64, t1: f64, goal: f64) -> (C
     let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal);
     // The sampled error is a lower bound: a candidate already over the goal is out.
     let err = if sampled <= goal {
-        measure(&samples, &cubic)
+        measure(spline, &samples, &cubic)
     } else {
         sampled
     };
@@ -536,10 +555,12 @@ impl Poly {
 ///
 /// Curve to cubic: every sample projected onto the cubic. Cubic to curve: cubic points at
 /// twice the sample density projected onto the Hermite piece between the samples that
-/// bracket them. In both directions every sampled peak within [`PEAK`] of the largest is
-/// then refined by a golden-section search between its neighbours, so a maximum that
-/// falls between samples is not missed.
-fn measure(samples: &Samples, cubic: &CubicBez) -> f64 {
+/// bracket them (a screen). In both directions every sampled peak within [`PEAK`] of the
+/// largest is then refined by a golden-section search between its neighbours, and the
+/// distance at the maximum found is taken again against the true curve (exact curve
+/// points; Newton on the curve parameter), so neither a maximum between samples nor the
+/// Hermite pieces' own error can hide an excess.
+fn measure(spline: &XSpline, samples: &Samples, cubic: &CubicBez) -> f64 {
     let poly = Poly::new(cubic);
     let n = samples.len();
     // Curve to cubic.
@@ -560,18 +581,26 @@ fn measure(samples: &Samples, cubic: &CubicBez) -> f64 {
         near[i] = d;
         guess = ui;
     }
-    let curve_at = |piece: usize, s: f64| {
-        let start = u[piece] + (u[piece + 1] - u[piece]) * s;
+    let param =
+        |piece: usize, s: f64| samples.t[piece] + (samples.t[piece + 1] - samples.t[piece]) * s;
+    let start = |piece: usize, s: f64| u[piece] + (u[piece + 1] - u[piece]) * s;
+    let hermite_at = |piece: usize, s: f64| {
         let point = Poly::new(&samples.piece(piece)).eval(s).to_point();
-        poly.project(point, start).1
+        poly.project(point, start(piece, s)).1
     };
-    let mut err = refine_peaks(&near, curve_at);
+    let curve_at = |piece: usize, s: f64| {
+        poly.project(spline.eval(param(piece, s)), start(piece, s))
+            .1
+    };
+    let mut err = refine_peaks(&near, hermite_at, curve_at);
     // Cubic to curve. `rising` makes the samples' cubic parameters monotone for bracketing.
     let mut rising = u.clone();
     for i in 1..n {
         rising[i] = rising[i].max(rising[i - 1]);
     }
-    let to_curve = |v: f64| {
+    // Distance from the cubic at `v` to the Hermite pieces (a cheap screen), and the curve
+    // parameter of the nearest point found.
+    let to_pieces = |v: f64| {
         let q = poly.eval(v).to_point();
         let piece = rising
             .partition_point(|&x| x <= v)
@@ -583,29 +612,62 @@ fn measure(samples: &Samples, cubic: &CubicBez) -> f64 {
         } else {
             0.5
         };
-        let (s, mut best) = Poly::new(&samples.piece(piece)).project(q, start);
+        let (s, d) = Poly::new(&samples.piece(piece)).project(q, start);
+        let mut best = (d, param(piece, s));
         // Clamped at a piece's end: the nearest point may lie on the neighbour.
         if s <= 0.0 && piece > 0 {
-            best = best.min(Poly::new(&samples.piece(piece - 1)).project(q, 1.0).1);
+            let (s, d) = Poly::new(&samples.piece(piece - 1)).project(q, 1.0);
+            if d < best.0 {
+                best = (d, param(piece - 1, s));
+            }
         }
         if s >= 1.0 && piece + 2 < n {
-            best = best.min(Poly::new(&samples.piece(piece + 1)).project(q, 0.0).1);
+            let (s, d) = Poly::new(&samples.piece(piece + 1)).project(q, 0.0);
+            if d < best.0 {
+                best = (d, param(piece + 1, s));
+            }
+        }
+        (q, best)
+    };
+    // The same on the true curve: Newton on the curve parameter from the pieces' answer.
+    // Every distance taken is to a real curve point, so the result never underestimates.
+    let (lo, hi) = (samples.t[0], samples.t[n - 1]);
+    let to_curve = |v: f64| {
+        let (q, (_, mut t)) = to_pieces(v);
+        let mut best = spline.eval(t).distance(q);
+        for _ in 0..4 {
+            let (c, d) = spline.eval_deriv(t);
+            let dd = d.dot(d);
+            if dd <= 0.0 {
+                break;
+            }
+            t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
+            best = best.min(spline.eval(t).distance(q));
         }
         best
     };
     let steps = 2 * (n - 1);
     let back: Vec<f64> = (0..=steps)
-        .map(|j| to_curve(j as f64 / steps as f64))
+        .map(|j| to_pieces(j as f64 / steps as f64).1 .0)
         .collect();
     let step = 1.0 / steps as f64;
-    err = err.max(refine_peaks(&back, |j, s| to_curve((j as f64 + s) * step)));
+    err = err.max(refine_peaks(
+        &back,
+        |j, s| to_pieces((j as f64 + s) * step).1 .0,
+        |j, s| to_curve((j as f64 + s) * step),
+    ));
     err
 }
 
 /// The largest of `values` (sampled distances), with every local peak within [`PEAK`] of
-/// it refined by a golden-section search of `between(i, s)`, the distance at fraction `s`
-/// of the way from sample `i` to sample `i + 1`.
-fn refine_peaks(values: &[f64], between: impl Fn(usize, f64) -> f64) -> f64 {
+/// it refined by a golden-section search of `between(i, s)`, the (cheap, approximate)
+/// distance at fraction `s` of the way from sample `i` to sample `i + 1`, and checked there
+/// with `exact(i, s)` against the true curve.
+fn refine_peaks(
+    values: &[f64],
+    between: impl Fn(usize, f64) -> f64,
+    exact: impl Fn(usize, f64) -> f64,
+) -> f64 {
     let sampled = values.iter().copied().fold(0.0, f64::max);
     let mut err = sampled;
     let n = values.len();
@@ -615,19 +677,19 @@ fn refine_peaks(values: &[f64], between: impl Fn(usize, f64) -> f64) -> f64 {
         if !peak || v < PEAK * sampled {
             continue;
         }
-        if i > 0 {
-            err = err.max(golden_max(|s| between(i - 1, s)));
-        }
-        if i + 1 < n {
-            err = err.max(golden_max(|s| between(i, s)));
+        for piece in [i.wrapping_sub(1), i] {
+            if piece < n.saturating_sub(1) {
+                let (value, at) = golden_max(|s| between(piece, s));
+                err = err.max(value).max(exact(piece, at));
+            }
         }
     }
     err
 }
 
-/// The maximum of `f` on `[0, 1]` by golden-section search (f unimodal there, in practice:
+/// The maximum of `f` on `[0, 1]` and where it is, by golden-section search (f unimodal there, in practice:
 /// the interval is one sample step around a sampled maximum).
-fn golden_max(f: impl Fn(f64) -> f64) -> f64 {
+fn golden_max(f: impl Fn(f64) -> f64) -> (f64, f64) {
     const R: f64 = 0.618_033_988_749_894_9;
     let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
     let mut x1 = hi - R * (hi - lo);
@@ -649,5 +711,9 @@ fn golden_max(f: impl Fn(f64) -> f64) -> f64 {
         }
     }
     // The ends are samples, already counted by the caller.
-    f1.max(f2)
+    if f1 > f2 {
+        (f1, x1)
+    } else {
+        (f2, x2)
+    }
 }
