@@ -26,16 +26,18 @@ const SAMPLES_PER_SEGMENT: f64 = 20.0;
 /// Fewest curve samples per measured span.
 const MIN_SAMPLES: usize = 12;
 /// Fraction of the tolerance a candidate must meet by measurement.
-const SAFETY: f64 = 0.99;
+const SAFETY: f64 = 0.96;
 /// The span search stops when the longest fitting span is known within this ratio.
 const SPAN_PRECISION: f64 = 1.05;
 /// A fitting span whose error is at least this fraction of the goal is taken as the
 /// longest (with err ~ h^5 it is within about 1 % of it).
-const NEAR_GOAL: f64 = 0.6;
+const NEAR_GOAL: f64 = 0.5;
 /// Most fits tried per output cubic before falling back to halving.
 const MAX_TRIES: usize = 12;
 /// Sampled error peaks at least this fraction of the largest are refined between samples.
 const PEAK: f64 = 0.6;
+/// Refined peaks at least this fraction of the largest are also checked on the true curve.
+const EXACT_PEAK: f64 = 0.9;
 /// Gauss-Newton rounds when polishing a cubic's handles.
 const POLISH_ROUNDS: usize = 6;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
@@ -671,6 +673,7 @@ fn refine_peaks(
     let sampled = values.iter().copied().fold(0.0, f64::max);
     let mut err = sampled;
     let n = values.len();
+    let mut peaks = Vec::new();
     for i in 0..n {
         let v = values[i];
         let peak = (i == 0 || values[i - 1] <= v) && (i + 1 == n || values[i + 1] <= v);
@@ -680,8 +683,16 @@ fn refine_peaks(
         for piece in [i.wrapping_sub(1), i] {
             if piece < n.saturating_sub(1) {
                 let (value, at) = golden_max(|s| between(piece, s));
-                err = err.max(value).max(exact(piece, at));
+                err = err.max(value);
+                peaks.push((value, piece, at));
             }
+        }
+    }
+    // The exact check is dearer: only where the approximate maximum is nearly reached.
+    let top = err;
+    for (value, piece, at) in peaks {
+        if value >= EXACT_PEAK * top {
+            err = err.max(exact(piece, at));
         }
     }
     err
