@@ -11,11 +11,14 @@
 //!
 //! The error of a candidate is measured both ways: curve samples projected onto the cubic,
 //! cubic samples projected onto the curve's Hermite pieces, every near-maximal peak refined
-//! between samples and the top ones re-checked on the true curve. Candidates are accepted
-//! at 96 % of the tolerance; the tests check the bound by dense sampling.
+//! between samples and the top ones re-checked on the true curve. The curve samples are
+//! uniform in the parameter and refined where the curve turns fast, so a narrow spike
+//! cannot hide between two of them. Candidates are accepted at 96 % of the tolerance; the
+//! tests check the bound by dense sampling.
 //!
-//! Limits: the bound is established by sampling, not proven; random tests with fresh seeds
-//! have found rare wild contours a few percent over it (see the issue notes).
+//! Limits: the bound is established by sampling, not proven. Scratch hunts over 3,200
+//! fresh random contours (the proptest's distribution) measured at most 0.96 of the
+//! tolerance at this acceptance, and at most 0.990 with acceptance at 99 %.
 
 use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 
@@ -25,6 +28,12 @@ use crate::xspline::XSpline;
 const SAMPLES_PER_SEGMENT: f64 = 20.0;
 /// Fewest curve samples per measured span.
 const MIN_SAMPLES: usize = 12;
+/// Most the curve may turn (radians) between two samples before one is added between them.
+const MAX_TURN: f64 = 0.35;
+/// Shortest handle, as a fraction of the cubic's chord.
+const MIN_HANDLE: f64 = 1e-4;
+/// Most bisections of one sample step when the curve turns fast.
+const MAX_REFINE: usize = 8;
 /// Fraction of the tolerance a candidate must meet by measurement.
 const SAFETY: f64 = 0.96;
 /// The span search stops when the longest fitting span is known within this ratio.
@@ -333,6 +342,11 @@ fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
 /// Samples of the curve on one span, with derivatives: enough to measure a cubic against
 /// (between samples the curve is taken as the cubic Hermite interpolant, whose error is
 /// O(h^4) in the sample step, far below any useful tolerance at this density).
+///
+/// Uniform in the curve parameter, refined where the curve turns fast: a narrow spike or
+/// a tight turn can fit between two uniform samples and hide an error peak there (random
+/// contours with thin spikes were fitted 15 % over the tolerance before this). Between
+/// consecutive samples the curve turns by less than [`MAX_TURN`].
 struct Samples {
     t: Vec<f64>,
     p: Vec<Point>,
@@ -347,17 +361,50 @@ impl Samples {
             p: Vec::with_capacity(n + 1),
             d: Vec::with_capacity(n + 1),
         };
+        let mut previous: Option<(f64, Point, Vec2)> = None;
         for i in 0..=n {
             let t = a + (b - a) * i as f64 / n as f64;
-            let (p, d) = spline.eval_deriv(t);
-            samples.t.push(t);
-            samples.p.push(p);
-            samples.d.push(d);
+            let (mut p, d) = spline.eval_deriv(t);
+            // The ends are exact curve points (no rounding drift in `a + (b - a)`).
+            if i == 0 {
+                p = spline.eval(a);
+            } else if i == n {
+                p = spline.eval(b);
+            }
+            if let Some(start) = previous {
+                samples.refine(spline, start, (t, p, d), MAX_REFINE);
+            }
+            samples.push((t, p, d));
+            previous = Some((t, p, d));
         }
-        // The ends are exact curve points (no rounding drift in `a + (b - a)`).
-        samples.p[0] = spline.eval(a);
-        samples.p[n] = spline.eval(b);
         samples
+    }
+
+    fn push(&mut self, (t, p, d): (f64, Point, Vec2)) {
+        self.t.push(t);
+        self.p.push(p);
+        self.d.push(d);
+    }
+
+    /// Adds the samples strictly between `start` and `end` (already pushed / to be pushed)
+    /// that keep the turn between neighbours below [`MAX_TURN`], bisecting at most
+    /// `depth` times.
+    fn refine(
+        &mut self,
+        spline: &XSpline,
+        start: (f64, Point, Vec2),
+        end: (f64, Point, Vec2),
+        depth: usize,
+    ) {
+        if depth == 0 || !turns_fast(start.1, start.2, end.1, end.2) {
+            return;
+        }
+        let t = 0.5 * (start.0 + end.0);
+        let (p, d) = spline.eval_deriv(t);
+        let mid = (t, p, d);
+        self.refine(spline, start, mid, depth - 1);
+        self.push(mid);
+        self.refine(spline, mid, end, depth - 1);
     }
 
     fn len(&self) -> usize {
@@ -374,6 +421,20 @@ impl Samples {
             self.p[i + 1],
         )
     }
+}
+
+/// Whether the curve between two samples (points and derivatives) may turn by more than
+/// [`MAX_TURN`]: the angle between either derivative and the chord, or between the two
+/// derivatives, exceeds it. A vanishing vector says nothing (the derivative at a sharp
+/// point at the span's end; stretches are cut at cusps, so there is none inside).
+fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
+    let chord = p1 - p0;
+    let cos = MAX_TURN.cos();
+    let apart = |u: Vec2, v: Vec2| {
+        let norms = u.hypot() * v.hypot();
+        norms > 0.0 && u.dot(v) < cos * norms
+    };
+    apart(d0, chord) || apart(chord, d1) || apart(d0, d1)
 }
 
 /// Fits one cubic to `[a, b]` of the stretch `[t0, t1]`; the cubic and its measured error
@@ -396,9 +457,12 @@ fn fit_span(spline: &XSpline, a: f64, b: f64, t0: f64, t1: f64, goal: f64) -> (C
     // The Hermite cubic of the span: handles from the curve's own derivatives; its
     // parameter runs with the curve's, so the samples' parameters start uniform.
     let third = (b - a) / 3.0;
-    let alpha = (samples.d[0].dot(d0) * third).max(0.0);
-    let beta = (samples.d[last].dot(d1) * third).max(0.0);
-    let u: Vec<f64> = (0..=last).map(|i| i as f64 / last as f64).collect();
+    // Handles never vanish: a zero handle would take the end's tangent from the other
+    // handle instead of the curve's (a hook at a sharp point).
+    let floor = MIN_HANDLE * p0.distance(p3);
+    let alpha = (samples.d[0].dot(d0) * third).max(floor);
+    let beta = (samples.d[last].dot(d1) * third).max(floor);
+    let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
     let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal);
     // The sampled error is a lower bound: a candidate already over the goal is out.
     let err = if sampled <= goal {
@@ -425,6 +489,7 @@ fn polish(
     goal: f64,
 ) -> (CubicBez, f64) {
     let n = samples.len();
+    let floor = MIN_HANDLE * p0.distance(p3);
     let mut u = u0.to_vec();
     let mut w = vec![1.0 / n as f64; n];
     let cubic_of = |alpha: f64, beta: f64| CubicBez::new(p0, p0 + alpha * d0, p3 - beta * d1, p3);
@@ -486,8 +551,8 @@ fn polish(
             break;
         };
         // Handles keep pointing along the tangents (a reversed handle is a loop).
-        alpha = (ba + damping * da).max(0.0);
-        beta = (bb + damping * db).max(0.0);
+        alpha = (ba + damping * da).max(floor);
+        beta = (bb + damping * db).max(floor);
     }
     best.map_or_else(
         || (cubic_of(alpha, beta), f64::INFINITY),
@@ -574,7 +639,8 @@ fn measure(spline: &XSpline, samples: &Samples, cubic: &CubicBez) -> f64 {
         let (mut ui, mut d) = poly.project(samples.p[i], guess);
         if i > 0 && d > near.iter().copied().fold(0.0, f64::max) {
             // A poor start can stall at a clamp; retry from the chordal position.
-            let alt = poly.project(samples.p[i], i as f64 / (n - 1) as f64);
+            let chordal = (samples.t[i] - samples.t[0]) / (samples.t[n - 1] - samples.t[0]);
+            let alt = poly.project(samples.p[i], chordal);
             if alt.1 < d {
                 (ui, d) = alt;
             }

@@ -183,6 +183,113 @@ fn corner_with_interpolating_neighbour_has_no_hook() {
 }
 
 #[test]
+fn thin_spike_tips_are_not_missed() {
+    // Found by a random proptest seed: thin spikes (twin points pulled far apart in y),
+    // whose tips turn through 180 degrees between two uniform curve samples. The fitter
+    // measured 0.94 of the tolerance; the tip at T = 21 was 1.15 of it away.
+    let xs = spline(&[
+        (
+            0.011111381422633161,
+            7.246155741526516e-5,
+            0.6061189567403473,
+        ),
+        (0.01111143875041748, 0.07246155746450188, 0.702971246077714),
+        (
+            0.04049494618157882,
+            7.819697533923445e-5,
+            -0.8090270456599957,
+        ),
+        (0.04049504210441912, 0.0581969754591902, 0.31693275800498144),
+        (0.07706339883526703, 7.682174252530237e-5, 1.0),
+        (0.07706343434391982, 0.03682174262230228, -1.0),
+        (
+            0.09074767535237986,
+            8.438918436026242e-5,
+            -0.23616198209965011,
+        ),
+        (
+            0.0907477409984784,
+            0.024389184503350484,
+            0.11486377495832212,
+        ),
+        (0.05163070679601189, 0.0001527696938530234, -1.0),
+        (0.05163074057492709, 0.07276969400882398, 0.0),
+        (
+            0.028979368870199508,
+            0.00016059725891206476,
+            0.19092761680383052,
+        ),
+        (
+            0.028979396305475576,
+            0.060597259049691016,
+            0.5126851725865331,
+        ),
+        (0.029438729667439024, 0.0001248072748418119, 1.0),
+        (0.02943882247100284, 0.004807275011544732, -0.5),
+        (
+            0.0661976051648558,
+            0.00020427471111410367,
+            -0.2220136741608998,
+        ),
+        (0.06619769465369318, 0.06427471131657514, -1.0),
+        (
+            0.04728760759454473,
+            0.0001708385760990777,
+            0.5469856277422473,
+        ),
+        (0.04728762531593051, 0.010838576300019895, 0.5),
+        (
+            0.05797776943550131,
+            0.0002740049745422053,
+            0.05099143544754625,
+        ),
+        (0.05797780717487736, 0.09400497483156595, 0.3428459225111753),
+        (0.06936185554333411, 0.00028853551718564617, 0.5),
+        (0.0693619153561112, 0.08853551742881244, 0.5),
+        (
+            0.06849436182578841,
+            0.0002865351302561596,
+            0.20911219027662975,
+        ),
+        (
+            0.06849438412971841,
+            0.06653513055004352,
+            -0.025578625553430046,
+        ),
+        (0.05124960023527983, 0.00031358194099911885, 0.0),
+        (0.05124963685093068, 0.07358194132438366, -0.5),
+        (
+            0.08554084159238796,
+            0.0003203103468624323,
+            -0.872945496491571,
+        ),
+        (
+            0.08554092016961616,
+            0.060310347160799686,
+            -0.3723675196518128,
+        ),
+        (0.0038332752768712175, 0.00034051177304408945, -0.5),
+        (0.0038333226506631086, 0.06051177342719404, 1.0),
+        (0.0316245674889688, 0.000393155051944504, 0.0),
+        (
+            0.03162466330921344,
+            0.09315505226327307,
+            -0.6825320322879422,
+        ),
+        (0.012115610741452232, 0.0003656754888473156, -1.0),
+        (
+            0.012115656411888583,
+            0.045675489179273616,
+            0.045256838617719675,
+        ),
+    ]);
+    let tol = 5e-5;
+    let fit = fit_contour(&xs, tol);
+    let err = hausdorff(&xs, &fit.path);
+    assert!(err <= tol, "measured {} of the tolerance", err / tol);
+}
+
+#[test]
 fn orientation_outer_ccw_counter_cw() {
     let outer = spline(&[
         (280.0, -12.0, -1.0),
@@ -222,6 +329,14 @@ fn subpaths(path: &BezPath) -> Vec<BezPath> {
     out
 }
 
+/// The proptest seed: fixed, unless `XGLYPH_PROPTEST_SEED` names another.
+fn seed() -> u64 {
+    std::env::var("XGLYPH_PROPTEST_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0x5eed_2026)
+}
+
 fn shape_strategy() -> impl Strategy<Value = f64> {
     prop_oneof![
         prop::sample::select(vec![-1.0, -0.5, 0.0, 0.5, 1.0]),
@@ -230,11 +345,12 @@ fn shape_strategy() -> impl Strategy<Value = f64> {
 }
 
 proptest! {
-    // A fixed seed: CI must be reproducible. Random seeds have found contours (wild mixes of
-// s on 20+ points) where the fit overshoots by a few percent; see the closing note.
+    // A fixed seed keeps CI reproducible; XGLYPH_PROPTEST_SEED=<u64> replays another
+    // (scratch hunts with fresh seeds, 1600 cases each, are how `thin_spike_tips_are_not_missed`
+    // was found).
     #![proptest_config(ProptestConfig {
         cases: 128,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_2026),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed()),
         .. ProptestConfig::default()
     })]
 
