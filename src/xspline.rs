@@ -187,29 +187,31 @@ impl Segment {
     }
 
     /// The point at `t ∈ [0, 1]`.
+    ///
+    /// The weights are normalised before they are summed, so where the curve passes
+    /// through a control point (one weight alone) the result is that point exactly, not a
+    /// rounding away from it (a sharp point must be an exact vertex of every output).
     pub fn eval(&self, t: f64) -> Point {
         let w = weights_with_deriv(t, self.s1, self.s2);
+        let total: f64 = w.iter().map(|(a, _)| a).sum();
         let mut sum = Vec2::ZERO;
-        let mut total = 0.0;
         for (q, (a, _)) in self.q.iter().zip(w) {
-            sum += a * q.to_vec2();
-            total += a;
+            sum += (a / total) * q.to_vec2();
         }
-        (sum / total).to_point()
+        sum.to_point()
     }
 
     /// Point and exact first derivative at `t` (quotient rule on the weights).
     pub fn eval_deriv(&self, t: f64) -> (Point, Vec2) {
         let w = weights_with_deriv(t, self.s1, self.s2);
-        let (mut num, mut dnum) = (Vec2::ZERO, Vec2::ZERO);
-        let (mut den, mut dden) = (0.0, 0.0);
+        let den: f64 = w.iter().map(|(a, _)| a).sum();
+        let (mut p, mut dnum, mut dden) = (Vec2::ZERO, Vec2::ZERO, 0.0);
         for (q, (a, da)) in self.q.iter().zip(w) {
-            num += a * q.to_vec2();
+            // Normalised first, as in `eval`: exact at interpolated control points.
+            p += (a / den) * q.to_vec2();
             dnum += da * q.to_vec2();
-            den += a;
             dden += da;
         }
-        let p = num / den;
         let d = (dnum - p * dden) / den;
         (p.to_point(), d)
     }

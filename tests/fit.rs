@@ -1,117 +1,13 @@
 //! Cubic fitting against the true X-spline: two-sided distance by dense sampling.
 
-use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathEl, PathSeg, Point, Shape};
+#[path = "common/curves.rs"]
+mod curves;
+
+use curves::{hausdorff, seed, spline};
+use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point, Shape};
 use proptest::prelude::*;
 use xglyph::fit::fit_contour;
 use xglyph::orient::orient_contours;
-use xglyph::xspline::{ControlPoint, XSpline};
-
-/// Distance from `p` to the nearest segment of `path`.
-fn dist_to_path(path: &BezPath, p: Point) -> f64 {
-    path.segments()
-        .map(|s| s.nearest(p, 1e-9).distance_sq.sqrt())
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Two-sided sampled distance: 200 samples per X-spline segment against the path, and
-/// 200 samples per path segment against a dense polyline of the true curve refined by
-/// a nested scan of the curve parameter.
-fn hausdorff(spline: &XSpline, path: &BezPath) -> f64 {
-    let n = spline.segment_count();
-    let mut dense: Vec<(f64, Point)> = (0..n * 200)
-        .map(|i| {
-            let t = i as f64 / 200.0;
-            (t, spline.eval(t))
-        })
-        .collect();
-    let gap = dense
-        .windows(2)
-        .map(|w| w[0].1.distance(w[1].1))
-        .fold(0.0, f64::max)
-        .max(dense[0].1.distance(dense[dense.len() - 1].1));
-    let mut err: f64 = 0.0;
-    for (_, p) in &dense {
-        err = err.max(dist_to_path(path, *p));
-    }
-    // Sorted by x, so a query only scans the samples within its distance in x.
-    dense.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
-    for seg in path.segments() {
-        for i in 0..=200 {
-            let q = seg.eval(i as f64 / 200.0);
-            err = err.max(dist_to_curve(spline, &dense, gap, q));
-        }
-    }
-    err
-}
-
-/// The dense samples (sorted by x) whose x lies within `r` of `q.x`.
-fn x_window(dense: &[(f64, Point)], q: Point, r: f64) -> &[(f64, Point)] {
-    let lo = dense.partition_point(|(_, p)| p.x < q.x - r);
-    let hi = dense.partition_point(|(_, p)| p.x <= q.x + r);
-    &dense[lo..hi]
-}
-
-/// Distance from `q` to the true curve: on every branch of the curve that comes within one
-/// sample gap of the nearest sample's distance (loops and crossings have several), a
-/// nested scan of the curve parameter around the branch's closest sample (3 levels of 20
-/// steps; no Newton, which can jump between branches).
-fn dist_to_curve(spline: &XSpline, dense: &[(f64, Point)], gap: f64, q: Point) -> f64 {
-    // Grow the window until it holds a sample; that sample bounds the nearest distance.
-    let mut r = gap.max(1e-300);
-    let mut nearest = f64::INFINITY;
-    loop {
-        for (_, p) in x_window(dense, q, r) {
-            nearest = nearest.min(p.distance(q));
-        }
-        if nearest <= r || r > 1e300 {
-            break;
-        }
-        r = nearest.min(r * 4.0);
-    }
-    // A branch's nearest sample is at most one sample gap farther than its nearest point.
-    // Candidates in curve order; every local minimum of the distance along the curve is
-    // refined (a branch may dip more than once).
-    let mut near: Vec<(f64, f64)> = x_window(dense, q, nearest + gap)
-        .iter()
-        .map(|(t, p)| (*t, p.distance(q)))
-        .filter(|(_, d)| *d <= nearest + gap)
-        .collect();
-    near.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let step = 1.0 / 200.0;
-    let mut best = nearest;
-    for k in 0..near.len() {
-        // A local minimum of the distance along the curve (neighbours in t only).
-        let lower = |j: usize| near[j].1 < near[k].1 && (near[j].0 - near[k].0).abs() < 1.5 * step;
-        if (k > 0 && lower(k - 1)) || (k + 1 < near.len() && lower(k + 1)) {
-            continue;
-        }
-        let (mut centre, mut half) = (near[k].0, step);
-        for _ in 0..3 {
-            let mut local = (centre, f64::INFINITY);
-            for i in 0..=20 {
-                let t = centre - half + 2.0 * half * i as f64 / 20.0;
-                let d = spline.eval(t).distance(q);
-                if d < local.1 {
-                    local = (t, d);
-                }
-            }
-            best = best.min(local.1);
-            centre = local.0;
-            half /= 10.0;
-        }
-    }
-    best
-}
-
-fn spline(points: &[(f64, f64, f64)]) -> XSpline {
-    XSpline::new(
-        points
-            .iter()
-            .map(|&(x, y, s)| ControlPoint::new(x, y, s))
-            .collect(),
-    )
-    .unwrap()
-}
 
 #[test]
 fn glyph_like_contour_within_tolerance_with_exact_corners_and_lines() {
@@ -124,7 +20,7 @@ fn glyph_like_contour_within_tolerance_with_exact_corners_and_lines() {
         (0.0, 700.0, 0.0),
     ]);
     let fit = fit_contour(&xs, 0.5);
-    let err = hausdorff(&xs, &fit.path);
+    let err = hausdorff(&xs, &fit.path, 200);
     assert!(err <= 0.5, "measured {err}");
     assert!(fit.max_error <= 0.5);
     let els = fit.path.elements();
@@ -161,7 +57,7 @@ fn joins_inside_smooth_stretches_are_g1() {
             "join {w}: {ta:?} vs {tb:?}"
         );
     }
-    assert!(hausdorff(&xs, &fit.path) <= 0.2);
+    assert!(hausdorff(&xs, &fit.path, 200) <= 0.2);
 }
 
 #[test]
@@ -174,7 +70,7 @@ fn corner_with_interpolating_neighbour_has_no_hook() {
         (0.0, 100.0, -1.0),
     ]);
     let fit = fit_contour(&xs, 0.05);
-    assert!(hausdorff(&xs, &fit.path) <= 0.05);
+    assert!(hausdorff(&xs, &fit.path, 200) <= 0.05);
     let PathSeg::Cubic(first) = fit.path.segments().next().unwrap() else {
         panic!()
     };
@@ -285,7 +181,7 @@ fn thin_spike_tips_are_not_missed() {
     ]);
     let tol = 5e-5;
     let fit = fit_contour(&xs, tol);
-    let err = hausdorff(&xs, &fit.path);
+    let err = hausdorff(&xs, &fit.path, 200);
     assert!(err <= tol, "measured {} of the tolerance", err / tol);
 }
 
@@ -329,21 +225,6 @@ fn subpaths(path: &BezPath) -> Vec<BezPath> {
     out
 }
 
-/// The proptest seed: fixed, unless `XGLYPH_PROPTEST_SEED` names another.
-fn seed() -> u64 {
-    std::env::var("XGLYPH_PROPTEST_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0x5eed_2026)
-}
-
-fn shape_strategy() -> impl Strategy<Value = f64> {
-    prop_oneof![
-        prop::sample::select(vec![-1.0, -0.5, 0.0, 0.5, 1.0]),
-        -1.0..=1.0f64,
-    ]
-}
-
 proptest! {
     // A fixed seed keeps CI reproducible; XGLYPH_PROPTEST_SEED=<u64> replays another
     // (scratch hunts with fresh seeds, 1600 cases each, are how `thin_spike_tips_are_not_missed`
@@ -355,27 +236,10 @@ proptest! {
     })]
 
     #[test]
-    fn random_contours_stay_within_tolerance(
-        raw in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64, shape_strategy()), 3..=60),
-        scale_exp in -3i32..=5,
-        collinear in any::<bool>(),
-        twins in any::<bool>(),
-    ) {
-        let scale = 10f64.powi(scale_exp);
-        let mut pts: Vec<ControlPoint> = raw.iter().enumerate().map(|(i, &(x, y, s))| {
-            // Optionally squash onto a near-line to exercise near-collinear input.
-            let y = if collinear { y * 1e-3 + i as f64 * 1e-4 } else { y };
-            // Optionally pull every odd point next to its predecessor (nearly coincident).
-            let (x, y) = if twins && i % 2 == 1 {
-                (raw[i - 1].0 + 1e-6 * x, raw[i - 1].1 + 1e-6 * y)
-            } else {
-                (x, y)
-            };
-            ControlPoint::new(x * scale, y * scale, s)
-        }).collect();
-        pts.dedup_by(|a, b| a.pos == b.pos);
-        prop_assume!(pts.len() >= 3 && pts[0].pos != pts[pts.len() - 1].pos);
-        let xs = XSpline::new(pts).unwrap();
+    fn random_contours_stay_within_tolerance(contour in curves::random_contour()) {
+        let Some((xs, scale)) = contour else {
+            return Err(TestCaseError::reject("fewer than three distinct points"));
+        };
         let tol = 0.5 * scale / 1000.0;
         let fit = fit_contour(&xs, tol);
         // Every point of the path, control points included, is finite.
@@ -385,7 +249,12 @@ proptest! {
                 prop_assert!(p.is_finite(), "non-finite point {:?} in {:?}", p, seg);
             }
         }
-        let err = hausdorff(&xs, &fit.path);
+        // Every sharp point is an on-curve point, exactly.
+        let ends: Vec<Point> = fit.path.segments().map(|s| s.end()).collect();
+        for p in xs.points().iter().filter(|p| p.is_sharp()) {
+            prop_assert!(ends.contains(&p.pos), "sharp point {:?} is not on the path", p.pos);
+        }
+        let err = hausdorff(&xs, &fit.path, 200);
         prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
     }
 }

@@ -1,20 +1,14 @@
 //! Flattening: vertices on the curve, exact sharp points, chords within the tolerance both
 //! ways (dense sampling of the true curve), and adaptive vertex counts.
 
-use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
+#[path = "common/curves.rs"]
+mod curves;
+
+use curves::{hausdorff, seed, spline};
+use kurbo::{BezPath, Line, ParamCurve, ParamCurveNearest, Point};
 use proptest::prelude::*;
 use xglyph::flatten::{flatten, Polyline};
-use xglyph::xspline::{ControlPoint, XSpline};
-
-fn spline(points: &[(f64, f64, f64)]) -> XSpline {
-    XSpline::new(
-        points
-            .iter()
-            .map(|&(x, y, s)| ControlPoint::new(x, y, s))
-            .collect(),
-    )
-    .unwrap()
-}
+use xglyph::xspline::XSpline;
 
 /// The closed polyline's edges with the parameter interval each one stands for.
 fn edges(spline: &XSpline, poly: &Polyline) -> Vec<(Line, f64, f64)> {
@@ -115,34 +109,31 @@ fn vertex_count_follows_the_square_root_law() {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 32,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_2026),
+        cases: 64,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed()),
         .. ProptestConfig::default()
     })]
 
     #[test]
-    fn random_contours_flatten_within_tolerance(
-        raw in prop::collection::vec(
-            (0.0..1.0f64, 0.0..1.0f64, prop::sample::select(vec![-1.0, -0.5, 0.0, 0.5, 1.0])),
-            3..16,
-        ),
-        scale_exp in -2i32..=4,
-    ) {
-        let scale = 10f64.powi(scale_exp);
-        let mut pts: Vec<ControlPoint> = raw
-            .iter()
-            .map(|&(x, y, s)| ControlPoint::new(x * scale, y * scale, s))
-            .collect();
-        pts.dedup_by(|a, b| a.pos == b.pos);
-        prop_assume!(pts.len() >= 3 && pts[0].pos != pts[pts.len() - 1].pos);
-        let sharp: Vec<Point> = pts.iter().filter(|p| p.is_sharp()).map(|p| p.pos).collect();
-        let xs = XSpline::new(pts).unwrap();
-        let tol = scale / 1000.0;
+    fn random_contours_flatten_within_tolerance(contour in curves::random_contour()) {
+        let Some((xs, scale)) = contour else {
+            return Err(TestCaseError::reject("fewer than three distinct points"));
+        };
+        let tol = 0.5 * scale / 1000.0;
         let poly = flatten(&xs, tol);
-        for p in &sharp {
-            prop_assert!(poly.points.contains(p), "sharp point {:?} is not a vertex", p);
+        for (p, &t) in poly.points.iter().zip(&poly.params) {
+            prop_assert!(p.is_finite() && *p == xs.eval(t), "vertex {:?} off the curve", p);
         }
-        let err = distance(&xs, &poly);
+        for p in xs.points().iter().filter(|p| p.is_sharp()) {
+            prop_assert!(poly.points.contains(&p.pos), "sharp point {:?} is not a vertex", p.pos);
+        }
+        let mut path = BezPath::new();
+        path.move_to(poly.points[0]);
+        for p in &poly.points[1..] {
+            path.line_to(*p);
+        }
+        path.close_path();
+        let err = hausdorff(&xs, &path, 50);
         prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
     }
 }

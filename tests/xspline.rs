@@ -296,6 +296,23 @@ fn sharp_points_are_interpolated_and_straight_between_two() {
 }
 
 #[test]
+fn sharp_points_are_exact_to_the_bit() {
+    // Found by a random flattening test: with the weights summed first and divided after,
+    // this corner came out one unit in the last place off (980.7387269841226).
+    let xs = XSpline::new(vec![
+        ControlPoint::new(0.0, 0.0, -1.0),
+        ControlPoint::new(7250.653562890337, 0.0, -1.0),
+        ControlPoint::new(980.7387269841225, 0.0, 0.0),
+        ControlPoint::new(0.0, 5101.522537701239, -0.9530157444650398),
+    ])
+    .unwrap();
+    let corner = Point::new(980.7387269841225, 0.0);
+    assert_eq!(xs.eval(2.0), corner);
+    assert_eq!(xs.eval_deriv(2.0).0, corner);
+    assert_eq!(xs.segment(1).eval(1.0), corner);
+}
+
+#[test]
 fn corner_tangent_tilts_toward_q3_when_next_shape_is_negative() {
     // s1 = 0, s2 = -1: departure direction 8 (Q2 - Q1) - 2q (Q3 - Q1) with q = 1/2.
     let xs = square([0.5, 0.0, -1.0, 0.5]);
