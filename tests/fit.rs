@@ -2,6 +2,8 @@
 
 #[path = "common/curves.rs"]
 mod curves;
+#[path = "common/paths.rs"]
+mod paths;
 
 use curves::{hausdorff, seed, spline};
 use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point, Shape};

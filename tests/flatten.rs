@@ -3,6 +3,8 @@
 
 #[path = "common/curves.rs"]
 mod curves;
+#[path = "common/paths.rs"]
+mod paths;
 
 use curves::{hausdorff, seed, spline};
 use kurbo::{BezPath, Line, ParamCurve, ParamCurveNearest, Point};

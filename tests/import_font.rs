@@ -9,7 +9,11 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathSeg, Point, Rect, Shape};
+#[path = "common/paths.rs"]
+mod paths;
+
+use kurbo::{BezPath, ParamCurve, PathSeg, Point};
+use xglyph::import::font::glyph_outline;
 use xglyph::import::{import_font, ImportOptions, Imported, IMPORT_SHARE};
 use xglyph::outline::outline_font;
 use xglyph::source::emit::font_sources;
@@ -42,69 +46,14 @@ fn imported() -> &'static (Imported, f64) {
     })
 }
 
-/// The original outline of `c`, read with ttf-parser directly.
+/// The original outline of `c`, read with ttf-parser.
 fn original(face: &ttf_parser::Face, c: char) -> BezPath {
-    struct B(BezPath);
-    impl ttf_parser::OutlineBuilder for B {
-        fn move_to(&mut self, x: f32, y: f32) {
-            self.0.move_to((x as f64, y as f64));
-        }
-        fn line_to(&mut self, x: f32, y: f32) {
-            self.0.line_to((x as f64, y as f64));
-        }
-        fn quad_to(&mut self, a: f32, b: f32, x: f32, y: f32) {
-            self.0.quad_to((a as f64, b as f64), (x as f64, y as f64));
-        }
-        fn curve_to(&mut self, a: f32, b: f32, c: f32, d: f32, x: f32, y: f32) {
-            self.0.curve_to(
-                (a as f64, b as f64),
-                (c as f64, d as f64),
-                (x as f64, y as f64),
-            );
-        }
-        fn close(&mut self) {
-            self.0.close_path();
-        }
-    }
-    let mut b = B(BezPath::new());
-    face.outline_glyph(face.glyph_index(c).unwrap(), &mut b);
-    b.0
-}
-
-fn distance(p: Point, segs: &[(PathSeg, Rect)]) -> f64 {
-    let mut best = f64::INFINITY;
-    for (seg, bb) in segs {
-        let dx = (bb.x0 - p.x).max(p.x - bb.x1).max(0.0);
-        let dy = (bb.y0 - p.y).max(p.y - bb.y1).max(0.0);
-        if dx * dx + dy * dy < best {
-            best = best.min(seg.nearest(p, 1e-9).distance_sq);
-        }
-    }
-    best.sqrt()
-}
-
-/// Segments of a path without single-point contours (DejaVu has a few, e.g. in `u`: they
-/// enclose nothing and are not imported).
-fn segments(path: &BezPath) -> impl Iterator<Item = PathSeg> + '_ {
-    path.segments()
-        .filter(|s| !matches!(s, PathSeg::Line(l) if l.p0 == l.p1))
-}
-
-fn with_boxes(path: &BezPath) -> Vec<(PathSeg, Rect)> {
-    segments(path).map(|s| (s, s.bounding_box())).collect()
-}
-
-/// Largest distance from `per` samples per segment of `a` to the path `b`.
-fn one_sided(a: &BezPath, b: &BezPath, per: usize) -> f64 {
-    let target = with_boxes(b);
-    segments(a)
-        .flat_map(|s| (0..per).map(move |i| s.eval(i as f64 / per as f64)))
-        .map(|p| distance(p, &target))
-        .fold(0.0, f64::max)
+    let gid = face.glyph_index(c).expect("the glyph is in the font");
+    glyph_outline(face, gid).unwrap_or_default()
 }
 
 fn two_sided(a: &BezPath, b: &BezPath) -> f64 {
-    one_sided(a, b, 32).max(one_sided(b, a, 32))
+    paths::two_sided(a, b, 32)
 }
 
 /// X-splines as a fine polyline (256 samples per segment; the chord error at that density
@@ -309,7 +258,10 @@ fn smooth_joins_stay_smooth() {
     };
     let (mut joins, mut worst) = (0, (0.0, String::new()));
     for glyph in &imp.font.glyphs {
-        let segs: Vec<PathSeg> = segments(&original(&face, glyph.unicodes[0])).collect();
+        let segs: Vec<PathSeg> = paths::with_boxes(&original(&face, glyph.unicodes[0]))
+            .into_iter()
+            .map(|(s, _)| s)
+            .collect();
         for contour in &glyph.contours {
             let spline = XSpline::new(contour.points.clone()).unwrap();
             let n = spline.segment_count();

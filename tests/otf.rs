@@ -4,8 +4,12 @@
 
 use std::path::Path;
 
-use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathSeg, Shape};
+#[path = "common/paths.rs"]
+mod paths;
+
+use kurbo::{BezPath, Shape};
 use ttf_parser::{Face, GlyphId};
+use xglyph::import::font::glyph_outline;
 use xglyph::model::{Contour, Font, Glyph, KernPair};
 use xglyph::otf::{glyph_order, otf, specimen_html, specimen_text, ttf};
 use xglyph::outline::{outline_font, FontOutlines};
@@ -21,58 +25,13 @@ fn mini() -> (Font, FontOutlines) {
     (font, outlines)
 }
 
-struct PathPen(BezPath);
-
-impl ttf_parser::OutlineBuilder for PathPen {
-    fn move_to(&mut self, x: f32, y: f32) {
-        self.0.move_to((f64::from(x), f64::from(y)));
-    }
-    fn line_to(&mut self, x: f32, y: f32) {
-        self.0.line_to((f64::from(x), f64::from(y)));
-    }
-    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
-        self.0
-            .quad_to((f64::from(x1), f64::from(y1)), (f64::from(x), f64::from(y)));
-    }
-    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
-        self.0.curve_to(
-            (f64::from(x1), f64::from(y1)),
-            (f64::from(x2), f64::from(y2)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn close(&mut self) {
-        self.0.close_path();
-    }
-}
-
 fn outline(face: &Face, gid: u16) -> BezPath {
-    let mut pen = PathPen(BezPath::new());
-    face.outline_glyph(GlyphId(gid), &mut pen);
-    pen.0
-}
-
-/// Largest distance from points sampled densely on `a` to the nearest point of `b`.
-fn one_sided(a: &BezPath, b: &BezPath) -> f64 {
-    let targets: Vec<PathSeg> = b.segments().collect();
-    let mut worst: f64 = 0.0;
-    for seg in a.segments() {
-        for i in 0..=64 {
-            let p = seg.eval(f64::from(i) / 64.0);
-            let d = targets
-                .iter()
-                .map(|t| t.nearest(p, 1e-9).distance_sq)
-                .fold(f64::INFINITY, f64::min)
-                .sqrt();
-            worst = worst.max(d);
-        }
-    }
-    worst
+    glyph_outline(face, GlyphId(gid)).unwrap_or_default()
 }
 
 /// Two-sided (Hausdorff) distance between two outlines, by dense sampling.
 fn distance(a: &BezPath, b: &BezPath) -> f64 {
-    one_sided(a, b).max(one_sided(b, a))
+    paths::two_sided(a, b, 64)
 }
 
 fn contour_count(p: &BezPath) -> usize {

@@ -2,56 +2,18 @@
 //! ttf-parser stays within the stated bounds of the fitted BezPaths (dense two-sided
 //! sampling), and both fonts keep the glyph's advance and code point.
 
-use kurbo::{BezPath, ParamCurve, ParamCurveNearest, PathSeg};
+#[path = "common/paths.rs"]
+mod paths;
+
 use proptest::prelude::*;
 use ttf_parser::{Face, GlyphId};
+use xglyph::import::font::glyph_outline;
 use xglyph::model::{Contour, Font, FontInfo, Glyph};
 use xglyph::otf::{otf, ttf};
 use xglyph::outline::outline_font;
 use xglyph::xspline::ControlPoint;
 
 const GRID: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-struct PathPen(BezPath);
-
-impl ttf_parser::OutlineBuilder for PathPen {
-    fn move_to(&mut self, x: f32, y: f32) {
-        self.0.move_to((f64::from(x), f64::from(y)));
-    }
-    fn line_to(&mut self, x: f32, y: f32) {
-        self.0.line_to((f64::from(x), f64::from(y)));
-    }
-    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
-        self.0
-            .quad_to((f64::from(x1), f64::from(y1)), (f64::from(x), f64::from(y)));
-    }
-    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
-        self.0.curve_to(
-            (f64::from(x1), f64::from(y1)),
-            (f64::from(x2), f64::from(y2)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn close(&mut self) {
-        self.0.close_path();
-    }
-}
-
-fn one_sided(a: &BezPath, b: &BezPath) -> f64 {
-    let targets: Vec<PathSeg> = b.segments().collect();
-    let mut worst: f64 = 0.0;
-    for seg in a.segments() {
-        for i in 0..=48 {
-            let p = seg.eval(f64::from(i) / 48.0);
-            let d = targets
-                .iter()
-                .map(|t| t.nearest(p, 1e-9).distance_sq)
-                .fold(f64::INFINITY, f64::min);
-            worst = worst.max(d.sqrt());
-        }
-    }
-    worst
-}
 
 fn font_with(glyph: Glyph, tolerance: f64) -> Font {
     Font {
@@ -106,9 +68,8 @@ proptest! {
             let face = Face::parse(&bytes, 0).unwrap();
             prop_assert_eq!(face.glyph_index('x'), Some(GlyphId(1)));
             prop_assert_eq!(face.glyph_hor_advance(GlyphId(1)), Some(advance));
-            let mut pen = PathPen(BezPath::new());
-            face.outline_glyph(GlyphId(1), &mut pen);
-            let d = one_sided(&pen.0, exact).max(one_sided(exact, &pen.0));
+            let read = glyph_outline(&face, GlyphId(1)).unwrap_or_default();
+            let d = paths::two_sided(&read, exact, 48);
             prop_assert!(d <= bound, "distance {} > bound {}", d, bound);
         }
     }

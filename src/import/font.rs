@@ -134,10 +134,10 @@ pub fn read_font(
                 format!("glyph `{name}` has no horizontal advance (damaged hmtx table)"),
             )
         })?;
-        let mut builder = PathBuilder::default();
+        let outline = glyph_outline(&face, gid);
         // `None` is an empty glyph (space) or an outline ttf-parser could not read: an
         // error for a visible character, an empty glyph otherwise.
-        if face.outline_glyph(gid, &mut builder).is_none()
+        if outline.is_none()
             && unicodes
                 .iter()
                 .any(|c| c.is_alphanumeric() || c.is_ascii_graphic())
@@ -150,7 +150,8 @@ pub fn read_font(
                 ),
             ));
         }
-        if !builder.finite {
+        let outline = outline.unwrap_or_default();
+        if !outline.is_finite() {
             return Err(ImportError::at(
                 path,
                 format!("glyph `{name}` has non-finite coordinates"),
@@ -160,7 +161,7 @@ pub fn read_font(
             name,
             unicodes,
             advance: f64::from(advance),
-            path: builder.path,
+            path: outline,
         });
     }
     Ok(SourceFont {
@@ -258,48 +259,38 @@ fn read_metrics(face: &Face) -> SourceMetrics {
     }
 }
 
+/// A glyph's outline as ttf-parser reads it (quadratic or cubic), in font units, y up;
+/// `None` for a glyph without one (a space) or one ttf-parser cannot read. Coordinates are
+/// passed on as they are: check [`BezPath::is_finite`] before trusting them.
+pub fn glyph_outline(face: &Face, glyph: GlyphId) -> Option<BezPath> {
+    let mut pen = PathPen(BezPath::new());
+    face.outline_glyph(glyph, &mut pen)?;
+    Some(pen.0)
+}
+
 /// Collects ttf-parser's outline calls into a kurbo path.
-struct PathBuilder {
-    path: BezPath,
-    finite: bool,
-}
+struct PathPen(BezPath);
 
-impl Default for PathBuilder {
-    fn default() -> Self {
-        PathBuilder {
-            path: BezPath::new(),
-            finite: true,
-        }
-    }
-}
-
-impl PathBuilder {
-    fn pt(&mut self, x: f32, y: f32) -> kurbo::Point {
-        self.finite &= x.is_finite() && y.is_finite();
-        kurbo::Point::new(f64::from(x), f64::from(y))
-    }
-}
-
-impl OutlineBuilder for PathBuilder {
+impl OutlineBuilder for PathPen {
     fn move_to(&mut self, x: f32, y: f32) {
-        let p = self.pt(x, y);
-        self.path.move_to(p);
+        self.0.move_to(point(x, y));
     }
     fn line_to(&mut self, x: f32, y: f32) {
-        let p = self.pt(x, y);
-        self.path.line_to(p);
+        self.0.line_to(point(x, y));
     }
     fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
-        let (c, p) = (self.pt(x1, y1), self.pt(x, y));
-        self.path.quad_to(c, p);
+        self.0.quad_to(point(x1, y1), point(x, y));
     }
     fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
-        let (c1, c2, p) = (self.pt(x1, y1), self.pt(x2, y2), self.pt(x, y));
-        self.path.curve_to(c1, c2, p);
+        self.0.curve_to(point(x1, y1), point(x2, y2), point(x, y));
     }
     fn close(&mut self) {
-        self.path.close_path();
+        self.0.close_path();
     }
+}
+
+fn point(x: f32, y: f32) -> kurbo::Point {
+    kurbo::Point::new(f64::from(x), f64::from(y))
 }
 
 #[cfg(test)]

@@ -1,11 +1,13 @@
 //! Shared by the fitting and flattening tests: contour construction, the random-contour
 //! strategy of issue #2 (3-60 points, mixed `s`, scales 1e-3..1e5, near-collinear and
 //! nearly coincident points), and the two-sided distance to the true curve by dense
-//! sampling.
+//! sampling. Needs `paths.rs` as a sibling module.
 // Each test crate uses a different subset.
 #![allow(dead_code)]
 
-use kurbo::{BezPath, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathSeg, Point, Rect};
+use kurbo::{BezPath, ParamCurve, Point};
+
+use super::paths::{to_segments, with_boxes};
 use proptest::prelude::*;
 use xglyph::xspline::{ControlPoint, XSpline};
 
@@ -74,25 +76,6 @@ pub fn random_contour() -> impl Strategy<Value = Option<(XSpline, f64)>> {
         })
 }
 
-/// Distance from `p` to the nearest of `segments` (with their bounding boxes); `hint`, the
-/// index of the nearest one for the previous query, is tried first and updated, so boxes
-/// farther than the best distance so far are skipped.
-fn dist_to_path(segments: &[(PathSeg, Rect)], p: Point, hint: &mut usize) -> f64 {
-    let mut best = segments[*hint].0.nearest(p, 1e-9).distance_sq.sqrt();
-    for (i, (seg, bbox)) in segments.iter().enumerate() {
-        let dx = (bbox.x0 - p.x).max(p.x - bbox.x1).max(0.0);
-        let dy = (bbox.y0 - p.y).max(p.y - bbox.y1).max(0.0);
-        if dx.hypot(dy) >= best {
-            continue;
-        }
-        let d = seg.nearest(p, 1e-9).distance_sq.sqrt();
-        if d < best {
-            (best, *hint) = (d, i);
-        }
-    }
-    best
-}
-
 /// Two-sided sampled distance between `path` and the true curve: 200 samples per X-spline
 /// segment against the path, and `per_path_segment` samples per path segment against a
 /// dense polyline of the true curve refined by a nested scan of the curve parameter
@@ -110,11 +93,11 @@ pub fn hausdorff(spline: &XSpline, path: &BezPath, per_path_segment: usize) -> f
         .map(|w| w[0].1.distance(w[1].1))
         .fold(0.0, f64::max)
         .max(dense[0].1.distance(dense[dense.len() - 1].1));
-    let segments: Vec<(PathSeg, Rect)> = path.segments().map(|s| (s, s.bounding_box())).collect();
+    let segments = with_boxes(path);
     let mut err: f64 = 0.0;
     let mut hint = 0;
     for (_, p) in &dense {
-        err = err.max(dist_to_path(&segments, *p, &mut hint));
+        err = err.max(to_segments(&segments, *p, &mut hint));
     }
     // Sorted by x, so a query only scans the samples within its distance in x.
     dense.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
