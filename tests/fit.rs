@@ -251,10 +251,17 @@ proptest! {
                 prop_assert!(p.is_finite(), "non-finite point {:?} in {:?}", p, seg);
             }
         }
-        // Every sharp point is an on-curve point, exactly.
-        let ends: Vec<Point> = fit.path.segments().map(|s| s.end()).collect();
-        for p in xs.points().iter().filter(|p| p.is_sharp()) {
-            prop_assert!(ends.contains(&p.pos), "sharp point {:?} is not on the path", p.pos);
+        // Every sharp point is an on-curve point, exactly, and the edge between two
+        // consecutive sharp points is one line.
+        let segs: Vec<PathSeg> = fit.path.segments().collect();
+        let pts = xs.points();
+        for (k, p) in pts.iter().enumerate().filter(|(_, p)| p.is_sharp()) {
+            prop_assert!(segs.iter().any(|s| s.end() == p.pos), "sharp point {:?} is not on the path", p.pos);
+            let next = pts[(k + 1) % pts.len()];
+            if next.is_sharp() {
+                let edge = PathSeg::Line(kurbo::Line::new(p.pos, next.pos));
+                prop_assert!(segs.contains(&edge), "no line {:?} -> {:?}", p.pos, next.pos);
+            }
         }
         let err = hausdorff(&xs, &fit.path, 200);
         prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
