@@ -106,8 +106,11 @@ pub fn stretches(spline: &XSpline) -> Vec<Stretch> {
     out
 }
 
-/// Fits one closed X-spline with cubics and lines within `tolerance` (font units).
+/// Fits one closed X-spline with cubics and lines within `tolerance` (font units). A
+/// tolerance below [`XSpline::min_tolerance`] (zero, negative and NaN included) is raised
+/// to it.
 pub fn fit_contour(spline: &XSpline, tolerance: f64) -> ContourFit {
+    let tolerance = tolerance.max(spline.min_tolerance());
     let pieces = stretches(spline);
     let mut path = BezPath::new();
     let mut max_error: f64 = 0.0;

@@ -33,8 +33,11 @@ pub struct Polyline {
     pub params: Vec<f64>,
 }
 
-/// Flattens a closed X-spline so that every chord is within `tolerance` of the curve.
+/// Flattens a closed X-spline so that every chord is within `tolerance` of the curve. A
+/// tolerance below [`XSpline::min_tolerance`] (zero, negative and NaN included) is raised
+/// to it.
 pub fn flatten(spline: &XSpline, tolerance: f64) -> Polyline {
+    let tolerance = tolerance.max(spline.min_tolerance());
     let mut out = Polyline {
         points: Vec::new(),
         params: Vec::new(),

@@ -22,6 +22,9 @@ use std::fmt;
 
 use kurbo::{Point, Vec2};
 
+/// [`XSpline::min_tolerance`] as a fraction of the contour's extent.
+const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
+
 /// A control point: position in font units and shape parameter `s ∈ [-1, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlPoint {
@@ -128,6 +131,13 @@ impl XSpline {
     /// all coincident). A length scale for relative thresholds.
     pub fn extent(&self) -> f64 {
         self.extent
+    }
+
+    /// The smallest tolerance fitting and flattening honour for this contour, 1e-10 of its
+    /// extent: evaluation resolves about 1e-16 of it, and the error measures need room
+    /// above that (at 1e-14 the fitter's segment count explodes, below it no fit ends).
+    pub fn min_tolerance(&self) -> f64 {
+        MIN_RELATIVE_TOLERANCE * self.extent
     }
 
     /// Number of segments, equal to the number of control points.

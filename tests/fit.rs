@@ -188,6 +188,26 @@ fn thin_spike_tips_are_not_missed() {
 }
 
 #[test]
+fn unreachable_tolerances_are_raised_to_the_contours_floor() {
+    // Zero, negative, NaN or below floating-point resolution: the fit still ends, within
+    // the floor (1e-10 of the extent) instead of halving spans forever.
+    let xs = spline(&[
+        (0.0, 0.0, 1.0),
+        (1000.0, 0.0, 0.5),
+        (1000.0, 1000.0, -0.5),
+        (0.0, 1000.0, 0.0),
+    ]);
+    let floor = xs.min_tolerance();
+    assert_eq!(floor, 1e-10 * 1000.0 * 2f64.sqrt());
+    let at_floor = fit_contour(&xs, floor).path;
+    for tol in [0.0, -1.0, f64::NAN, 1e-14] {
+        let fit = fit_contour(&xs, tol);
+        assert_eq!(fit.path, at_floor, "tolerance {tol}");
+        assert!(fit.max_error <= floor, "tolerance {tol}: {}", fit.max_error);
+    }
+}
+
+#[test]
 fn orientation_outer_ccw_counter_cw() {
     let outer = spline(&[
         (280.0, -12.0, -1.0),

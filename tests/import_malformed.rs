@@ -315,7 +315,7 @@ fn command_line_errors_write_nothing() {
         (code, err.as_str()),
         (
             1,
-            "error: --tolerance must be a positive number of font units, got -1\n"
+            "error: --tolerance must be a number of at least 0.0001 font units, got -1\n"
         )
     );
     let map = dir.join("map.toml");

@@ -130,6 +130,10 @@ const CASES: &[(&str, &[&str])] = &[
         &["a.toml:1:11: error: invalid code point 0xD800: surrogates 0xD800..0xDFFF are not characters"],
     ),
     ("tolerance", &["font.toml:7:13: error: `tolerance` must be positive (font units), found -0.5"]),
+    (
+        "tolerance_tiny",
+        &["font.toml:7:13: error: `tolerance` must be at least 0.0001 font units, found 0.00000001 (no font grid is that fine)"],
+    ),
     ("unicode_big", &["a.toml:1:18: error: invalid code point 0x110000: the largest is 0x10FFFF"]),
     ("unicode_float", &["a.toml:1:11: error: `unicode` must be an integer, found float"]),
     ("unicode_negative", &["a.toml:1:11: error: invalid code point -65: code points are 0x0..0x10FFFF"]),

@@ -14,7 +14,7 @@ use crate::model::Font;
 use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
-use crate::source::{load_font, Diagnostic, Severity};
+use crate::source::{load_font, Diagnostic, Severity, MIN_TOLERANCE};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::write_all_atomic;
 
@@ -63,8 +63,11 @@ pub fn print_diagnostic(d: &Diagnostic) {
 /// overriding the font's own.
 pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandError> {
     if let Some(t) = tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(format!("--tolerance must be a positive number, got {t}").into());
+        if !(t.is_finite() && t >= MIN_TOLERANCE) {
+            return Err(format!(
+                "--tolerance must be a number of at least {MIN_TOLERANCE} font units, got {t}"
+            )
+            .into());
         }
     }
     let font = match load_font(font_dir) {
@@ -186,8 +189,10 @@ pub fn summary(loaded: &Loaded, out: &Path, files: &[(PathBuf, Vec<u8>)]) -> Str
         .glyphs
         .iter()
         .max_by(|a, b| a.max_error.total_cmp(&b.max_error));
+    // Three significant digits of the tolerance's order, at least three decimals.
+    let digits = (2.0 - loaded.outlines.tolerance.log10().floor()).clamp(3.0, 12.0) as usize;
     let worst = match worst {
-        Some(g) => format!("{:.3} font units (glyph `{}`)", g.max_error, g.name),
+        Some(g) => format!("{:.digits$} font units (glyph `{}`)", g.max_error, g.name),
         None => "none".into(),
     };
     let top: Vec<String> = files

@@ -24,6 +24,12 @@ const KEYS: &[&str] = &[
 /// Default `tolerance` in font units.
 pub const DEFAULT_TOLERANCE: f64 = 0.5;
 
+/// Smallest `tolerance` accepted, in font units (here, on the command line and for
+/// imports): far finer than any font's grid, and far above the floor where floating point
+/// stops the fitter from meeting a tolerance on glyph-sized contours
+/// ([`crate::xspline::XSpline::min_tolerance`]).
+pub const MIN_TOLERANCE: f64 = 1e-4;
+
 /// Loads one `font.toml` from memory (`path` only labels diagnostics): the info and its
 /// warnings, or every diagnostic when there is an error.
 pub fn load_info_text(
@@ -101,7 +107,17 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
     let tolerance = match get(t, "tolerance") {
         None => Some(DEFAULT_TOLERANCE),
         Some(v) => match number(ctx, v, "tolerance") {
-            Some(x) if x > 0.0 => Some(x),
+            Some(x) if x >= MIN_TOLERANCE => Some(x),
+            Some(x) if x > 0.0 => {
+                ctx.err(
+                    v.span().start,
+                    format!(
+                        "`tolerance` must be at least {MIN_TOLERANCE} font units, found {x} \
+                         (no font grid is that fine)"
+                    ),
+                );
+                None
+            }
             Some(x) => {
                 ctx.err(
                     v.span().start,
