@@ -12,27 +12,15 @@ use kurbo::BezPath;
 use ttf_parser::{name_id, Face, GlyphId, OutlineBuilder};
 
 use super::{ImportError, SourceGlyph};
+use crate::model::FontInfo;
+use crate::source::DEFAULT_TOLERANCE;
 
-/// Font-wide data read from the font.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SourceMetrics {
-    pub family: String,
-    pub style: String,
-    pub units_per_em: u16,
-    pub ascender: f64,
-    pub descender: f64,
-    pub x_height: f64,
-    pub cap_height: f64,
-    pub copyright: Option<String>,
-    pub version: Option<String>,
-    pub designer: Option<String>,
-}
-
-/// What [`read_font`] found: metrics, glyphs in code point order, and notes on requested
-/// characters the font does not have.
+/// What [`read_font`] found: names and metrics, glyphs in code point order, and notes on
+/// requested characters the font does not have.
 #[derive(Clone, Debug)]
 pub struct SourceFont {
-    pub metrics: SourceMetrics,
+    /// Names and vertical metrics; `tolerance` is the default until the importer sets it.
+    pub info: FontInfo,
     pub glyphs: Vec<SourceGlyph>,
     pub missing: Vec<char>,
 }
@@ -108,7 +96,7 @@ pub fn read_font(
     let face = Face::parse(data, 0).map_err(|e| {
         ImportError::at(path, format!("not a readable TrueType/OpenType font ({e})"))
     })?;
-    let metrics = read_metrics(&face);
+    let info = read_info(&face);
     let wanted: Vec<char> = match chars {
         Some(list) => list.to_vec(),
         None => mapped_chars(&face),
@@ -165,7 +153,7 @@ pub fn read_font(
         });
     }
     Ok(SourceFont {
-        metrics,
+        info,
         glyphs,
         missing,
     })
@@ -209,7 +197,7 @@ fn glyph_name(
     name
 }
 
-fn read_metrics(face: &Face) -> SourceMetrics {
+fn read_info(face: &Face) -> FontInfo {
     let upm = face.units_per_em();
     let name = |ids: &[u16]| -> Option<String> {
         ids.iter().find_map(|&id| {
@@ -233,7 +221,7 @@ fn read_metrics(face: &Face) -> SourceMetrics {
     } else {
         (0.8 * em, -0.2 * em)
     };
-    SourceMetrics {
+    FontInfo {
         family: name(&[name_id::TYPOGRAPHIC_FAMILY, name_id::FAMILY])
             .unwrap_or_else(|| "Imported".to_string()),
         style: name(&[name_id::TYPOGRAPHIC_SUBFAMILY, name_id::SUBFAMILY])
@@ -253,6 +241,7 @@ fn read_metrics(face: &Face) -> SourceMetrics {
             .filter(|&h| h > 0.0)
             .or_else(|| measured_top('H'))
             .unwrap_or(0.7 * em),
+        tolerance: DEFAULT_TOLERANCE,
         copyright: name(&[name_id::COPYRIGHT_NOTICE]),
         version: name(&[name_id::VERSION]),
         designer: name(&[name_id::DESIGNER]),

@@ -119,20 +119,11 @@ pub fn import_font(
             "none of the requested characters has a glyph in this font",
         ));
     }
-    let m = &source.metrics;
-    let tolerance = check_tolerance(opts.tolerance, m.units_per_em)?;
+    let tolerance = check_tolerance(opts.tolerance, source.info.units_per_em)?;
     let info = FontInfo {
-        family: opts.family.clone().unwrap_or_else(|| m.family.clone()),
-        style: m.style.clone(),
-        units_per_em: m.units_per_em,
-        ascender: m.ascender,
-        descender: m.descender,
-        x_height: m.x_height,
-        cap_height: m.cap_height,
+        family: opts.family.clone().unwrap_or(source.info.family),
         tolerance: BUILD_SHARE * tolerance,
-        copyright: m.copyright.clone(),
-        designer: m.designer.clone(),
-        version: m.version.clone(),
+        ..source.info
     };
     let mut imported = import_glyphs(&source.glyphs, info, tolerance);
     for c in source.missing {
