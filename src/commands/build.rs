@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use kurbo::PathEl;
 
-use super::CommandError;
+use super::{CommandError, FontArgs};
 use crate::model::Font;
 use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
@@ -34,15 +34,8 @@ Examples:
   xglyph build my-font -o dist
   xglyph build --tolerance 0.1 --text 'Hamburgefonstiv'")]
 pub struct BuildArgs {
-    /// Font directory (font.toml and one TOML file per glyph).
-    #[arg(default_value = "glyphs")]
-    pub font_dir: PathBuf,
-    /// Output directory (created if needed).
-    #[arg(short, long, default_value = "out")]
-    pub out: PathBuf,
-    /// Fitting tolerance in font units; overrides `tolerance` in font.toml.
-    #[arg(long, value_name = "T")]
-    pub tolerance: Option<f64>,
+    #[command(flatten)]
+    pub font: FontArgs,
     /// Proof text (default: lines the font covers); `\n` in the text starts a new line.
     #[arg(long)]
     pub text: Option<String>,
@@ -216,7 +209,7 @@ pub fn summary(loaded: &Loaded, out: &Path, files: &[(PathBuf, Vec<u8>)]) -> Str
 }
 
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
-    let loaded = load(&args.font_dir, args.tolerance)?;
+    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let opts = BuildOptions {
         proof: ProofOptions {
             text: args.text.map(|t| t.replace("\\n", "\n")),
@@ -225,7 +218,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         ..BuildOptions::default()
     };
     let files = outputs(&loaded.font, &loaded.outlines, &opts)?;
-    write_outputs(&args.out, &files)?;
-    print!("{}", summary(&loaded, &args.out, &files));
+    write_outputs(&args.font.out, &files)?;
+    print!("{}", summary(&loaded, &args.font.out, &files));
     Ok(ExitCode::SUCCESS)
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::build::{load, write_outputs};
-use super::CommandError;
+use super::{CommandError, FontArgs};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
 
 /// Which image to render.
@@ -29,12 +29,8 @@ Examples:
   xglyph render --only sheet --overlay --cell 320 --columns 4
   xglyph render --only proof --text 'Hamburgefonstiv\\nHOHOHO' --sizes 18,36,72")]
 pub struct RenderArgs {
-    /// Font directory (font.toml and one TOML file per glyph).
-    #[arg(default_value = "glyphs")]
-    pub font_dir: PathBuf,
-    /// Output directory (created if needed).
-    #[arg(short, long, default_value = "out")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub font: FontArgs,
     /// Render only this image.
     #[arg(long, value_enum)]
     pub only: Option<Only>,
@@ -56,13 +52,10 @@ pub struct RenderArgs {
     /// Largest proof width, pixels (the image fits its longest line up to this).
     #[arg(long, default_value_t = ProofOptions::default().width_px)]
     pub width: u32,
-    /// Fitting tolerance in font units; overrides `tolerance` in font.toml.
-    #[arg(long, value_name = "T")]
-    pub tolerance: Option<f64>,
 }
 
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
-    let loaded = load(&args.font_dir, args.tolerance)?;
+    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let (font, outlines) = (&loaded.font, &loaded.outlines);
     let mut files = Vec::new();
     if args.only != Some(Only::Proof) {
@@ -92,9 +85,9 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
             encode_png(&render_proof(font, outlines, &opts)?)?,
         ));
     }
-    write_outputs(&args.out, &files)?;
+    write_outputs(&args.font.out, &files)?;
     for (path, _) in &files {
-        println!("wrote {}", args.out.join(path).display());
+        println!("wrote {}", args.font.out.join(path).display());
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -116,6 +109,6 @@ mod tests {
         assert_eq!(args.sizes, proof.sizes);
         assert_eq!(args.width, proof.width_px);
         assert_eq!((args.cell, args.columns), (sheet.cell_px, sheet.columns));
-        assert_eq!(args.font_dir, PathBuf::from("glyphs"));
+        assert_eq!(args.font.font_dir, PathBuf::from("glyphs"));
     }
 }

@@ -1,10 +1,9 @@
 //! `xglyph svg`: the SVG glyph set and the SVG font only.
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::build::{load, svg_outputs, write_outputs};
-use super::CommandError;
+use super::{CommandError, FontArgs};
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -16,25 +15,18 @@ Examples:
   xglyph svg                      # glyphs/ -> out/
   xglyph svg my-font -o icons --tolerance 0.25")]
 pub struct SvgArgs {
-    /// Font directory (font.toml and one TOML file per glyph).
-    #[arg(default_value = "glyphs")]
-    pub font_dir: PathBuf,
-    /// Output directory (created if needed).
-    #[arg(short, long, default_value = "out")]
-    pub out: PathBuf,
-    /// Fitting tolerance in font units; overrides `tolerance` in font.toml.
-    #[arg(long, value_name = "T")]
-    pub tolerance: Option<f64>,
+    #[command(flatten)]
+    pub font: FontArgs,
 }
 
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
-    let loaded = load(&args.font_dir, args.tolerance)?;
+    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let files = svg_outputs(&loaded.font, &loaded.outlines);
-    write_outputs(&args.out, &files)?;
+    write_outputs(&args.font.out, &files)?;
     println!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",
         files.len(),
-        args.out.display(),
+        args.font.out.display(),
         files.len() - 1
     );
     Ok(ExitCode::SUCCESS)
