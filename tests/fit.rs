@@ -8,7 +8,7 @@ mod paths;
 use curves::{hausdorff, seed, spline};
 use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point, Shape};
 use proptest::prelude::*;
-use xglyph::fit::fit_contour;
+use xglyph::fit::{fit_contour, stretches, Stretch};
 use xglyph::orient::orient_contours;
 
 #[test]
@@ -282,6 +282,26 @@ proptest! {
                 let edge = PathSeg::Line(kurbo::Line::new(p.pos, next.pos));
                 prop_assert!(segs.contains(&edge), "no line {:?} -> {:?}", p.pos, next.pos);
             }
+        }
+        // Joins inside smooth stretches are G1 (where both handles are long enough for
+        // their directions to survive rounding of the coordinates).
+        let cuts: Vec<Point> = stretches(&xs)
+            .iter()
+            .map(|piece| match *piece {
+                Stretch::Edge { end } | Stretch::Smooth { end, .. } => xs.eval(end),
+            })
+            .collect();
+        let resolved = 1e-6 * xs.extent();
+        for pair in segs.windows(2) {
+            let (PathSeg::Cubic(a), PathSeg::Cubic(b)) = (pair[0], pair[1]) else {
+                continue;
+            };
+            let (ta, tb) = (a.p3 - a.p2, b.p1 - b.p0);
+            if cuts.contains(&a.p3) || ta.hypot().min(tb.hypot()) < resolved {
+                continue;
+            }
+            let sin = ta.cross(tb) / (ta.hypot() * tb.hypot());
+            prop_assert!(sin.abs() < 1e-6 && ta.dot(tb) > 0.0, "join at {:?}: {:?} vs {:?}", a.p3, ta, tb);
         }
         let err = hausdorff(&xs, &fit.path, 200);
         prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
