@@ -14,7 +14,7 @@ use crate::model::Font;
 use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
-use crate::source::{load_font, Diagnostic, Severity, MIN_TOLERANCE};
+use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::write_all_atomic;
 
@@ -56,12 +56,7 @@ pub fn print_diagnostic(d: &Diagnostic) {
 /// overriding the font's own.
 pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandError> {
     if let Some(t) = tolerance {
-        if !(t.is_finite() && t >= MIN_TOLERANCE) {
-            return Err(format!(
-                "--tolerance must be a number of at least {MIN_TOLERANCE} font units, got {t}"
-            )
-            .into());
-        }
+        check_tolerance_flag(t)?;
     }
     let font = match load_font(font_dir) {
         Ok((font, _)) if font.glyphs.is_empty() => {

@@ -28,7 +28,7 @@ use std::path::{Path, PathBuf};
 use kurbo::BezPath;
 
 use crate::model::{Contour, Font, FontInfo, Glyph};
-use crate::source::MIN_TOLERANCE;
+use crate::source::check_tolerance_flag;
 use crate::xspline::{ControlPoint, XSpline};
 use report::{GlyphReport, Report};
 
@@ -215,13 +215,7 @@ pub fn import_svgs(
 }
 
 fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
-    let t = tolerance.unwrap_or(f64::from(upm) / 1000.0);
-    if !(t.is_finite() && t >= MIN_TOLERANCE) {
-        return Err(ImportError::plain(format!(
-            "--tolerance must be a number of at least {MIN_TOLERANCE} font units, got {t}"
-        )));
-    }
-    Ok(t)
+    check_tolerance_flag(tolerance.unwrap_or(f64::from(upm) / 1000.0)).map_err(ImportError::plain)
 }
 
 /// Fits every glyph; glyphs sorted by name in the model, the report in the same order.

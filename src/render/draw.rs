@@ -107,6 +107,30 @@ pub fn stroke_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: C
 
 /// Strokes a polyline given in pixels, `width` px wide; `closed` joins the ends.
 pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32, color: Color) {
+    if let Some(path) = polyline_px(points, closed) {
+        let stroke = Stroke {
+            width,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&path, &paint(color), &stroke, Transform::identity(), None);
+    }
+}
+
+/// Fills a polygon given in pixels (markers).
+pub fn fill_px(pixmap: &mut Pixmap, points: &[Point], color: Color) {
+    if let Some(path) = polyline_px(points, true) {
+        pixmap.fill_path(
+            &path,
+            &paint(color),
+            FillRule::Winding,
+            Transform::identity(),
+            None,
+        );
+    }
+}
+
+/// A tiny-skia path through `points` (pixels); `None` when it has fewer than two.
+fn polyline_px(points: &[Point], closed: bool) -> Option<tiny_skia::Path> {
     let mut pb = PathBuilder::new();
     for (i, p) in points.iter().enumerate() {
         if i == 0 {
@@ -118,35 +142,7 @@ pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32
     if closed {
         pb.close();
     }
-    if let Some(path) = pb.finish() {
-        let stroke = Stroke {
-            width,
-            ..Stroke::default()
-        };
-        pixmap.stroke_path(&path, &paint(color), &stroke, Transform::identity(), None);
-    }
-}
-
-/// Fills a polygon given in pixels (markers).
-pub fn fill_px(pixmap: &mut Pixmap, points: &[Point], color: Color) {
-    let mut pb = PathBuilder::new();
-    for (i, p) in points.iter().enumerate() {
-        if i == 0 {
-            pb.move_to(p.x as f32, p.y as f32);
-        } else {
-            pb.line_to(p.x as f32, p.y as f32);
-        }
-    }
-    pb.close();
-    if let Some(path) = pb.finish() {
-        pixmap.fill_path(
-            &path,
-            &paint(color),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
-    }
+    pb.finish()
 }
 
 /// Fills a circle of `radius` px centred at `c` (pixels).

@@ -30,6 +30,17 @@ pub const DEFAULT_TOLERANCE: f64 = 0.5;
 /// ([`crate::xspline::XSpline::min_tolerance`]).
 pub const MIN_TOLERANCE: f64 = 1e-4;
 
+/// Checks a `--tolerance` given on the command line: finite and at least [`MIN_TOLERANCE`].
+pub fn check_tolerance_flag(t: f64) -> Result<f64, String> {
+    if t.is_finite() && t >= MIN_TOLERANCE {
+        Ok(t)
+    } else {
+        Err(format!(
+            "--tolerance must be a number of at least {MIN_TOLERANCE} font units, got {t}"
+        ))
+    }
+}
+
 /// Loads one `font.toml` from memory (`path` only labels diagnostics): the info and its
 /// warnings, or every diagnostic when there is an error.
 pub fn load_info_text(

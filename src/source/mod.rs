@@ -19,6 +19,6 @@ mod value;
 pub use diagnostic::{line_col, Diagnostic, Severity};
 pub use geometry::{FAR_EMS, FLAT_RELATIVE};
 pub use glyph::load_glyph_text;
-pub use info::{load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};
+pub use info::{check_tolerance_flag, load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 pub use kerning::load_kerning_text;
 pub use load::{load_font, load_sources, LoadedFont, SourceFile, SourceKind};
