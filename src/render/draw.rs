@@ -119,13 +119,7 @@ pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32
 /// Fills a polygon given in pixels (markers).
 pub fn fill_px(pixmap: &mut Pixmap, points: &[Point], color: Color) {
     if let Some(path) = polyline_px(points, true) {
-        pixmap.fill_path(
-            &path,
-            &paint(color),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
+        fill_winding(pixmap, &path, color);
     }
 }
 
@@ -148,14 +142,19 @@ fn polyline_px(points: &[Point], closed: bool) -> Option<tiny_skia::Path> {
 /// Fills a circle of `radius` px centred at `c` (pixels).
 pub fn fill_circle_px(pixmap: &mut Pixmap, c: Point, radius: f64, color: Color) {
     if let Some(path) = PathBuilder::from_circle(c.x as f32, c.y as f32, radius as f32) {
-        pixmap.fill_path(
-            &path,
-            &paint(color),
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
+        fill_winding(pixmap, &path, color);
     }
+}
+
+/// Fills a path given in pixels, nonzero winding.
+fn fill_winding(pixmap: &mut Pixmap, path: &tiny_skia::Path, color: Color) {
+    pixmap.fill_path(
+        path,
+        &paint(color),
+        FillRule::Winding,
+        Transform::identity(),
+        None,
+    );
 }
 
 /// A 1 px line between two pixel points.
