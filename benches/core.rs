@@ -1,5 +1,5 @@
 //! Evaluation, flattening, fitting per contour, and kurbo's two fitters side by side
-//! on the same corpus (tests/common/corpus.rs). Run: `cargo bench --bench core`.
+//! on the same corpus (tests/it/common/corpus.rs). Run: `cargo bench --bench core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use kurbo::{fit_to_bezpath, fit_to_bezpath_opt};
@@ -7,7 +7,7 @@ use std::hint::black_box;
 use xglyph::fit::{fit_contour, stretches, Stretch, StretchSource};
 use xglyph::flatten::flatten;
 
-#[path = "../tests/common/corpus.rs"]
+#[path = "../tests/it/common/corpus.rs"]
 mod corpus;
 
 const TOLERANCE: f64 = 0.5;

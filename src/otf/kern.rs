@@ -5,7 +5,7 @@
 //! only) is for consumers that predate GPOS; it is left out when its pairs overflow the
 //! 16-bit subtable length (more than 10 920 pairs), GPOS still carries them all.
 //! A GPOS subtable too large for 16-bit offsets is split (and the lookup promoted to
-//! Extension) by write-fonts' packer; `tests/otf.rs` reads 40 000 pairs back.
+//! Extension) by write-fonts' packer; `tests/it/otf.rs` reads 40 000 pairs back.
 
 use std::collections::BTreeMap;
 

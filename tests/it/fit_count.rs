@@ -1,7 +1,6 @@
 //! Segment counts against kurbo's near-optimal `fit_to_bezpath_opt` on the same curves.
 
-#[path = "common/corpus.rs"]
-mod corpus;
+use crate::common::corpus;
 
 use kurbo::{fit_to_bezpath_opt, PathEl};
 use xglyph::fit::{fit_contour, stretches, Stretch, StretchSource};

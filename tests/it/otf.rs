@@ -4,8 +4,7 @@
 
 use std::path::Path;
 
-#[path = "common/paths.rs"]
-mod paths;
+use crate::common::paths;
 
 use kurbo::{BezPath, Shape};
 use ttf_parser::{Face, GlyphId};

@@ -6,7 +6,7 @@
 //! with `tesseract <png> - --psm 7` (one text line). Accuracy is
 //! `1 - edit distance / expected length`, summed over all lines; every line, its reading and
 //! the confusions (which character read as what, how often) are printed
-//! (`cargo test --test ocr -- --nocapture`).
+//! (`cargo test --test it ocr -- --nocapture`).
 //!
 //! Tesseract is not a Rust dependency: when it is not on PATH the test prints
 //! `skipped: tesseract not installed` and passes, unless `XGLYPH_REQUIRE_TOOLS=1` (CI),

@@ -1,9 +1,6 @@
 //! Cubic fitting against the true X-spline: two-sided distance by dense sampling.
 
-#[path = "common/curves.rs"]
-mod curves;
-#[path = "common/paths.rs"]
-mod paths;
+use crate::common::curves;
 
 use curves::{hausdorff, seed, spline};
 use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point, Shape};

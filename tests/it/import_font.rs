@@ -9,8 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Instant;
 
-#[path = "common/paths.rs"]
-mod paths;
+use crate::common::paths;
 
 use kurbo::{BezPath, ParamCurve, PathSeg, Point};
 use xglyph::import::font::glyph_outline;

@@ -2,8 +2,7 @@
 //! ttf-parser stays within the stated bounds of the fitted BezPaths (dense two-sided
 //! sampling), and both fonts keep the glyph's advance and code point.
 
-#[path = "common/paths.rs"]
-mod paths;
+use crate::common::paths;
 
 use proptest::prelude::*;
 use ttf_parser::{Face, GlyphId};

@@ -4,7 +4,7 @@
 //! channel differs by more than `CHANNEL_SLACK` (room for float rounding across platforms);
 //! the test fails on the first differing pixel and writes `<name>-actual.png` and
 //! `<name>-diff.png` (differing pixels red over a faded copy) to the target tmp dir.
-//! `XGLYPH_BLESS=1 cargo test --test render` regenerates the references.
+//! `XGLYPH_BLESS=1 cargo test --test it render` regenerates the references.
 
 use std::path::{Path, PathBuf};
 

@@ -1,5 +1,5 @@
 //! A fixed corpus of closed X-splines for comparing fitters: glyph-like contours plus
-//! deterministic random ones (shared by `tests/fit_count.rs` and `benches/core.rs`).
+//! deterministic random ones (shared by `tests/it/fit_count.rs` and `benches/core.rs`).
 
 use xglyph::xspline::{ControlPoint, XSpline};
 

@@ -1,10 +1,7 @@
 //! Flattening: vertices on the curve, exact sharp points, chords within the tolerance both
 //! ways (dense sampling of the true curve), and adaptive vertex counts.
 
-#[path = "common/curves.rs"]
-mod curves;
-#[path = "common/paths.rs"]
-mod paths;
+use crate::common::curves;
 
 use curves::{hausdorff, seed, spline};
 use kurbo::{BezPath, Line, ParamCurve, ParamCurveNearest, Point};

@@ -1,0 +1,5 @@
+//! Helpers shared by the test modules.
+
+pub mod corpus;
+pub mod curves;
+pub mod paths;

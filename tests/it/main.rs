@@ -1,0 +1,23 @@
+//! The integration tests, one binary (one link instead of one per file).
+//!
+//! Each module tests one area; `common` holds the shared checkers and corpora.
+
+mod common;
+
+mod build;
+mod fit;
+mod fit_count;
+mod flatten;
+mod import_font;
+mod import_malformed;
+mod import_svg;
+mod ocr;
+mod otf;
+mod otf_random;
+mod render;
+mod source_docs;
+mod source_emit;
+mod source_fmt;
+mod source_malformed;
+mod svg;
+mod xspline;
