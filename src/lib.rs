@@ -9,6 +9,7 @@
 //! import: existing outlines -> X-spline sources
 //! ```
 
+pub mod cache;
 pub mod cli;
 pub mod commands;
 pub mod fit;

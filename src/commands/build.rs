@@ -13,7 +13,7 @@ use super::{CommandError, FontArgs};
 use crate::model::Font;
 use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
-use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
+use crate::render::{encode_png, render_proof, sheet_png_files, ProofOptions, SheetOptions};
 use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::write_all_atomic;
@@ -23,7 +23,8 @@ use crate::write::write_all_atomic;
 Writes into OUT:
   <Family>-<Style>.svg   SVG 1.1 font (FontForge, svg2ttf)
   svg/<glyph>.svg        one standalone SVG per glyph
-  sheet.png              glyph sheet with metric guides
+  sheet.png              glyph sheet with metric guides (sheet-1.png, sheet-2.png, ...
+                         when the font has more than 512 glyphs)
   proof.png              text proof at several sizes
   <Family>-<Style>.ttf   TrueType font (quadratic outlines within the tolerance)
   <Family>-<Style>.otf   OpenType CFF font (the cubics)
@@ -104,10 +105,9 @@ pub fn outputs(
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, CommandError> {
     let mut files = Vec::new();
     files.extend(svg_outputs(font, outlines));
-    files.push((
-        PathBuf::from("sheet.png"),
-        encode_png(&render_sheet(font, outlines, &opts.sheet)?)?,
-    ));
+    for (name, png) in sheet_png_files(font, outlines, &opts.sheet, "sheet")? {
+        files.push((PathBuf::from(name), png));
+    }
     files.push((
         PathBuf::from("proof.png"),
         encode_png(&render_proof(font, outlines, &opts.proof)?)?,

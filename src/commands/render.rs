@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use super::build::{load, write_outputs};
 use super::{CommandError, FontArgs};
-use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
+use crate::render::{encode_png, render_proof, sheet_png_files, ProofOptions, SheetOptions};
 
 /// Which image to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -16,7 +16,8 @@ pub enum Only {
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
-Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png.
+Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png. A sheet of
+more than one page (512 glyphs at the default cell and columns) is sheet-1.png, sheet-2.png, ...
 
 Sheet guides: grey ascender/descender, blue cap height, green x-height, dark baseline,
 red advance box. Overlay: grey glyph with its exported outline as a dark line, the
@@ -64,15 +65,14 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
             columns: args.columns,
             overlay: args.overlay,
         };
-        let name = if args.overlay {
-            "sheet-overlay.png"
+        let stem = if args.overlay {
+            "sheet-overlay"
         } else {
-            "sheet.png"
+            "sheet"
         };
-        files.push((
-            PathBuf::from(name),
-            encode_png(&render_sheet(font, outlines, &opts)?)?,
-        ));
+        for (name, png) in sheet_png_files(font, outlines, &opts, stem)? {
+            files.push((PathBuf::from(name), png));
+        }
     }
     if args.only != Some(Only::Sheet) {
         let opts = ProofOptions {

@@ -15,6 +15,7 @@ mod ocr;
 mod otf;
 mod otf_random;
 mod render;
+mod scale;
 mod source_docs;
 mod source_emit;
 mod source_fmt;
