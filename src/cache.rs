@@ -120,37 +120,43 @@ impl FitCache {
     /// [`fit_contour`]`(spline, tolerance)`, from the cache when it holds this contour.
     pub fn fit(&self, spline: &XSpline, tolerance: f64) -> ContourFit {
         let key = Key::new(spline, tolerance);
-        let fit = match self.loaded.get(&key) {
-            Some(fit) => {
-                self.hits.fetch_add(1, Ordering::Relaxed);
-                fit.clone()
-            }
-            None => {
-                self.misses.fetch_add(1, Ordering::Relaxed);
-                fit_contour(spline, tolerance)
-            }
-        };
-        // A poisoned lock only means another thread panicked mid-insert of a finished
-        // entry; the map is still whole.
-        let mut used = self.used.lock().unwrap_or_else(|e| e.into_inner());
-        used.insert(key, fit.clone());
+        if let Some(fit) = self.loaded.get(&key) {
+            self.hits.fetch_add(1, Ordering::Relaxed);
+            self.lock_used().insert(key, fit.clone());
+            return fit.clone();
+        }
+        // The same contour placed twice in this run (a component at the same offset).
+        if let Some(fit) = self.lock_used().get(&key) {
+            self.hits.fetch_add(1, Ordering::Relaxed);
+            return fit.clone();
+        }
+        self.misses.fetch_add(1, Ordering::Relaxed);
+        // Fitted outside the lock; two threads fitting the same new contour at once both
+        // get the same (deterministic) fit.
+        let fit = fit_contour(spline, tolerance);
+        self.lock_used().insert(key, fit.clone());
         fit
     }
 
-    /// Contours served from the cache so far.
+    fn lock_used(&self) -> std::sync::MutexGuard<'_, BTreeMap<Key, ContourFit>> {
+        // A poisoned lock only means another thread panicked; every entry in the map was
+        // inserted whole.
+        self.used.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Contours served without fitting so far (from the file, or fitted earlier in this run).
     pub fn hits(&self) -> usize {
         self.hits.load(Ordering::Relaxed)
     }
 
-    /// Contours fitted so far (not in the cache).
+    /// Contours fitted so far (neither in the cache file nor fitted earlier in this run).
     pub fn misses(&self) -> usize {
         self.misses.load(Ordering::Relaxed)
     }
 
     /// The cache file's bytes: every fit used in this run, sorted by key.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let used = self.used.lock().unwrap_or_else(|e| e.into_inner());
-        encode(&used)
+        encode(&self.lock_used())
     }
 
     /// Writes the fits used in this run to `path`, atomically.

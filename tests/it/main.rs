@@ -5,6 +5,7 @@
 mod common;
 
 mod build;
+mod cache;
 mod fit;
 mod fit_count;
 mod flatten;
