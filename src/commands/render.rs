@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use super::build::{load, write_outputs};
 use super::{CommandError, FontArgs};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
+use crate::terminal::outln;
 
 /// Which image to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -87,7 +88,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     }
     write_outputs(&args.font.out, &files)?;
     for (path, _) in &files {
-        println!("wrote {}", args.font.out.join(path).display());
+        outln!("wrote {}", args.font.out.join(path).display());
     }
     Ok(ExitCode::SUCCESS)
 }
