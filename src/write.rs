@@ -337,13 +337,13 @@ fn back_up(path: &Path) -> io::Result<PathBuf> {
     builder.prefix(&prefix).suffix(OLD).rand_bytes(RANDOM_LEN);
     let dir = parent(path);
     match builder.make_in(dir, |name| fs::hard_link(path, name)) {
-        Ok(linked) => return Ok(linked.into_temp_path().keep().map_err(|e| e.error)?),
+        Ok(linked) => return linked.into_temp_path().keep().map_err(|e| e.error),
         Err(e) if e.kind() == io::ErrorKind::StorageFull => return Err(e),
         Err(_) => {}
     }
     let reserved = builder.tempfile_in(dir)?.into_temp_path();
     fs::rename(path, &reserved)?;
-    Ok(reserved.keep().map_err(|e| e.error)?)
+    reserved.keep().map_err(|e| e.error)
 }
 
 /// Removes, from `dir`, temporary and backup files left by a killed commit: regular files
