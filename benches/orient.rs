@@ -77,7 +77,10 @@ fn bench(c: &mut Criterion) {
             orient_all_pairs(contours.clone())
         );
         assert_eq!(
-            nesting_depths(&contours).iter().filter(|&&d| d == 1).count(),
+            nesting_depths(&contours)
+                .iter()
+                .filter(|&&d| d == 1)
+                .count(),
             n / 2
         );
         group.bench_with_input(BenchmarkId::new("sweep", n), &contours, |b, c| {

@@ -145,7 +145,10 @@ impl OutputSet {
     /// Writes every output, or none (see the module docs). Stale temporary files of a
     /// killed earlier commit in the output folders are removed first.
     pub fn commit(self) -> Result<(), WriteError> {
-        let mut tx = Transaction::default();
+        self.commit_with(Transaction::default())
+    }
+
+    fn commit_with(self, mut tx: Transaction) -> Result<(), WriteError> {
         let result = tx.run(self.files);
         match result {
             Ok(()) => {
@@ -176,6 +179,9 @@ struct Transaction {
     /// Staged files not yet renamed; dropping one removes it.
     staged: Vec<(NamedTempFile, PathBuf)>,
     committed: Vec<Committed>,
+    /// Tests: fail just before renaming the staged file with this index.
+    #[cfg(test)]
+    fail_before_rename: Option<usize>,
 }
 
 impl Transaction {
@@ -196,7 +202,12 @@ impl Transaction {
             self.stage(path, bytes)?;
         }
         // On an error the staged files not yet renamed are dropped, which removes them.
-        for (temp, path) in std::mem::take(&mut self.staged) {
+        for (_k, (temp, path)) in std::mem::take(&mut self.staged).into_iter().enumerate() {
+            #[cfg(test)]
+            if self.fail_before_rename == Some(_k) {
+                let injected = io::Error::other("injected failure");
+                return Err(error(&path, WriteErrorKind::Io(injected)));
+            }
             self.rename_into_place(temp, path)?;
         }
         sync_dirs(&self.committed);
@@ -458,4 +469,241 @@ pub fn write_all_atomic<P: AsRef<Path>>(files: &[(P, Vec<u8>)]) -> io::Result<()
         set.add(path.as_ref(), bytes.clone());
     }
     set.commit().map_err(io::Error::other)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every entry under `dir` (relative, sorted), with file contents; links as `-> target`.
+    fn tree(dir: &Path) -> Vec<(String, String)> {
+        fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
+            for entry in fs::read_dir(dir).unwrap() {
+                let path = entry.unwrap().path();
+                let rel = path.strip_prefix(root).unwrap().display().to_string();
+                let meta = fs::symlink_metadata(&path).unwrap();
+                if meta.file_type().is_symlink() {
+                    let target = fs::read_link(&path).unwrap();
+                    out.push((rel, format!("-> {}", target.display())));
+                } else if meta.is_dir() {
+                    out.push((rel.clone() + "/", String::new()));
+                    walk(root, &path, out);
+                } else {
+                    out.push((rel, fs::read_to_string(&path).unwrap()));
+                }
+            }
+        }
+        let mut out = Vec::new();
+        walk(dir, dir, &mut out);
+        out.sort();
+        out
+    }
+
+    fn entries(list: &[(&str, &str)]) -> Vec<(String, String)> {
+        list.iter()
+            .map(|(a, b)| (a.to_string(), b.to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn commit_writes_every_file_and_creates_folders() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let mut set = OutputSet::new();
+        set.add(out.join("a.txt"), "A");
+        set.add(out.join("sub/deeper/b.txt"), "B");
+        set.commit().unwrap();
+        assert_eq!(
+            tree(&out),
+            entries(&[
+                ("a.txt", "A"),
+                ("sub/", ""),
+                ("sub/deeper/", ""),
+                ("sub/deeper/b.txt", "B")
+            ])
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn new_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let usual = dir.path().join("usual");
+        File::create(&usual).unwrap();
+        let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        let kept = dir.path().join("kept.txt");
+        fs::write(&kept, "old").unwrap();
+        fs::set_permissions(&kept, fs::Permissions::from_mode(0o640)).unwrap();
+        let mut set = OutputSet::new();
+        set.add(dir.path().join("new.txt"), "new");
+        set.add(&kept, "replaced");
+        set.commit().unwrap();
+        assert_eq!(mode(&dir.path().join("new.txt")), mode(&usual));
+        assert_eq!(mode(&kept), 0o640);
+        assert_eq!(fs::read_to_string(&kept).unwrap(), "replaced");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_at_an_output_name_is_replaced_not_followed() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim");
+        fs::write(&victim, "precious").unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir(&out).unwrap();
+        std::os::unix::fs::symlink("../victim", out.join("sheet.png")).unwrap();
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "png");
+        set.commit().unwrap();
+        assert_eq!(fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(tree(&out), entries(&[("sheet.png", "png")]));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_failure_while_renaming_restores_everything() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir(&out).unwrap();
+        fs::write(out.join("a.txt"), "old a").unwrap();
+        fs::write(out.join("b.txt"), "old b").unwrap();
+        std::os::unix::fs::symlink("a.txt", out.join("link")).unwrap();
+        let before = tree(&out);
+        for fail_at in 0..4 {
+            let mut set = OutputSet::new();
+            set.add(out.join("a.txt"), "new a");
+            set.add(out.join("c/new.txt"), "new c");
+            set.add(out.join("link"), "no longer a link");
+            set.add(out.join("b.txt"), "new b");
+            let tx = Transaction {
+                fail_before_rename: Some(fail_at),
+                ..Transaction::default()
+            };
+            let err = set.commit_with(tx).unwrap_err();
+            let failed = ["a.txt", "c/new.txt", "link", "b.txt"][fail_at];
+            assert_eq!(
+                err.to_string(),
+                format!(
+                    "cannot write {}: injected failure",
+                    out.join(failed).display()
+                )
+            );
+            assert_eq!(tree(&out), before, "failing before rename {fail_at}");
+        }
+    }
+
+    #[test]
+    fn things_in_the_way_are_named_and_nothing_is_left() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir_all(out.join("proof.png")).unwrap();
+        fs::write(out.join("svg"), "a file").unwrap();
+        let before = tree(&out);
+
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("new/folder/x.svg"), "x");
+        set.add(out.join("proof.png"), "proof");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {}: a folder of that name is in the way",
+                out.join("proof.png").display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("svg/a.svg"), "a");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot create the folder {}: a file of that name is in the way",
+                out.join("svg").display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        let long = "n".repeat(300) + ".svg";
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("glyphs").join(&long), "long");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {}: file name too long",
+                out.join("glyphs").join(&long).display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+    }
+
+    #[test]
+    fn a_path_given_twice_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut set = OutputSet::new();
+        set.add(dir.path().join("a"), "1");
+        set.add(dir.path().join("a"), "2");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {} twice in one set",
+                dir.path().join("a").display()
+            )
+        );
+        assert_eq!(tree(dir.path()), []);
+    }
+
+    #[test]
+    fn only_stale_files_of_our_naming_are_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        // A PID that is gone: a child that has exited and been waited for.
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        child.wait().unwrap();
+        let dead = child.id();
+        let live = std::process::id();
+        let stale = [
+            format!(".xglyph-{dead}-abcdeABCDE.tmp"),
+            format!(".xglyph-{dead}-0123456789.old"),
+            format!(".sheet.png.tmp{dead}"),
+        ];
+        let kept = [
+            format!(".xglyph-{live}-abcdeABCDE.tmp"),
+            format!(".xglyph-{dead}-short.tmp"),
+            format!(".xglyph-{dead}-abcdeABCDE.tmp.bak"),
+            format!("xglyph-{dead}-abcdeABCDE.tmp"),
+            format!(".other.png.tmp{dead}"),
+            ".sheet.png.tmpabc".to_string(),
+            "notes.tmp".to_string(),
+        ];
+        for name in stale.iter().chain(&kept) {
+            fs::write(dir.path().join(name), "x").unwrap();
+        }
+        // A folder of our naming stays too.
+        let folder = format!(".xglyph-{dead}-folderFOLD.tmp");
+        fs::create_dir(dir.path().join(&folder)).unwrap();
+        remove_stale(dir.path(), &[(dir.path().join("sheet.png"), Vec::new())]);
+        let mut left: Vec<String> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        let mut want: Vec<String> = kept.to_vec();
+        want.push(folder);
+        want.sort();
+        assert_eq!(left, want);
+    }
+
+    #[test]
+    fn reasons_read_after_a_colon() {
+        let e = io::Error::from_raw_os_error(28);
+        assert_eq!(reason(&e), "no space left on device");
+        assert_eq!(reason(&io::Error::other("Odd")), "odd");
+    }
 }
