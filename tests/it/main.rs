@@ -20,4 +20,5 @@ mod source_emit;
 mod source_fmt;
 mod source_malformed;
 mod svg;
+mod writes;
 mod xspline;
