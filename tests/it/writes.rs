@@ -308,7 +308,11 @@ fn a_killed_build_leaves_only_whole_files() {
                 continue;
             }
             let whole = want.iter().find(|(n, _)| n == name).map(|(_, b)| b);
-            assert_eq!(whole, Some(bytes), "{name} is not a whole output (kill {k})");
+            assert_eq!(
+                whole,
+                Some(bytes),
+                "{name} is not a whole output (kill {k})"
+            );
         }
     }
     eprintln!("{caught_writing} temporary files seen after {steps} kills");
