@@ -202,9 +202,10 @@ impl Transaction {
             self.stage(path, bytes)?;
         }
         // On an error the staged files not yet renamed are dropped, which removes them.
-        for (_k, (temp, path)) in std::mem::take(&mut self.staged).into_iter().enumerate() {
+        for (temp, path) in std::mem::take(&mut self.staged) {
+            // Tests: an injected failure before the k-th rename (k = renames done so far).
             #[cfg(test)]
-            if self.fail_before_rename == Some(_k) {
+            if self.fail_before_rename == Some(self.committed.len()) {
                 let injected = io::Error::other("injected failure");
                 return Err(error(&path, WriteErrorKind::Io(injected)));
             }
