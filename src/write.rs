@@ -70,7 +70,9 @@ pub enum WriteErrorKind {
     FileInTheWay,
     /// Two outputs of one set have the same path.
     Duplicate,
-    /// The file system refused: creating a folder, writing, renaming.
+    /// The file system refused to create an output folder.
+    Folder(io::Error),
+    /// The file system refused to write or rename an output file.
     Io(io::Error),
 }
 
@@ -89,6 +91,9 @@ impl fmt::Display for WriteError {
                 "cannot create the folder {path}: a file of that name is in the way"
             ),
             WriteErrorKind::Duplicate => write!(f, "cannot write {path} twice in one set"),
+            WriteErrorKind::Folder(e) => {
+                write!(f, "cannot create the folder {path}: {}", reason(e))
+            }
             WriteErrorKind::Io(e) => write!(f, "cannot write {path}: {}", reason(e)),
         }?;
         if let Some(rollback) = &self.rollback {
@@ -224,14 +229,14 @@ impl Transaction {
                 Ok(meta) if meta.is_dir() => break,
                 Ok(_) => return Err(error(d, WriteErrorKind::FileInTheWay)),
                 Err(e) if e.kind() == io::ErrorKind::NotFound => missing.push(d),
-                Err(e) => return Err(error(d, WriteErrorKind::Io(e))),
+                Err(e) => return Err(error(d, WriteErrorKind::Folder(e))),
             }
             at = d.parent();
         }
         for d in missing.into_iter().rev() {
             match fs::create_dir(d) {
                 Ok(()) => self.created_dirs.push(d.to_path_buf()),
-                Err(e) => return Err(error(d, WriteErrorKind::Io(e))),
+                Err(e) => return Err(error(d, WriteErrorKind::Folder(e))),
             }
         }
         Ok(())
@@ -639,6 +644,20 @@ mod tests {
             format!(
                 "cannot write {}: file name too long",
                 out.join("glyphs").join(&long).display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        // A folder name too long: the error names it as a folder.
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("new").join(&long).join("x.svg"), "x");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot create the folder {}: file name too long",
+                out.join("new").join(&long).display()
             )
         );
         assert_eq!(tree(&out), before);
