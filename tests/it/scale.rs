@@ -255,3 +255,116 @@ fn a_font_that_fits_one_page_keeps_one_sheet() {
     let page = render_sheet_page(&font, &outlines, &opts, &pages[0]).unwrap();
     assert_eq!(whole.data(), page.data());
 }
+
+/// Every file under `dir` but the fit cache, by relative path, with its bytes.
+fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut std::collections::BTreeMap<String, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE)) {
+                let rel = path.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+                out.insert(rel, std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    let mut out = std::collections::BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("scale-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `xglyph ARGS` with `RAYON_NUM_THREADS=threads`; panics unless it succeeds.
+fn run(threads: usize, args: &[&std::ffi::OsStr]) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args(args)
+        .env("RAYON_NUM_THREADS", threads.to_string())
+        .output()
+        .expect("xglyph runs");
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn outputs_are_the_same_bytes_on_1_and_4_threads() {
+    let glyphs = repo("glyphs");
+    let tmp = scratch("threads");
+    for command in ["build", "svg", "render"] {
+        let outs: Vec<_> = [1, 4]
+            .iter()
+            .map(|&threads| {
+                let out = tmp.join(format!("{command}-{threads}"));
+                run(
+                    threads,
+                    &[command.as_ref(), glyphs.as_os_str(), "-o".as_ref(), out.as_os_str()],
+                );
+                output_files(&out)
+            })
+            .collect();
+        assert!(outs[0].len() >= 2, "{command}: {} files", outs[0].len());
+        assert_eq!(
+            outs[0].keys().collect::<Vec<_>>(),
+            outs[1].keys().collect::<Vec<_>>(),
+            "{command}"
+        );
+        for (name, bytes) in &outs[0] {
+            assert!(outs[1][name] == *bytes, "{command}: {name} differs");
+        }
+    }
+}
+
+#[test]
+fn a_build_from_the_cache_writes_the_same_bytes() {
+    let glyphs = repo("glyphs");
+    let tmp = scratch("cache-build");
+    let build = |out: &Path| {
+        run(
+            2,
+            &[
+                "build".as_ref(),
+                glyphs.as_os_str(),
+                "-o".as_ref(),
+                out.as_os_str(),
+            ],
+        )
+    };
+    let cold = tmp.join("cold");
+    build(&cold);
+    let cache = cold.join(xglyph::cache::CACHE_FILE);
+    let (_, outcome) = xglyph::cache::FitCache::load(&cache);
+    assert!(
+        matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n > 150),
+        "{outcome:?}"
+    );
+    let expected = output_files(&cold);
+    // Warm: every contour from the cache.
+    build(&cold);
+    assert!(output_files(&cold) == expected, "a warm build differs");
+    // Corrupt the cache in several ways: each build ignores it and writes the same bytes.
+    let good = std::fs::read(&cache).unwrap();
+    let mut flipped = good.clone();
+    flipped[good.len() / 2] ^= 0x40;
+    for bad in [
+        flipped,
+        good[..good.len() / 3].to_vec(),
+        Vec::new(),
+        b"garbage".to_vec(),
+    ] {
+        std::fs::write(&cache, &bad).unwrap();
+        build(&cold);
+        assert!(output_files(&cold) == expected, "a build over a bad cache differs");
+        assert_eq!(std::fs::read(&cache).unwrap(), good, "the cache was not rebuilt");
+    }
+    // The cache never goes beside the sources.
+    assert!(!glyphs.join(xglyph::cache::CACHE_FILE).exists());
+}
