@@ -49,8 +49,7 @@ fn label_face_source(font: &Font) -> String {
     let _ = writeln!(s, "pub(super) const ASCENDER: f64 = {:?};", info.ascender);
     let _ = writeln!(s, "pub(super) const DESCENDER: f64 = {:?};", info.descender);
     s.push_str(
-        "\n/// (character, or `None` for `.notdef`; advance; contours of `[x, y, s]` points)\n\
-         pub(super) const GLYPHS: &[(Option<char>, f64, &[&[[f64; 3]]])] = &[\n",
+        "\npub(super) const GLYPHS: &[super::GlyphSource] = &[\n",
     );
     for (c, glyph) in glyphs {
         let _ = write!(s, "    ({c:?}, {:?}, &[", glyph.advance);
@@ -264,7 +263,11 @@ fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
             if path.is_dir() {
                 walk(root, &path, out);
             } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE)) {
-                let rel = path.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+                let rel = path
+                    .strip_prefix(root)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned();
                 out.insert(rel, std::fs::read(&path).unwrap());
             }
         }
@@ -306,7 +309,12 @@ fn outputs_are_the_same_bytes_on_1_and_4_threads() {
                 let out = tmp.join(format!("{command}-{threads}"));
                 run(
                     threads,
-                    &[command.as_ref(), glyphs.as_os_str(), "-o".as_ref(), out.as_os_str()],
+                    &[
+                        command.as_ref(),
+                        glyphs.as_os_str(),
+                        "-o".as_ref(),
+                        out.as_os_str(),
+                    ],
                 );
                 output_files(&out)
             })
@@ -362,8 +370,15 @@ fn a_build_from_the_cache_writes_the_same_bytes() {
     ] {
         std::fs::write(&cache, &bad).unwrap();
         build(&cold);
-        assert!(output_files(&cold) == expected, "a build over a bad cache differs");
-        assert_eq!(std::fs::read(&cache).unwrap(), good, "the cache was not rebuilt");
+        assert!(
+            output_files(&cold) == expected,
+            "a build over a bad cache differs"
+        );
+        assert_eq!(
+            std::fs::read(&cache).unwrap(),
+            good,
+            "the cache was not rebuilt"
+        );
     }
     // The cache never goes beside the sources.
     assert!(!glyphs.join(xglyph::cache::CACHE_FILE).exists());

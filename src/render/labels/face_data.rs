@@ -6,8 +6,7 @@ pub(super) const UNITS_PER_EM: f64 = 1000.0;
 pub(super) const ASCENDER: f64 = 800.0;
 pub(super) const DESCENDER: f64 = -200.0;
 
-/// (character, or `None` for `.notdef`; advance; contours of `[x, y, s]` points)
-pub(super) const GLYPHS: &[(Option<char>, f64, &[&[[f64; 3]]])] = &[
+pub(super) const GLYPHS: &[super::GlyphSource] = &[
     (Some(' '), 250.0, &[
     ]),
     (Some('!'), 260.0, &[

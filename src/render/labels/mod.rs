@@ -23,6 +23,10 @@ use crate::xspline::{ControlPoint, XSpline};
 #[rustfmt::skip]
 mod face_data;
 
+/// A glyph of the generated data: its character (`None` for `.notdef`), its advance, and
+/// its contours of `[x, y, s]` control points.
+type GlyphSource = (Option<char>, f64, &'static [&'static [[f64; 3]]]);
+
 /// Flattening tolerance of the built-in face, font units of its 1000-unit em.
 pub const FLATTEN_TOLERANCE: f64 = 1.0;
 
