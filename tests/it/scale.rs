@@ -48,9 +48,7 @@ fn label_face_source(font: &Font) -> String {
     );
     let _ = writeln!(s, "pub(super) const ASCENDER: f64 = {:?};", info.ascender);
     let _ = writeln!(s, "pub(super) const DESCENDER: f64 = {:?};", info.descender);
-    s.push_str(
-        "\npub(super) const GLYPHS: &[super::GlyphSource] = &[\n",
-    );
+    s.push_str("\npub(super) const GLYPHS: &[super::GlyphSource] = &[\n");
     for (c, glyph) in glyphs {
         let _ = write!(s, "    ({c:?}, {:?}, &[", glyph.advance);
         for contour in font.resolved_contours(glyph) {
