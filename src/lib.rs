@@ -20,6 +20,7 @@ pub mod names;
 pub mod orient;
 pub mod otf;
 pub mod outline;
+pub mod pipeline;
 pub mod render;
 pub mod source;
 pub mod svg;

@@ -3,8 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::build::{load, write_outputs};
+use super::build::load;
 use super::{CommandError, FontArgs};
+use crate::pipeline::write_outputs;
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
 
 /// Which image to render.
@@ -54,9 +55,10 @@ pub struct RenderArgs {
     pub width: u32,
 }
 
+/// Runs `xglyph render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let (font, outlines) = (&loaded.font, &loaded.outlines);
+    let font = &loaded.font;
     let mut files = Vec::new();
     if args.only != Some(Only::Proof) {
         let opts = SheetOptions {
@@ -71,7 +73,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         };
         files.push((
             PathBuf::from(name),
-            encode_png(&render_sheet(font, outlines, &opts)?)?,
+            encode_png(&render_sheet(font, &opts)?)?,
         ));
     }
     if args.only != Some(Only::Sheet) {
@@ -82,7 +84,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         };
         files.push((
             PathBuf::from("proof.png"),
-            encode_png(&render_proof(font, outlines, &opts)?)?,
+            encode_png(&render_proof(font, &opts)?)?,
         ));
     }
     write_outputs(&args.font.out, &files)?;

@@ -2,8 +2,9 @@
 
 use std::process::ExitCode;
 
-use super::build::{load, svg_outputs, write_outputs};
+use super::build::load;
 use super::{CommandError, FontArgs};
+use crate::pipeline::{svg_outputs, write_outputs};
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -19,9 +20,10 @@ pub struct SvgArgs {
     pub font: FontArgs,
 }
 
+/// Runs `xglyph svg`.
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let files = svg_outputs(&loaded.font, &loaded.outlines);
+    let files = svg_outputs(&loaded.font);
     write_outputs(&args.font.out, &files)?;
     println!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",
