@@ -161,7 +161,12 @@ pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyp
     let segments = path
         .elements()
         .iter()
-        .filter(|el| matches!(el, PathEl::LineTo(_) | PathEl::QuadTo(..) | PathEl::CurveTo(..)))
+        .filter(|el| {
+            matches!(
+                el,
+                PathEl::LineTo(_) | PathEl::QuadTo(..) | PathEl::CurveTo(..)
+            )
+        })
         .count();
     OutlinedGlyph {
         name: glyph.name.clone(),
@@ -327,10 +332,7 @@ mod tests {
         assert_eq!(two.contours[1].offset, Vec2::new(10.0, 20.0));
         let first = two.contours[1].points().next().expect("a point");
         assert_eq!((first.pos.x, first.pos.y), (10.0, 20.0));
-        assert_eq!(
-            two.path.bounding_box(),
-            Rect::new(10.0, 0.0, 300.0, 120.0)
-        );
+        assert_eq!(two.path.bounding_box(), Rect::new(10.0, 0.0, 300.0, 120.0));
         // Squares of sharp points are exact: lines only.
         assert_eq!(out.max_error(), 0.0);
     }
@@ -341,6 +343,7 @@ mod tests {
         let tiny = Contour::new(vec![
             ControlPoint::new(0.0, 0.0, 0.0),
             ControlPoint::new(1e-17, 0.0, 0.0),
+            ControlPoint::new(100.0, 50.0, 0.0),
             ControlPoint::new(0.0, 100.0, 0.0),
         ])
         .expect("distinct points");
@@ -363,6 +366,7 @@ mod tests {
         let user = out.glyph("user").expect("user");
         let base = out.glyph("base").expect("base");
         assert_eq!(user.path, Affine::translate((1.0, 0.0)) * base.path.clone());
+        assert_eq!(user.path.area(), 5000.0);
         assert!(!out.has_notdef());
         assert_eq!(out.notdef().path, notdef_box(&out.info).path);
     }

@@ -63,7 +63,9 @@ mod tests {
         assert_eq!(head.created, LongDateTime::new(3_660_681_600));
         assert_eq!(head.modified, head.created);
         assert_eq!(head.lowest_rec_ppem, 8);
-        assert!(head.flags.contains(Flags::BASELINE_AT_Y_0 | Flags::LSB_AT_X_0));
+        assert!(head
+            .flags
+            .contains(Flags::BASELINE_AT_Y_0 | Flags::LSB_AT_X_0));
         let regular = super::head(&Naming::new(&info()), &metrics(), 0);
         assert_eq!(regular.mac_style, MacStyle::empty());
         assert_eq!(regular.font_revision, Fixed::from_f64(1.0));

@@ -74,7 +74,11 @@ mod tests {
     #[test]
     fn one_metric_per_glyph() {
         let hmtx = hmtx(&ADVANCES, &BOXES);
-        let got: Vec<(u16, i16)> = hmtx.h_metrics.iter().map(|m| (m.advance, m.side_bearing)).collect();
+        let got: Vec<(u16, i16)> = hmtx
+            .h_metrics
+            .iter()
+            .map(|m| (m.advance, m.side_bearing))
+            .collect();
         assert_eq!(got, [(500, 50), (600, -10), (0, 0)]);
         assert!(hmtx.left_side_bearings.is_empty());
     }

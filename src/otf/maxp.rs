@@ -44,7 +44,9 @@ mod tests {
     #[test]
     fn truetype_maxima() {
         let mut boxes = ot_glyph("boxes", &['o'], 600);
-        let mut path: BezPath = Rect::new(0.0, 0.0, 100.0, 100.0).path_elements(0.1).collect();
+        let mut path: BezPath = Rect::new(0.0, 0.0, 100.0, 100.0)
+            .path_elements(0.1)
+            .collect();
         path.extend(Rect::new(200.0, 0.0, 300.0, 100.0).path_elements(0.1));
         boxes.path = path;
         let glyphs = [ot_glyph(".notdef", &[], 500), boxes];

@@ -39,9 +39,6 @@ use kurbo::BezPath;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
-pub use cff::{encode_dict_int, encode_dict_real, encode_index};
-pub use charstring::encode_charstring_int;
-pub use glyph_names::is_valid_glyph_name;
 pub use specimen::{specimen_html, specimen_text};
 
 /// Something the model holds that an OpenType font cannot.
@@ -51,8 +48,11 @@ pub enum OtfError {
     TooManyGlyphs(usize),
     /// A coordinate, advance or metric outside the signed 16-bit range of the tables.
     OutOfRange {
+        /// What the value is, e.g. `advance of 'A'`.
         what: String,
+        /// The value.
         value: f64,
+        /// The range it must be in, e.g. `-32768..=32767`.
         range: &'static str,
     },
     /// Two glyphs mapped to one code point.
@@ -170,6 +170,7 @@ pub struct OrderedGlyph {
     pub model_name: String,
     /// The PostScript name in `post` / the CFF charset.
     pub ps_name: String,
+    /// Code points mapped to the glyph.
     pub unicodes: Vec<char>,
     /// Advance on the grid, font units.
     pub advance: u16,

@@ -15,7 +15,11 @@ const UNDERLINE_THICKNESS: f64 = 0.05;
 /// (format 2), otherwise format 3. Fixed pitch when more than one glyph has an advance
 /// and all those advances are equal.
 pub fn post(glyphs: &[OtGlyph], units_per_em: u16, names: bool) -> Post {
-    let widths: Vec<u16> = glyphs.iter().map(|g| g.advance).filter(|&a| a > 0).collect();
+    let widths: Vec<u16> = glyphs
+        .iter()
+        .map(|g| g.advance)
+        .filter(|&a| a > 0)
+        .collect();
     let fixed_pitch = widths.len() > 1 && widths.iter().all(|&w| w == widths[0]);
     let mut post = if names {
         Post::new_v2(glyphs.iter().map(|g| g.ps_name.as_str()))
@@ -54,7 +58,11 @@ mod tests {
         assert_eq!(post.glyph_name_index.as_deref(), Some(&[0, 36, 258][..]));
         assert_eq!(post.string_data.as_ref().map(|s| s.len()), Some(1));
 
-        let mono = [ot_glyph("a", &['a'], 600), ot_glyph("b", &['b'], 600), ot_glyph("mark", &[], 0)];
+        let mono = [
+            ot_glyph("a", &['a'], 600),
+            ot_glyph("b", &['b'], 600),
+            ot_glyph("mark", &[], 0),
+        ];
         let post3 = super::post(&mono, 1000, false);
         assert_eq!(post3.version, Version16Dot16::VERSION_3_0);
         assert_eq!(post3.glyph_name_index, None);

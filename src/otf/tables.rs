@@ -252,7 +252,10 @@ pub(crate) mod tests {
                 bbox: (-20, -5, 400, 720),
             }
         );
-        assert_eq!(Metrics::new(&font_info, &[None]).expect("in range").bbox, (0, 0, 0, 0));
+        assert_eq!(
+            Metrics::new(&font_info, &[None]).expect("in range").bbox,
+            (0, 0, 0, 0)
+        );
         font_info.ascender = 40_000.0;
         assert!(matches!(
             Metrics::new(&font_info, &boxes),

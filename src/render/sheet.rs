@@ -135,11 +135,7 @@ impl CellGeometry {
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
         let (mut high, mut low) = (font.info.ascender, font.info.descender);
-        for g in font
-            .glyphs
-            .iter()
-            .filter(|g| !g.path.elements().is_empty())
-        {
+        for g in font.glyphs.iter().filter(|g| !g.path.elements().is_empty()) {
             let ink = g.path.bounding_box();
             high = high.max(ink.y1);
             low = low.min(ink.y0);

@@ -189,8 +189,10 @@ fn code_point(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, n: i64) -> Option<cha
 
 /// One `[[contour]]` table: the validated contour and where each point was written.
 ///
-/// The rules of a closed X-spline are [`Contour::new`]'s; this only reads the points and
-/// puts its error at the place of the point it names.
+/// The rules of a closed X-spline are [`Contour::new`]'s; this reads the points and puts
+/// its error at the place of the point it names. Each `s` is also range-checked as it is
+/// read, like every number, so that one unreadable point does not hide a bad `s` in
+/// another (the contour check needs every point).
 fn load_contour(
     ctx: &mut Ctx<'_>,
     ct: &DeTable<'_>,
@@ -240,6 +242,12 @@ fn load_contour(
         let x = number(ctx, &items[0], "x");
         let y = number(ctx, &items[1], "y");
         let s = number(ctx, &items[2], "s");
+        if let Some(s) = s {
+            if !(-1.0..=1.0).contains(&s) {
+                ctx.err(items[2].span().start, format!("s = {s} is outside [-1, 1]"));
+                ok = false;
+            }
+        }
         match (x, y, s) {
             (Some(x), Some(y), Some(s)) => {
                 points.push(ControlPoint::new(x, y, s));

@@ -26,15 +26,20 @@ pub enum SourceKind {
 /// One source file as it was read.
 #[derive(Clone, Debug)]
 pub struct SourceFile {
+    /// The file.
     pub path: PathBuf,
+    /// Its text.
     pub text: String,
+    /// What it holds.
     pub kind: SourceKind,
 }
 
 /// A font that loaded without errors, with its warnings and the files it came from.
 #[derive(Clone, Debug)]
 pub struct LoadedFont {
+    /// The model.
     pub font: Font,
+    /// Warnings of the sources.
     pub warnings: Vec<Diagnostic>,
     /// `font.toml`, the glyph files in file-name order, then `kerning.toml` if present.
     pub files: Vec<SourceFile>,

@@ -17,7 +17,9 @@ use crate::outline::{OutlinedFont, OutlinedGlyph};
 /// One file of the glyph set: its stem (`crate::names` rule) and its text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlyphSvg {
+    /// File stem, unique in the set (case-insensitively).
     pub stem: String,
+    /// The SVG document.
     pub svg: String,
 }
 
