@@ -18,7 +18,7 @@
 
 use std::borrow::Cow;
 
-use kurbo::{Affine, BezPath, PathEl, Rect, Vec2};
+use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
 
 use crate::fit::fit_contour;
 use crate::model::{Component, Font, FontInfo, Glyph, KernPair};
@@ -118,7 +118,6 @@ impl OutlinedFont {
 
     /// The ink box of every non-empty glyph outline together, if there is any ink.
     pub fn ink_bounds(&self) -> Option<Rect> {
-        use kurbo::Shape;
         self.glyphs
             .iter()
             .filter(|g| !g.path.elements().is_empty())
@@ -250,8 +249,6 @@ fn rectangle(path: &mut BezPath, [x0, y0, x1, y1]: [f64; 4], ccw: bool) {
 
 #[cfg(test)]
 mod tests {
-    use kurbo::Shape;
-
     use super::*;
     use crate::model::Contour;
 

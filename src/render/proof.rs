@@ -5,7 +5,6 @@
 //! text; the image is as wide as the longest line (plus margins) up to a maximum width,
 //! and lines longer than that are cut at the right edge (no wrapping).
 
-use kurbo::Shape;
 use tiny_skia::{Color, Pixmap};
 
 use super::draw::{fill_glyph, Placement};
@@ -107,12 +106,9 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
     // Lines are spaced by the em box, widened to the font's ink (accented capitals reach
     // above the ascender), so no glyph is cut off or touches the next line.
     let (mut top, mut bottom) = (info.ascender, info.descender);
-    for g in &font.glyphs {
-        if !g.path.elements().is_empty() {
-            let bbox = g.path.bounding_box();
-            top = top.max(bbox.y1);
-            bottom = bottom.min(bbox.y0);
-        }
+    if let Some(ink) = font.ink_bounds() {
+        top = top.max(ink.y1);
+        bottom = bottom.min(ink.y0);
     }
     let em = (info.ascender - info.descender).max(top - bottom);
     let layout = Layout::new(font);

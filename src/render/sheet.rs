@@ -8,7 +8,7 @@
 //! `U+XXXX`) is set in the font's own glyphs (`.notdef` or a box for characters it lacks),
 //! shrunk to fit the cell width.
 
-use kurbo::{Point, Shape};
+use kurbo::Point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
@@ -135,8 +135,7 @@ impl CellGeometry {
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
         let (mut high, mut low) = (font.info.ascender, font.info.descender);
-        for g in font.glyphs.iter().filter(|g| !g.path.elements().is_empty()) {
-            let ink = g.path.bounding_box();
+        if let Some(ink) = font.ink_bounds() {
             high = high.max(ink.y1);
             low = low.min(ink.y0);
         }
