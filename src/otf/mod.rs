@@ -1,8 +1,9 @@
 //! TTF and OTF export: the fitted outlines as installable OpenType fonts.
 //!
-//! Both flavours share one glyph order (the outlined font's: `.notdef` first, the
-//! [`notdef_box`] when the font has none), one set of PostScript glyph names and the same metrics tables ([`tables`]); they differ only in
-//! the outline table:
+//! Both read the outlined font only ([`OutlinedFont`]) and share one glyph order (its
+//! order, which has `.notdef` first, with the [`notdef_box`] put first when the font has
+//! none), one set of PostScript glyph names and the tables built in [`tables`] (one module
+//! per table); they differ only in the outline table:
 //!
 //! - TTF: `glyf`/`loca` with the cubics converted to quadratic splines within the font's
 //!   tolerance ([`quadratic`]), points on the integer grid, outer contours clockwise.
@@ -14,7 +15,8 @@
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
 //!
 //! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
-//! `kern` table ([`kern`]). Components are already resolved into the outlines; no composite glyphs.
+//! `kern` table ([`kern`]). Components are already resolved into the outlines; no
+//! composite glyphs.
 
 mod cff;
 mod charstring;
