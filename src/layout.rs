@@ -126,7 +126,7 @@ mod tests {
     use kurbo::Shape;
 
     use super::*;
-    use crate::model::{Font, FontInfo, Glyph, KernPair};
+    use crate::model::{test_info, Font, Glyph, KernPair};
     use crate::outline::outline_font;
 
     fn glyph(name: &str, c: Option<char>, advance: f64) -> Glyph {
@@ -149,19 +149,7 @@ mod tests {
             glyphs.insert(0, glyph(".notdef", None, 500.0));
         }
         Font {
-            info: FontInfo {
-                family: "T".into(),
-                style: "Regular".into(),
-                units_per_em: 1000,
-                ascender: 800.0,
-                descender: -200.0,
-                x_height: 500.0,
-                cap_height: 700.0,
-                tolerance: 0.5,
-                copyright: None,
-                designer: None,
-                version: None,
-            },
+            info: test_info(),
             glyphs,
             kerning: vec![KernPair {
                 left: "A".into(),

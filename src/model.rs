@@ -198,6 +198,24 @@ pub fn weight_class(style: &str) -> u16 {
         .map_or(400, |&(_, weight)| weight)
 }
 
+/// A 1000-unit em with typical metrics, for unit tests across the crate.
+#[cfg(test)]
+pub(crate) fn test_info() -> FontInfo {
+    FontInfo {
+        family: "Test".into(),
+        style: "Regular".into(),
+        units_per_em: 1000,
+        ascender: 800.0,
+        descender: -200.0,
+        x_height: 500.0,
+        cap_height: 700.0,
+        tolerance: 0.5,
+        copyright: None,
+        designer: None,
+        version: None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::weight_class;

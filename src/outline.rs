@@ -250,23 +250,7 @@ fn rectangle(path: &mut BezPath, [x0, y0, x1, y1]: [f64; 4], ccw: bool) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Contour;
-
-    fn info() -> FontInfo {
-        FontInfo {
-            family: "T".into(),
-            style: "Regular".into(),
-            units_per_em: 1000,
-            ascender: 800.0,
-            descender: -200.0,
-            x_height: 500.0,
-            cap_height: 700.0,
-            tolerance: 0.5,
-            copyright: None,
-            designer: None,
-            version: None,
-        }
-    }
+    use crate::model::{test_info as info, Contour};
 
     fn square(x0: f64, y0: f64, side: f64) -> Contour {
         let p = |x, y| ControlPoint::new(x, y, 0.0);

@@ -201,22 +201,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::otf::OtGlyph;
 
-    /// A 1000-unit em font with typical metrics.
-    pub(crate) fn info() -> FontInfo {
-        FontInfo {
-            family: "Test Sans".into(),
-            style: "Regular".into(),
-            units_per_em: 1000,
-            ascender: 800.0,
-            descender: -200.0,
-            x_height: 500.0,
-            cap_height: 700.0,
-            tolerance: 0.5,
-            copyright: None,
-            designer: None,
-            version: None,
-        }
-    }
+    pub(crate) use crate::model::test_info as info;
 
     /// [`info`]'s metrics with the box `(-10, -200, 900, 750)`.
     pub(crate) fn metrics() -> Metrics {
