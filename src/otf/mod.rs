@@ -2,12 +2,12 @@
 //!
 //! Both read the outlined font only ([`OutlinedFont`]) and share one glyph order (its
 //! order, which has `.notdef` first, with the [`notdef_box`] put first when the font has
-//! none), one set of PostScript glyph names and the tables built in [`tables`] (one module
+//! none), one set of PostScript glyph names and the tables built in `tables.rs` (one module
 //! per table); they differ only in the outline table:
 //!
 //! - TTF: `glyf`/`loca` with the cubics converted to quadratic splines within the font's
-//!   tolerance ([`quadratic`]), points on the integer grid, outer contours clockwise.
-//! - OTF: a `CFF ` table ([`cff`], [`charstring`]) holding the cubics exactly, points
+//!   tolerance (`quadratic.rs`), points on the integer grid, outer contours clockwise.
+//! - OTF: a `CFF ` table (`cff.rs`, `charstring.rs`) holding the cubics exactly, points
 //!   rounded to the integer grid, outer contours counter-clockwise.
 //!
 //! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
@@ -15,7 +15,7 @@
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
 //!
 //! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
-//! `kern` table ([`kern`]). Components are already resolved into the outlines; no
+//! `kern` table (`kern.rs`). Components are already resolved into the outlines; no
 //! composite glyphs.
 
 mod cff;
