@@ -37,6 +37,7 @@ pub mod pipeline;
 pub mod render;
 pub mod source;
 pub mod svg;
+pub mod terminal;
 pub mod write;
 #[allow(missing_docs)]
 pub mod xspline;

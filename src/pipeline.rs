@@ -15,7 +15,7 @@ use crate::render::{
 };
 use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
-use crate::write::write_all_atomic;
+use crate::write::{OutputSet, WriteError};
 
 /// A font directory loaded and outlined, and the warnings of its sources.
 #[derive(Clone, Debug)]
@@ -44,12 +44,12 @@ pub enum PipelineError {
     Render(RenderError),
     /// The font does not fit into OpenType.
     Otf(OtfError),
-    /// Writing the outputs failed.
+    /// Writing the outputs failed; the output directory is as it was.
     Write {
         /// The output directory.
         dir: PathBuf,
         /// What went wrong.
-        error: std::io::Error,
+        error: WriteError,
     },
 }
 
@@ -77,7 +77,7 @@ impl fmt::Display for PipelineError {
             PipelineError::Render(e) => write!(f, "{e}"),
             PipelineError::Otf(e) => write!(f, "{e}"),
             PipelineError::Write { dir, error } => {
-                write!(f, "cannot write to {}: {error}", dir.display())
+                write!(f, "{error}; {} is unchanged", dir.display())
             }
         }
     }
@@ -165,13 +165,13 @@ pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
     files
 }
 
-/// Writes `files` under `out` (created if needed), each atomically; all or nothing.
+/// Writes `files` (relative paths) under `out`, all or none ([`OutputSet`]).
 pub fn write_outputs(out: &Path, files: &[OutputFile]) -> Result<(), PipelineError> {
-    let joined: Vec<OutputFile> = files
-        .iter()
-        .map(|(p, b)| (out.join(p), b.clone()))
-        .collect();
-    write_all_atomic(&joined).map_err(|error| PipelineError::Write {
+    let mut set = OutputSet::new();
+    for (path, bytes) in files {
+        set.add(out.join(path), bytes.clone());
+    }
+    set.commit().map_err(|error| PipelineError::Write {
         dir: out.to_path_buf(),
         error,
     })

@@ -11,6 +11,7 @@ use super::{CommandError, FontArgs};
 use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Summary};
 use crate::render::ProofOptions;
 use crate::source::Diagnostic;
+use crate::terminal::{err, out};
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -37,7 +38,7 @@ pub struct BuildArgs {
 
 /// Prints a diagnostic as `check` does (source line and caret), to stderr.
 pub fn print_diagnostic(d: &Diagnostic) {
-    eprint!("{}", crate::commands::check::text(d));
+    err!("{}", crate::commands::check::text(d));
 }
 
 /// [`pipeline::load`], printing the warnings, or every diagnostic of a failed load.
@@ -98,7 +99,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     pipeline::write_outputs(&args.font.out, &files)?;
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
-    print!(
+    out!(
         "{}",
         summary(&Summary::new(&loaded.font), &family, &args.font.out, &files)
     );

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::pipeline::{svg_outputs, write_outputs};
+use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -25,7 +26,7 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let files = svg_outputs(&loaded.font);
     write_outputs(&args.font.out, &files)?;
-    println!(
+    outln!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",
         files.len(),
         args.font.out.display(),
