@@ -85,6 +85,7 @@ pub struct FitCache {
     /// Every fit handed out in this run (hits and misses): what [`FitCache::save`] writes.
     used: Mutex<BTreeMap<Key, ContourFit>>,
     hits: AtomicUsize,
+    reused: AtomicUsize,
     misses: AtomicUsize,
 }
 
@@ -127,7 +128,7 @@ impl FitCache {
         }
         // The same contour placed twice in this run (a component at the same offset).
         if let Some(fit) = self.lock_used().get(&key) {
-            self.hits.fetch_add(1, Ordering::Relaxed);
+            self.reused.fetch_add(1, Ordering::Relaxed);
             return fit.clone();
         }
         self.misses.fetch_add(1, Ordering::Relaxed);
@@ -144,9 +145,14 @@ impl FitCache {
         self.used.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Contours served without fitting so far (from the file, or fitted earlier in this run).
+    /// Contours served from the cache file so far.
     pub fn hits(&self) -> usize {
         self.hits.load(Ordering::Relaxed)
+    }
+
+    /// Contours served from a fit made earlier in this run (the same contour placed twice).
+    pub fn reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
     }
 
     /// Contours fitted so far (neither in the cache file nor fitted earlier in this run).

@@ -6,7 +6,7 @@
 
 pub mod draw;
 pub mod labels;
-pub mod overlay;
+mod overlay;
 pub mod proof;
 pub mod sheet;
 
@@ -31,7 +31,12 @@ pub enum RenderError {
     /// The font has no glyphs, so there is nothing to draw.
     NoGlyphs,
     /// The requested image is too large (or has a zero side).
-    Size { width: u64, height: u64 },
+    Size {
+        /// Width asked for, pixels.
+        width: u64,
+        /// Height asked for, pixels.
+        height: u64,
+    },
     /// An option is out of range.
     Option(String),
     /// PNG encoding failed.

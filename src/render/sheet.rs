@@ -12,14 +12,13 @@
 //! page within the image limits, so thousands of glyphs give `sheet-1.png`, `sheet-2.png`, …
 //! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
-use kurbo::{Point, Shape};
+use kurbo::Point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
 use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
-use crate::layout::{fallback_box, Layout};
-use crate::model::Font;
-use crate::outline::FontOutlines;
+use crate::layout::Layout;
+use crate::outline::OutlinedFont;
 
 /// How to draw the sheet.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,7 +56,7 @@ const GLYPH_UNDER_OVERLAY: [u8; 3] = [185, 185, 185];
 const OUTLINE_UNDER_OVERLAY: [u8; 3] = [60, 60, 60];
 
 /// Glyph indices in sheet order: by lowest code point, then unencoded glyphs by name.
-pub fn sheet_order(font: &Font) -> Vec<usize> {
+pub fn sheet_order(font: &OutlinedFont) -> Vec<usize> {
     let mut encoded: Vec<(char, usize)> = Vec::new();
     let mut unencoded: Vec<(&str, usize)> = Vec::new();
     for (i, g) in font.glyphs.iter().enumerate() {
@@ -86,10 +85,14 @@ pub fn label(name: &str, unicodes: &[char]) -> String {
 /// Rows of cells on one sheet page at most (512 glyphs a page at the default 8 columns).
 pub const PAGE_ROWS: u64 = 64;
 
-/// The sheet order cut into pages: each page at most `columns` cells wide (fewer when
-/// wider than [`MAX_SIDE`]) and [`PAGE_ROWS`] rows tall (fewer when taller or larger than
-/// the image limits). One page when the font fits on it.
-pub fn sheet_pages(font: &Font, opts: &SheetOptions) -> Result<Vec<Vec<usize>>, RenderError> {
+/// The sheet order cut into pages: each page `columns` cells wide (fewer when the font has
+/// fewer glyphs) and at most [`PAGE_ROWS`] rows tall (fewer when taller or larger than the
+/// image limits). One page when the font fits on it. Columns wider than an image can be are
+/// not narrowed: rendering the page then fails with [`RenderError::Size`], which names them.
+pub fn sheet_pages(
+    font: &OutlinedFont,
+    opts: &SheetOptions,
+) -> Result<Vec<Vec<usize>>, RenderError> {
     check_options(opts)?;
     let order = sheet_order(font);
     if order.is_empty() {
@@ -97,7 +100,7 @@ pub fn sheet_pages(font: &Font, opts: &SheetOptions) -> Result<Vec<Vec<usize>>, 
     }
     let cell = u64::from(opts.cell_px);
     let max_cells = u64::from(MAX_SIDE) / cell;
-    let columns = u64::from(opts.columns).min(max_cells);
+    let columns = u64::from(opts.columns);
     let rows = PAGE_ROWS
         .min(max_cells)
         .min(MAX_AREA / (columns * cell * cell))
@@ -115,19 +118,20 @@ pub fn page_file_names(stem: &str, pages: usize) -> Vec<String> {
 }
 
 /// Every sheet page as PNG bytes, named by [`page_file_names`] from `stem` (`"sheet"`).
+/// Pages are rendered in parallel (rayon); the bytes do not depend on the thread count.
 pub fn sheet_png_files(
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     opts: &SheetOptions,
     stem: &str,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
+    use rayon::prelude::*;
     let pages = sheet_pages(font, opts)?;
     let names = page_file_names(stem, pages.len());
     names
-        .into_iter()
-        .zip(&pages)
+        .into_par_iter()
+        .zip(pages.par_iter())
         .map(|(name, order)| {
-            let png = super::encode_png(&render_sheet_page(font, outlines, opts, order)?)?;
+            let png = super::encode_png(&render_sheet_page(font, opts, order)?)?;
             Ok((name, png))
         })
         .collect()
@@ -146,27 +150,21 @@ fn check_options(opts: &SheetOptions) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// Renders the sheet for every glyph of `font` as one image; `outlines` is
-/// `outline_font(font, ..)`. A font too large for one image fails with
-/// [`RenderError::Size`]: use [`sheet_pages`] and [`render_sheet_page`].
-pub fn render_sheet(
-    font: &Font,
-    outlines: &FontOutlines,
-    opts: &SheetOptions,
-) -> Result<Pixmap, RenderError> {
+/// Renders the sheet for every glyph of `font` as one image. A font too large for one
+/// image fails with [`RenderError::Size`]: use [`sheet_pages`] and [`render_sheet_page`].
+pub fn render_sheet(font: &OutlinedFont, opts: &SheetOptions) -> Result<Pixmap, RenderError> {
     check_options(opts)?;
     let order = sheet_order(font);
     if order.is_empty() {
         return Err(RenderError::NoGlyphs);
     }
-    render_sheet_page(font, outlines, opts, &order)
+    render_sheet_page(font, opts, &order)
 }
 
 /// Renders the cells of the glyphs `order` (indices into `font.glyphs`, one page of
 /// [`sheet_pages`]) as one image.
 pub fn render_sheet_page(
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     opts: &SheetOptions,
     order: &[usize],
 ) -> Result<Pixmap, RenderError> {
@@ -181,11 +179,11 @@ pub fn render_sheet_page(
     let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
     let rows = n.div_ceil(columns);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
-    let geometry = CellGeometry::new(font, outlines, opts.cell_px);
+    let geometry = CellGeometry::new(font, opts.cell_px);
     let layout = Layout::new(font);
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
-        let img = render_cell(font, outlines, &layout, &geometry, index, opts)?;
+        let img = render_cell(font, &layout, &geometry, index, opts)?;
         sheet.draw_pixmap(
             ((k % columns) * cell) as i32,
             ((k / columns) * cell) as i32,
@@ -211,17 +209,12 @@ struct CellGeometry {
 }
 
 impl CellGeometry {
-    fn new(font: &Font, outlines: &FontOutlines, cell_px: u32) -> Self {
+    fn new(font: &OutlinedFont, cell_px: u32) -> Self {
         let cell = f64::from(cell_px);
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
         let (mut high, mut low) = (font.info.ascender, font.info.descender);
-        for g in outlines
-            .glyphs
-            .iter()
-            .filter(|g| !g.path.elements().is_empty())
-        {
-            let ink = g.path.bounding_box();
+        if let Some(ink) = font.ink_bounds() {
             high = high.max(ink.y1);
             low = low.min(ink.y0);
         }
@@ -241,15 +234,13 @@ impl CellGeometry {
 }
 
 fn render_cell(
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     layout: &Layout<'_>,
     geo: &CellGeometry,
     index: usize,
     opts: &SheetOptions,
 ) -> Result<Pixmap, RenderError> {
     let glyph = &font.glyphs[index];
-    let outline = &outlines.glyphs[index];
     let mut img = white_pixmap(u64::from(opts.cell_px), u64::from(opts.cell_px))?;
     let at = Placement {
         scale: geo.scale,
@@ -288,12 +279,12 @@ fn render_cell(
     } else {
         Color::BLACK
     };
-    fill_glyph(&mut img, &outline.path, at, ink);
+    fill_glyph(&mut img, &glyph.path, at, ink);
     if opts.overlay {
-        stroke_glyph(&mut img, &outline.path, at, rgb(OUTLINE_UNDER_OVERLAY));
-        overlay::draw(&mut img, font, index, &outline.path, at, geo.cell);
+        stroke_glyph(&mut img, &glyph.path, at, rgb(OUTLINE_UNDER_OVERLAY));
+        overlay::draw(&mut img, glyph, at, geo.cell);
     }
-    draw_label(&mut img, font, outlines, layout, geo, index);
+    draw_label(&mut img, font, layout, geo, index);
     // Grid: right and bottom edges, so neighbouring cells share one line.
     let edge = geo.cell - 0.5;
     line_px(
@@ -313,8 +304,7 @@ fn render_cell(
 
 fn draw_label(
     img: &mut Pixmap,
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     layout: &Layout<'_>,
     geo: &CellGeometry,
     index: usize,
@@ -340,17 +330,12 @@ fn draw_label(
     if line.width * scale > room {
         scale = room / line.width;
     }
-    let fallback = fallback_box(&font.info);
     for placed in &line.glyphs {
         let at = Placement {
             scale,
             origin_x: geo.pad + placed.x * scale,
             baseline_y: geo.pad + font.info.ascender * scale,
         };
-        let path = match placed.glyph {
-            Some(i) => &outlines.glyphs[i].path,
-            None => &fallback,
-        };
-        fill_glyph(img, path, at, rgb(LABEL));
+        fill_glyph(img, &layout.outline(placed).path, at, rgb(LABEL));
     }
 }

@@ -51,11 +51,11 @@ fn label_face_source(font: &Font) -> String {
     s.push_str("\npub(super) const GLYPHS: &[super::GlyphSource] = &[\n");
     for (c, glyph) in glyphs {
         let _ = write!(s, "    ({c:?}, {:?}, &[", glyph.advance);
-        for contour in font.resolved_contours(glyph) {
+        for (contour, (dx, dy)) in font.placed_contours(glyph) {
             let points: Vec<String> = contour
-                .points
+                .points()
                 .iter()
-                .map(|p| format!("[{:?}, {:?}, {:?}]", p.pos.x, p.pos.y, p.s))
+                .map(|p| format!("[{:?}, {:?}, {:?}]", p.pos.x + dx, p.pos.y + dy, p.s))
                 .collect();
             let _ = write!(s, "\n        &[{}],", points.join(", "));
         }
@@ -88,12 +88,13 @@ fn the_label_face_is_generated_from_the_bundled_typeface() {
 /// A font of `n` square glyphs mapped from U+4E00 on: no Latin, so no label character.
 fn cjk_like(n: u32) -> Font {
     let mut font = mini();
-    let square = Contour {
-        points: [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
+    let square = Contour::new(
+        [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
             .iter()
             .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
             .collect(),
-    };
+    )
+    .unwrap();
     font.glyphs = (0..n)
         .map(|i| {
             let c = char::from_u32(0x4E00 + i).unwrap();
@@ -124,13 +125,13 @@ fn region(img: &Pixmap, x0: u32, y0: u32, w: u32, h: u32) -> Vec<[u8; 4]> {
 #[test]
 fn labels_a_font_cannot_set_come_from_the_built_in_face() {
     let font = cjk_like(1);
-    let outlines = outline_font(&font, 0.5).unwrap();
+    let outlines = outline_font(&font, 0.5);
     let opts = SheetOptions {
         cell_px: 160,
         columns: 1,
         overlay: false,
     };
-    let sheet = render_sheet(&font, &outlines, &opts).unwrap();
+    let sheet = render_sheet(&outlines, &opts).unwrap();
     // The label band: pad 5, label em 24 (cell / 32 and cell * 0.15, rounded).
     let (pad, em) = (5u32, 24u32);
     // Left of the grid line at x = 159.
@@ -187,9 +188,9 @@ fn a_font_that_covers_its_labels_sets_them_itself() {
         overlay: false,
     };
     let band = |font: &Font| {
-        let outlines = outline_font(font, 0.5).unwrap();
+        let outlines = outline_font(font, 0.5);
         region(
-            &render_sheet_page(font, &outlines, &opts, &[a]).unwrap(),
+            &render_sheet_page(&outlines, &opts, &[a]).unwrap(),
             0,
             0,
             160,
@@ -207,7 +208,7 @@ fn a_font_that_covers_its_labels_sets_them_itself() {
 
 #[test]
 fn thousands_of_glyphs_page_the_sheet() {
-    let font = cjk_like(1100);
+    let font = outline_font(&cjk_like(1100), 0.5);
     let opts = SheetOptions::default();
     let pages = sheet_pages(&font, &opts).unwrap();
     // 8 columns x 64 rows = 512 glyphs a page: 512 + 512 + 76, in sheet order.
@@ -222,34 +223,33 @@ fn thousands_of_glyphs_page_the_sheet() {
     );
     assert_eq!(page_file_names("sheet", 1), ["sheet.png"]);
     // One sheet of 1,100 glyphs would be 138 rows of 160 px = 22,080 px tall; a page is 64.
-    let outlines = outline_font(&font, 0.5).unwrap();
-    let last = render_sheet_page(&font, &outlines, &opts, &pages[2]).unwrap();
+    let outlines = &font;
+    let last = render_sheet_page(outlines, &opts, &pages[2]).unwrap();
     assert_eq!((last.width(), last.height()), (8 * 160, 10 * 160));
-    let first = render_sheet_page(&font, &outlines, &opts, &pages[0]).unwrap();
+    let first = render_sheet_page(outlines, &opts, &pages[0]).unwrap();
     assert_eq!((first.width(), first.height()), (8 * 160, 64 * 160));
-    // Large cells: pages stay within the image limits (14 columns of 2048 px at most, and
-    // 100 M pixels: one row of 14).
+    // Large cells: pages stay within the image limits (100 M pixels: 2 rows of 8 cells of
+    // 2048 px).
     let big = SheetOptions {
         cell_px: 2048,
-        columns: 20,
+        columns: 8,
         overlay: false,
     };
     let pages = sheet_pages(&font, &big).unwrap();
-    assert_eq!(pages[0].len(), 14);
-    assert_eq!(pages.len(), 1100usize.div_ceil(14));
-    let img = render_sheet_page(&font, &outlines, &big, &pages[0]).unwrap();
-    assert_eq!((img.width(), img.height()), (14 * 2048, 2048));
+    assert_eq!(pages[0].len(), 16);
+    assert_eq!(pages.len(), 1100usize.div_ceil(16));
+    let img = render_sheet_page(outlines, &big, &pages[0]).unwrap();
+    assert_eq!((img.width(), img.height()), (8 * 2048, 2 * 2048));
 }
 
 #[test]
 fn a_font_that_fits_one_page_keeps_one_sheet() {
-    let font = mini();
+    let outlines = outline_font(&mini(), 0.5);
     let opts = SheetOptions::default();
-    let pages = sheet_pages(&font, &opts).unwrap();
-    assert_eq!(pages, [sheet_order(&font)]);
-    let outlines = outline_font(&font, 0.5).unwrap();
-    let whole = render_sheet(&font, &outlines, &opts).unwrap();
-    let page = render_sheet_page(&font, &outlines, &opts, &pages[0]).unwrap();
+    let pages = sheet_pages(&outlines, &opts).unwrap();
+    assert_eq!(pages, [sheet_order(&outlines)]);
+    let whole = render_sheet(&outlines, &opts).unwrap();
+    let page = render_sheet_page(&outlines, &opts, &pages[0]).unwrap();
     assert_eq!(whole.data(), page.data());
 }
 
