@@ -10,7 +10,7 @@
 //! Where the limits come from (docs/format.md has the table):
 //! - TrueType stores coordinates, kerning and vertical metrics as signed 16-bit numbers,
 //!   and advances as unsigned 16-bit numbers that several readers take as signed.
-//! - A TrueType glyph holds at most 65,535 points and 32,767 contours; a font at most
+//! - A TrueType glyph holds at most 65,535 points and 32,766 contours; a font at most
 //!   65,535 glyphs (`.notdef` included).
 //! - Glyph names follow the OpenType `post` rule ([`crate::names::glyph_name_problem`]).
 //! - `<family>-<style>.ttf` must fit the 255-byte file-name limit of common file systems.
@@ -47,8 +47,9 @@ pub const INT16: (f64, f64) = (-32768.0, 32767.0);
 /// Most points of one glyph, components included (TrueType: 16-bit point indices).
 pub const MAX_GLYPH_POINTS: u64 = 65535;
 
-/// Most contours of one glyph, components included (TrueType: a signed 16-bit count).
-pub const MAX_GLYPH_CONTOURS: u64 = 32767;
+/// Most contours of one glyph, components included (TrueType's count is signed 16-bit;
+/// write-fonts, which writes the table, accepts one fewer than 32,767).
+pub const MAX_GLYPH_CONTOURS: u64 = 32766;
 
 /// Most glyphs in a font, `.notdef` included (16-bit glyph ids).
 pub const MAX_GLYPHS: usize = 65535;
@@ -384,4 +385,51 @@ fn outside(r: Rect) -> Option<(&'static str, f64)> {
     [("x", r.x0), ("x", r.x1), ("y", r.y0), ("y", r.y1)]
         .into_iter()
         .find(|(_, v)| v.abs() > m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Glyph;
+    use crate::source::glyph::GlyphSpans;
+    use std::path::Path;
+
+    fn file(name: &str) -> GlyphFile {
+        GlyphFile {
+            glyph: Glyph {
+                name: name.to_string(),
+                unicodes: Vec::new(),
+                advance: 0.0,
+                contours: Vec::new(),
+                components: Vec::new(),
+            },
+            complete: true,
+            spans: GlyphSpans::default(),
+            path: format!("{name}.toml").into(),
+            text: String::new(),
+        }
+    }
+
+    /// 65,535 glyphs fit only with a `.notdef` among them (the fonts add one otherwise).
+    #[test]
+    fn glyph_count() {
+        let run = |glyphs: &[GlyphFile]| {
+            let mut out = Diagnostics::default();
+            check_font(Path::new("f"), glyphs, &ComponentGraph::new(glyphs), &mut out);
+            out.into_vec().iter().map(|d| d.to_string()).collect::<Vec<_>>()
+        };
+        let mut glyphs: Vec<GlyphFile> = (0..MAX_GLYPHS).map(|i| file(&format!("g{i}"))).collect();
+        assert_eq!(
+            run(&glyphs),
+            ["f: error: 65536 glyphs (counting the `.notdef` that the fonts get when there is \
+              none): a TrueType or OpenType font holds at most 65535"]
+        );
+        glyphs[0] = file(".notdef");
+        assert_eq!(run(&glyphs), Vec::<String>::new());
+        glyphs.push(file("extra"));
+        assert_eq!(
+            run(&glyphs),
+            ["f: error: 65536 glyphs: a TrueType or OpenType font holds at most 65535"]
+        );
+    }
 }

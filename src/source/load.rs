@@ -71,7 +71,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     let mut out = Diagnostics::default();
     let font_path = dir.join("font.toml");
     let kern_path = dir.join("kerning.toml");
-    let glyph_paths = match glyph_files(dir, &mut out) {
+    let (glyph_paths, candidates) = match glyph_files(dir, &mut out) {
         Ok(paths) => paths,
         Err(d) => return Err(vec![d]),
     };
@@ -161,7 +161,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     let mut rank: HashMap<PathBuf, usize> = HashMap::new();
     let order = [dir.to_path_buf(), font_path.clone()]
         .into_iter()
-        .chain(glyph_paths.iter().cloned())
+        .chain(candidates)
         .chain([kern_path.clone()]);
     for (i, path) in order.enumerate() {
         rank.entry(path).or_insert(i);
@@ -211,8 +211,12 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
 
 /// The glyph files of `dir`, sorted: every `*.toml` except `font.toml`, `kerning.toml`
 /// and names starting with `.` (editor and temporary files). A `*.toml` that is not a
-/// regular file (or a link to one) gets a warning and is skipped.
-fn glyph_files(dir: &Path, out: &mut Diagnostics) -> Result<Vec<PathBuf>, Diagnostic> {
+/// regular file (or a link to one) gets a warning and is skipped. Also returns every
+/// candidate, skipped ones included, sorted (the order of their diagnostics).
+fn glyph_files(
+    dir: &Path,
+    out: &mut Diagnostics,
+) -> Result<(Vec<PathBuf>, Vec<PathBuf>), Diagnostic> {
     let entries = std::fs::read_dir(dir).map_err(|e| {
         let why = if e.kind() == std::io::ErrorKind::NotFound {
             "font directory not found".to_string()
@@ -231,6 +235,7 @@ fn glyph_files(dir: &Path, out: &mut Diagnostics) -> Result<Vec<PathBuf>, Diagno
         })
         .collect();
     paths.sort();
+    let candidates = paths.clone();
     paths.retain(|p| match source_kind(p) {
         Ok(Some(_)) => true,
         Ok(None) => false,
@@ -243,7 +248,7 @@ fn glyph_files(dir: &Path, out: &mut Diagnostics) -> Result<Vec<PathBuf>, Diagno
             false
         }
     });
-    Ok(paths)
+    Ok((paths, candidates))
 }
 
 /// Whether `path` is a regular file (following links): `Ok(Some(_))`; absent: `Ok(None)`;
