@@ -14,7 +14,7 @@ use crate::model::Font;
 use crate::otf;
 use crate::outline::{outline_font, FontOutlines};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
-use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
+use crate::source::{check_tolerance_flag, load_font, Diagnostic};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::write_all_atomic;
 
@@ -72,10 +72,7 @@ pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandEr
         }
         Err(diags) => {
             diags.iter().for_each(print_diagnostic);
-            let errors = diags
-                .iter()
-                .filter(|d| d.severity == Severity::Error)
-                .count();
+            let (errors, _) = crate::commands::check::counts(&diags);
             let noun = if errors == 1 { "error" } else { "errors" };
             return Err(format!(
                 "{errors} {noun} in {}; nothing was written",
