@@ -14,7 +14,8 @@ use xglyph::source::load_font;
 
 const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
                     x_height = 500\ncap_height = 700\n";
-const TRIANGLE: &str = "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
+const TRIANGLE: &str =
+    "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
 
 /// A font folder under the temporary folder with `font.toml` and `files`.
 fn font_dir(name: &str, files: &[(String, String)]) -> PathBuf {
@@ -109,7 +110,9 @@ fn bench(c: &mut Criterion) {
     ];
     let mut group = c.benchmark_group("load (check)");
     group.sample_size(10);
-    group.bench_function("bundled typeface (reference)", |b| b.iter(|| load(&bundled)));
+    group.bench_function("bundled typeface (reference)", |b| {
+        b.iter(|| load(&bundled))
+    });
     for (name, dir) in &cases {
         group.bench_function(*name, |b| b.iter(|| load(dir)));
     }

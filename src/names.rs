@@ -41,11 +41,11 @@ pub fn glyph_name_problem(name: &str) -> Option<String> {
     } else if chars > MAX_GLYPH_NAME {
         Some(format!("has {chars} characters; {rule}"))
     } else if name.starts_with(|c: char| c.is_ascii_digit()) {
-        Some(format!("starts with a digit; {rule}, not starting with a digit"))
-    } else if name.starts_with('.') {
         Some(format!(
-            "starts with `.`; only `.notdef` and `.null` may (the OpenType `post` rule)"
+            "starts with a digit; {rule}, not starting with a digit"
         ))
+    } else if name.starts_with('.') {
+        Some("starts with `.`; only `.notdef` and `.null` may (the OpenType `post` rule)".into())
     } else if name.is_empty() {
         Some(format!("is empty; {rule}"))
     } else {
@@ -56,6 +56,30 @@ pub fn glyph_name_problem(name: &str) -> Option<String> {
 /// Whether `name` follows the OpenType `post` rule (see [`glyph_name_problem`]).
 pub fn is_valid_glyph_name(name: &str) -> bool {
     glyph_name_problem(name).is_none()
+}
+
+/// A glyph name that follows the rule, made from any text (an SVG file's stem): every
+/// other character becomes `_`, a leading digit or `.` gets a `_` in front, and the result
+/// is cut to [`MAX_GLYPH_NAME`] characters. `arrow-left` -> `arrow_left`, `1st` -> `_1st`.
+pub fn glyph_name_from(text: &str) -> String {
+    if is_valid_glyph_name(text) {
+        return text.to_string();
+    }
+    let mut name: String = text
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if name.is_empty() || name.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        name.insert(0, '_');
+    }
+    name.truncate(MAX_GLYPH_NAME);
+    name
 }
 
 /// A character for a message: `` `,` ``, or its code point when it does not print.
@@ -128,10 +152,13 @@ mod tests {
 
     #[test]
     fn post_rule() {
-        for ok in [".notdef", ".null", "A", "a.sc", "uni00E9", "f_f_i", "x2", "_part"] {
+        for ok in [
+            ".notdef", ".null", "A", "a.sc", "uni00E9", "f_f_i", "x2", "_part",
+        ] {
             assert_eq!(glyph_name_problem(ok), None, "{ok}");
         }
-        let rule = "glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)";
+        let rule =
+            "glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)";
         let long = "a".repeat(64);
         for (bad, why) in [
             ("a,b", format!("contains `,`; {rule}")),
@@ -139,7 +166,10 @@ mod tests {
             ("a\u{1b}", format!("contains U+001B; {rule}")),
             ("é", format!("contains `é`; {rule}")),
             (long.as_str(), format!("has 64 characters; {rule}")),
-            ("1a", format!("starts with a digit; {rule}, not starting with a digit")),
+            (
+                "1a",
+                format!("starts with a digit; {rule}, not starting with a digit"),
+            ),
             (
                 ".hidden",
                 "starts with `.`; only `.notdef` and `.null` may (the OpenType `post` rule)"
@@ -151,6 +181,18 @@ mod tests {
             assert!(!is_valid_glyph_name(bad));
         }
         assert!(is_valid_glyph_name(&"a".repeat(63)));
+        for (text, name) in [
+            ("arrow-left", "arrow_left"),
+            ("1st", "_1st"),
+            (".hidden", "_.hidden"),
+            ("é b", "__b"),
+            ("", "_"),
+            ("a.sc", "a.sc"),
+        ] {
+            assert_eq!(glyph_name_from(text), name);
+            assert!(is_valid_glyph_name(&glyph_name_from(text)));
+        }
+        assert_eq!(glyph_name_from(&"-".repeat(100)), "_".repeat(63));
     }
 
     #[test]

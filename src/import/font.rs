@@ -176,7 +176,8 @@ fn mapped_chars(face: &Face) -> Vec<char> {
     set.into_iter().collect()
 }
 
-/// The post-table name, or `uniXXXX` from the first code point; unique within the import.
+/// The post-table name when it follows the glyph-name rule ([`crate::names`]), else
+/// `uniXXXX` from the first code point; unique within the import.
 fn glyph_name(
     face: &Face,
     gid: GlyphId,
@@ -185,7 +186,7 @@ fn glyph_name(
 ) -> String {
     let stored = face
         .glyph_name(gid)
-        .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_graphic()))
+        .filter(|n| crate::names::is_valid_glyph_name(n))
         .map(str::to_string);
     let base = stored.unwrap_or_else(|| format!("uni{:04X}", u32::from(first)));
     let mut name = base.clone();

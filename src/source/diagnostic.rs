@@ -333,7 +333,10 @@ mod tests {
         ctx.warn(0, "w");
         let all = out.into_vec();
         assert_eq!(all.len(), MAX_PER_FILE + 2);
-        assert_eq!(all[MAX_PER_FILE - 1].to_string(), "a.toml:100:1: error: bad 99");
+        assert_eq!(
+            all[MAX_PER_FILE - 1].to_string(),
+            "a.toml:100:1: error: bad 99"
+        );
         let more: Vec<(String, usize)> = all[MAX_PER_FILE..]
             .iter()
             .map(|d| (d.to_string(), d.count))

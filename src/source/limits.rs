@@ -104,12 +104,22 @@ pub(super) fn advance(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>) -> Option<f64
 
 /// A vertical metric of `font.toml`: a finite number within [`INT16`] when rounded.
 pub(super) fn metric(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, key: &str) -> Option<f64> {
-    in_int16(ctx, v, key, "a 16-bit field of the `hhea` and `OS/2` tables")
+    in_int16(
+        ctx,
+        v,
+        key,
+        "a 16-bit field of the `hhea` and `OS/2` tables",
+    )
 }
 
 /// A kerning `value`: a finite number within [`INT16`] when rounded.
 pub(super) fn kern_value(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>) -> Option<f64> {
-    in_int16(ctx, v, "value", "kerning is 16-bit in the `kern` and `GPOS` tables")
+    in_int16(
+        ctx,
+        v,
+        "value",
+        "kerning is 16-bit in the `kern` and `GPOS` tables",
+    )
 }
 
 fn in_int16(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, key: &str, why: &str) -> Option<f64> {
@@ -120,7 +130,10 @@ fn in_int16(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, key: &str, why: &str) -
     }
     ctx.err(
         v.span().start,
-        format!("`{key}` = {} is outside {lo}..{hi} font units ({why})", shown(x)),
+        format!(
+            "`{key}` = {} is outside {lo}..{hi} font units ({why})",
+            shown(x)
+        ),
     );
     None
 }
@@ -415,14 +428,24 @@ mod tests {
     fn glyph_count() {
         let run = |glyphs: &[GlyphFile]| {
             let mut out = Diagnostics::default();
-            check_font(Path::new("f"), glyphs, &ComponentGraph::new(glyphs), &mut out);
-            out.into_vec().iter().map(|d| d.to_string()).collect::<Vec<_>>()
+            check_font(
+                Path::new("f"),
+                glyphs,
+                &ComponentGraph::new(glyphs),
+                &mut out,
+            );
+            out.into_vec()
+                .iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
         };
         let mut glyphs: Vec<GlyphFile> = (0..MAX_GLYPHS).map(|i| file(&format!("g{i}"))).collect();
         assert_eq!(
             run(&glyphs),
-            ["f: error: 65536 glyphs (counting the `.notdef` that the fonts get when there is \
-              none): a TrueType or OpenType font holds at most 65535"]
+            [
+                "f: error: 65536 glyphs (counting the `.notdef` that the fonts get when there is \
+              none): a TrueType or OpenType font holds at most 65535"
+            ]
         );
         glyphs[0] = file(".notdef");
         assert_eq!(run(&glyphs), Vec::<String>::new());

@@ -143,9 +143,9 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     let kerning = match source_kind(&kern_path) {
         Ok(Some(_)) => {
             kern_text = read(&kern_path, &mut out);
-            kern_text.as_deref().and_then(|text| {
-                load_kerning(&mut Ctx::new(&kern_path, text, &mut out), &names)
-            })
+            kern_text
+                .as_deref()
+                .and_then(|text| load_kerning(&mut Ctx::new(&kern_path, text, &mut out), &names))
         }
         Ok(None) => Some(Vec::new()),
         Err(what) => {

@@ -14,7 +14,8 @@ use xglyph::source::load_font;
 
 const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
                     x_height = 500\ncap_height = 700\n";
-const TRIANGLE: &str = "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
+const TRIANGLE: &str =
+    "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
 
 /// A fresh font folder with `font.toml` and `files`.
 fn font_dir(name: &str, files: &[(&str, String)]) -> PathBuf {
@@ -102,13 +103,26 @@ fn too_many_contours_are_refused_by_check_and_build() {
     let expected = "a.toml:43693:11: error: glyph `a` has 99000 points; a TrueType glyph \
                     holds at most 65535";
     let diags = diagnostics(&dir);
-    assert_eq!(diags.iter().filter(|d| d.contains("error")).collect::<Vec<_>>(), [expected]);
+    assert_eq!(
+        diags
+            .iter()
+            .filter(|d| d.contains("error"))
+            .collect::<Vec<_>>(),
+        [expected]
+    );
     let out_dir = dir.join("out");
     let out = xglyph(&["build", "-o", out_dir.to_str().expect("utf-8")], &dir);
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains(&format!("{}/{expected}", dir.display())), "{stderr}");
-    assert!(!out_dir.exists(), "a refused build wrote {}", out_dir.display());
+    assert!(
+        stderr.contains(&format!("{}/{expected}", dir.display())),
+        "{stderr}"
+    );
+    assert!(
+        !out_dir.exists(),
+        "a refused build wrote {}",
+        out_dir.display()
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -148,11 +162,18 @@ fn doubling_components_stop_where_the_limit_is_crossed() {
 fn deep_component_chains_load_and_cycles_are_exact() {
     let n = 4000;
     let names: Vec<String> = (0..n).map(|i| format!("g{i:04}.toml")).collect();
-    let mut files: Vec<(&str, String)> = vec![(names[0].as_str(), TRIANGLE.to_string())];
-    for i in 1..n {
-        let text = format!("advance = 500\n[[component]]\nbase = \"g{:04}\"\n", i - 1);
-        files.push((names[i].as_str(), text));
-    }
+    let files: Vec<(&str, String)> = names
+        .iter()
+        .enumerate()
+        .map(|(i, file)| {
+            let text = if i == 0 {
+                TRIANGLE.to_string()
+            } else {
+                format!("advance = 500\n[[component]]\nbase = \"g{:04}\"\n", i - 1)
+            };
+            (file.as_str(), text)
+        })
+        .collect();
     let dir = font_dir("chain", &files);
     let (font, warnings) = load_font(&dir).expect("the chain loads");
     assert!(warnings.is_empty(), "{warnings:?}");
@@ -256,7 +277,12 @@ fn sources_that_are_not_regular_files_are_skipped_with_a_warning() {
         Duration::from_secs(120),
     )
     .expect("build finished instead of blocking on a FIFO");
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 
     // A `font.toml` that is a FIFO is an error, not a wait.
     std::fs::remove_file(dir.join("font.toml")).expect("rm");
@@ -310,7 +336,10 @@ fn fmt_refuses_out_of_range_values_like_check() {
         "{stderr}"
     );
     assert!(!stderr.contains("internal error"), "{stderr}");
-    assert_eq!(std::fs::read_to_string(dir.join("a.toml")).expect("read"), text);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("a.toml")).expect("read"),
+        text
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -331,7 +360,10 @@ fn build_refuses_out_of_range_values_before_writing() {
         "kerning.toml:4:9: error: `value` = 40000 is outside -32768..32767 font units \
          (kerning is 16-bit in the `kern` and `GPOS` tables)",
     ] {
-        assert!(stderr.contains(&format!("{}/{line}", dir.display())), "{stderr}");
+        assert!(
+            stderr.contains(&format!("{}/{line}", dir.display())),
+            "{stderr}"
+        );
     }
     assert!(!out_dir.exists());
     let _ = std::fs::remove_dir_all(&dir);
@@ -361,8 +393,10 @@ fn glyph_names_follow_the_post_rule() {
     std::fs::write(dir.join("ab.toml"), "name = \"a,b\"\nadvance = 500\n").expect("write");
     assert_eq!(
         diagnostics(&dir),
-        ["ab.toml:1:8: error: glyph name `a,b` contains `,`; glyph names are 1 to 63 \
-          characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)"]
+        [
+            "ab.toml:1:8: error: glyph name `a,b` contains `,`; glyph names are 1 to 63 \
+          characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)"
+        ]
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -382,4 +416,35 @@ fn diagnostics_show_the_text_that_was_loaded() {
             dir.display()
         )
     );
+}
+
+/// Issue 13.19 and the importer: an SVG file name outside the rule (`arrow-left.svg`, the
+/// usual icon name) becomes a glyph name inside it, so imported sources pass `check`.
+#[test]
+fn imported_svg_names_follow_the_rule() {
+    let dir = std::env::temp_dir().join(format!("xglyph-limits-svgname-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("mkdir");
+    let svg = dir.join("arrow-left.svg");
+    let ring = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/import/ring.svg");
+    std::fs::copy(ring, &svg).expect("copy");
+    let out_dir = dir.join("font");
+    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .arg("import")
+        .arg(&svg)
+        .arg("-o")
+        .arg(&out_dir)
+        .output()
+        .expect("run xglyph");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (font, warnings) = load_font(&out_dir).expect("imported sources pass check");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let names: Vec<&str> = font.glyphs.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["arrow_left"]);
+    let _ = std::fs::remove_dir_all(&dir);
 }
