@@ -65,8 +65,9 @@ pub(super) struct GlyphFile {
 
 /// [`load_font`], also returning the text of every source file (for `fmt`).
 ///
-/// Diagnostics come in file order (`font.toml`, glyph files by name, `kerning.toml`),
-/// and by position within a file.
+/// Diagnostics come in file order (`font.toml`, glyph files and skipped `*.toml` by name,
+/// `kerning.toml`), and by position within a file; at most
+/// [`super::diagnostic::MAX_PER_FILE`] per file, then one "… and N more" line.
 pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     let mut out = Diagnostics::default();
     let font_path = dir.join("font.toml");
@@ -76,9 +77,9 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         Err(d) => return Err(vec![d]),
     };
 
-    let info_text = match source_kind(&font_path) {
-        Ok(Some(_)) => read(&font_path, &mut out),
-        Ok(None) => {
+    let info_text = match regular_file(&font_path) {
+        Ok(true) => read(&font_path, &mut out),
+        Ok(false) => {
             out.push(Diagnostic::whole(
                 &font_path,
                 Severity::Error,
@@ -140,14 +141,14 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
 
     let names: BTreeSet<String> = glyphs.iter().map(|g| g.glyph.name.clone()).collect();
     let mut kern_text = None;
-    let kerning = match source_kind(&kern_path) {
-        Ok(Some(_)) => {
+    let kerning = match regular_file(&kern_path) {
+        Ok(true) => {
             kern_text = read(&kern_path, &mut out);
             kern_text
                 .as_deref()
                 .and_then(|text| load_kerning(&mut Ctx::new(&kern_path, text, &mut out), &names))
         }
-        Ok(None) => Some(Vec::new()),
+        Ok(false) => Some(Vec::new()),
         Err(what) => {
             out.push(Diagnostic::whole(
                 &kern_path,
@@ -236,9 +237,8 @@ fn glyph_files(
         .collect();
     paths.sort();
     let candidates = paths.clone();
-    paths.retain(|p| match source_kind(p) {
-        Ok(Some(_)) => true,
-        Ok(None) => false,
+    paths.retain(|p| match regular_file(p) {
+        Ok(found) => found,
         Err(what) => {
             out.push(Diagnostic::whole(
                 p,
@@ -251,22 +251,22 @@ fn glyph_files(
     Ok((paths, candidates))
 }
 
-/// Whether `path` is a regular file (following links): `Ok(Some(_))`; absent: `Ok(None)`;
+/// Whether `path` is a regular file (following links): `Ok(true)`; absent: `Ok(false)`;
 /// anything else: `Err` with what it is ("a FIFO", "a dangling symbolic link", ...).
 ///
 /// Checked before opening, because opening a FIFO blocks until a writer appears. (A file
 /// swapped for a FIFO between this check and the read could still block; that needs a
 /// writer racing the loader on purpose.)
-fn source_kind(path: &Path) -> Result<Option<FileType>, String> {
+fn regular_file(path: &Path) -> Result<bool, String> {
     match std::fs::metadata(path) {
-        Ok(m) if m.is_file() => Ok(Some(m.file_type())),
+        Ok(m) if m.is_file() => Ok(true),
         Ok(m) => Err(describe(m.file_type()).to_string()),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             match std::fs::symlink_metadata(path) {
                 Ok(m) if m.file_type().is_symlink() => {
                     Err("a dangling symbolic link (its target does not exist)".to_string())
                 }
-                _ => Ok(None),
+                _ => Ok(false),
             }
         }
         Err(e) => Err(format!("unreadable ({e})")),
