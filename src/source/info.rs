@@ -161,7 +161,6 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
     let designer = optional(ctx, "designer");
     let version = optional(ctx, "version");
 
-    let family = family.filter(|(f, off)| limits::text(ctx, f, *off, "family"));
     if let (Some((f, off)), Some(style)) = (&family, &style) {
         ok &= limits::family_style(ctx, f, style.as_deref().unwrap_or("Regular"), *off);
     }

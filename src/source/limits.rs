@@ -148,25 +148,10 @@ fn shown(x: f64) -> String {
     }
 }
 
-/// Checks a free-form string of `font.toml` (`family`, `style`, `copyright`, ...): no
-/// control characters (XML, so the SVG font, cannot hold them; tab and line ends are
-/// allowed), and for `copyright`, `designer` and `version` at most [`MAX_TEXT_UTF16`]
-/// UTF-16 code units. Returns whether it passed.
+/// Checks `copyright`, `designer` and `version`: at most [`MAX_TEXT_UTF16`] UTF-16 code
+/// units each. Returns whether it passed. (Control characters are not refused: the SVG
+/// font writes U+FFFD for what XML cannot hold, and the terminal output escapes them.)
 pub(super) fn text(ctx: &mut Ctx<'_>, value: &str, offset: usize, key: &str) -> bool {
-    if let Some(c) = value
-        .chars()
-        .find(|&c| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
-    {
-        ctx.err(
-            offset,
-            format!(
-                "`{key}` contains the control character U+{:04X}, which the SVG font (XML) \
-                 cannot hold",
-                u32::from(c)
-            ),
-        );
-        return false;
-    }
     let units = value.encode_utf16().count();
     if matches!(key, "copyright" | "designer" | "version") && units > MAX_TEXT_UTF16 {
         ctx.err(
