@@ -290,7 +290,7 @@ fn expand(
     let mut ctx = Ctx::new(&file.path, &file.text, out);
     let mut size = Expanded::default();
     for (c, contour) in glyph.contours.iter().enumerate() {
-        size.points += contour.points.len() as u64;
+        size.points += contour.points().len() as u64;
         size.contours += 1;
         let at = || file.spans.points[c].first().copied().unwrap_or(0);
         if size.contours > MAX_GLYPH_CONTOURS {
@@ -306,7 +306,7 @@ fn expand(
             return None;
         }
         if size.points > MAX_GLYPH_POINTS {
-            let total: usize = glyph.contours.iter().map(|c| c.points.len()).sum();
+            let total: usize = glyph.contours.iter().map(|c| c.points().len()).sum();
             ctx.err(
                 at(),
                 format!(
@@ -317,7 +317,7 @@ fn expand(
             );
             return None;
         }
-        for p in &contour.points {
+        for p in contour.points() {
             size.bounds = Some(match size.bounds {
                 Some(r) => r.union_pt(p.pos),
                 None => Rect::from_points(p.pos, p.pos),
