@@ -49,8 +49,11 @@ const PEAK: f64 = 0.6;
 const EXACT_PEAK: f64 = 0.9;
 /// Gauss-Newton rounds when polishing a cubic's handles.
 const POLISH_ROUNDS: usize = 6;
-/// Every this many curve samples is used when polishing (the measure takes them all).
-const POLISH_STRIDE: usize = 2;
+/// Curve samples per unit of parameter when polishing a candidate (the measure takes
+/// [`SAMPLES_PER_SEGMENT`]).
+const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
+/// Fewest curve samples per polished span.
+const MIN_POLISH_SAMPLES: usize = 6;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 
@@ -201,7 +204,9 @@ fn cusps(spline: &XSpline, t0: f64, t1: f64) -> Vec<f64> {
 /// Each cubic covers the longest span from the current start that fits: the search
 /// predicts the span from the error law `err ~ h^p` (p estimated from the last two trials,
 /// 5 before that), keeps the longest span that fitted and the shortest that did not, and
-/// stops when they are within [`SPAN_PRECISION`] of each other.
+/// stops when they are within [`SPAN_PRECISION`] of each other. The search runs on the
+/// polish's sampled error (a lower bound); only a candidate about to be taken is measured
+/// ([`measure`]), and one that fails the measure counts as a span that does not fit.
 fn fit_stretch(
     spline: &XSpline,
     t0: f64,
@@ -213,18 +218,26 @@ fn fit_stretch(
     let goal = tolerance * SAFETY;
     let mut max_error: f64 = 0.0;
     let mut a = t0;
+    // The direction at the start of the next cubic (the previous one's end direction).
+    let mut d0 = direction(spline, a, t0, t1);
     while t1 - a > 1e-12 * (1.0 + t1.abs()) {
         let rest = t1 - a;
         let mut h = guess.min(rest);
-        let mut fits: Option<(f64, CubicBez, f64)> = None;
+        // The longest span that fitted: (span, cubic, error, whether it was measured).
+        let mut fits: Option<(f64, CubicBez, f64, bool)> = None;
         let mut fails: Option<f64> = None;
         let mut last: Option<(f64, f64)> = None;
         for _ in 0..MAX_TRIES {
-            let (cubic, err) = fit_span(spline, a, a + h, t0, t1, goal);
+            let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+            let mut err = sampled;
+            // Close to the goal means close to the longest span (err ~ h^5): measure it.
+            let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
+            if taken {
+                err = measure(spline, a, a + h, &cubic);
+            }
             if err <= goal {
-                fits = Some((h, cubic, err));
-                // Close to the goal means close to the longest span (err ~ h^5).
-                if h >= rest || err >= NEAR_GOAL * goal {
+                fits = Some((h, cubic, err, taken));
+                if taken {
                     break;
                 }
             } else {
@@ -266,8 +279,16 @@ fn fit_stretch(
             h = next;
         }
         let (h, cubic, err) = match fits {
-            Some(found) => found,
-            None => shortest_fit(spline, a, h, t0, t1, goal),
+            Some((h, cubic, err, true)) => (h, cubic, err),
+            Some((h, cubic, _, false)) => {
+                let err = measure(spline, a, a + h, &cubic);
+                if err <= goal {
+                    (h, cubic, err)
+                } else {
+                    shortest_fit(spline, a, 0.5 * h, d0, t0, t1, goal)
+                }
+            }
+            None => shortest_fit(spline, a, h, d0, t0, t1, goal),
         };
         path.curve_to(cubic.p1, cubic.p2, cubic.p3);
         max_error = max_error.max(err);
@@ -276,6 +297,7 @@ fn fit_stretch(
             *guess = h;
         }
         a += h;
+        d0 = direction(spline, a, t0, t1);
     }
     max_error
 }
@@ -285,12 +307,18 @@ fn shortest_fit(
     spline: &XSpline,
     a: f64,
     mut h: f64,
+    d0: Vec2,
     t0: f64,
     t1: f64,
     goal: f64,
 ) -> (f64, CubicBez, f64) {
     loop {
-        let (cubic, err) = fit_span(spline, a, a + h, t0, t1, goal);
+        let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+        let err = if sampled <= goal {
+            measure(spline, a, a + h, &cubic)
+        } else {
+            sampled
+        };
         if err <= goal || h < 1e-9 {
             return (h, cubic, err);
         }
@@ -359,8 +387,9 @@ struct Samples {
 }
 
 impl Samples {
-    fn new(spline: &XSpline, a: f64, b: f64) -> Samples {
-        let n = (((b - a) * SAMPLES_PER_SEGMENT).ceil() as usize).max(MIN_SAMPLES);
+    /// Samples `[a, b]` at `per_segment` per unit of parameter, at least `min`, refined.
+    fn new(spline: &XSpline, a: f64, b: f64, per_segment: f64, min: usize) -> Samples {
+        let n = (((b - a) * per_segment).ceil() as usize).max(min);
         let mut samples = Samples {
             t: Vec::with_capacity(n + 1),
             p: Vec::with_capacity(n + 1),
@@ -442,18 +471,27 @@ fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
     apart(d0, chord) || apart(chord, d1) || apart(d0, d1)
 }
 
-/// Fits one cubic to `[a, b]` of the stretch `[t0, t1]`; the cubic and its measured error
-/// (only a lower bound when it exceeds `goal`: the span is rejected then anyway).
+/// Fits one cubic to `[a, b]` of the stretch `[t0, t1]`, leaving `a` in direction `d0`
+/// (carried over from the previous cubic's end); the cubic
+/// and its largest distance to the polish's samples, a lower bound of the error that
+/// [`measure`] establishes.
 ///
 /// The span's Hermite cubic is the start; [`polish`] takes its handles towards the
 /// minimax ones. (Measured on the test corpus: a least-squares start on chord-length
 /// parameters needs 5 % more segments; kurbo's area-and-moment `fit_to_cubic` as a second
 /// start saves a few percent of segments at twice the time.)
-fn fit_span(spline: &XSpline, a: f64, b: f64, t0: f64, t1: f64, goal: f64) -> (CubicBez, f64) {
-    let samples = Samples::new(spline, a, b);
+fn fit_span(
+    spline: &XSpline,
+    a: f64,
+    b: f64,
+    d0: Vec2,
+    t0: f64,
+    t1: f64,
+    goal: f64,
+) -> (CubicBez, f64) {
+    let samples = Samples::new(spline, a, b, POLISH_SAMPLES_PER_SEGMENT, MIN_POLISH_SAMPLES);
     let last = samples.len() - 1;
     let (p0, p3) = (samples.p[0], samples.p[last]);
-    let d0 = direction(spline, a, t0, t1);
     let d1 = direction(spline, b, t0, t1);
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
@@ -465,15 +503,9 @@ fn fit_span(spline: &XSpline, a: f64, b: f64, t0: f64, t1: f64, goal: f64) -> (C
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
     let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal);
-    // The sampled error is a lower bound: a candidate already over the goal is out.
-    let err = if sampled <= goal {
-        measure(spline, &samples, &cubic)
-    } else {
-        sampled
-    };
-    (cubic, err)
+    polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal)
 }
+
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
 /// orthogonal distances, with Lawson's re-weighting after the first rounds (which turns the
 /// least-squares optimum into the minimax one). Returns the best cubic seen and its
@@ -505,7 +537,7 @@ fn polish(
         let poly = Poly::new(&cubic_of(alpha, beta));
         let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let mut worst: f64 = 0.0;
-        for i in (0..n).step_by(POLISH_STRIDE) {
+        for i in 0..n {
             // Parameters carry over between rounds, so a couple of steps suffice.
             let (ui, dist) = poly.project_steps(samples.p[i], u[i], 3);
             u[i] = ui;
@@ -631,17 +663,19 @@ impl Poly {
 /// distance at the maximum found is taken again against the true curve (exact curve
 /// points; Newton on the curve parameter), so neither a maximum between samples nor the
 /// Hermite pieces' own error can hide an excess.
-fn measure(spline: &XSpline, samples: &Samples, cubic: &CubicBez) -> f64 {
+fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
+    let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES);
     let poly = Poly::new(cubic);
     let n = samples.len();
     // Curve to cubic.
     let mut u = vec![0.0; n];
     let mut near = vec![0.0; n];
     let mut guess = 0.0;
+    let mut largest: f64 = 0.0;
     for i in 0..n {
         // Start from the previous sample's parameter: the curve and the cubic run alike.
         let (mut ui, mut d) = poly.project(samples.p[i], guess);
-        if i > 0 && d > near.iter().copied().fold(0.0, f64::max) {
+        if i > 0 && d > largest {
             // A poor start can stall at a clamp; retry from the sample's share of the span.
             let share = (samples.t[i] - samples.t[0]) / (samples.t[n - 1] - samples.t[0]);
             let alt = poly.project(samples.p[i], share);
@@ -651,6 +685,7 @@ fn measure(spline: &XSpline, samples: &Samples, cubic: &CubicBez) -> f64 {
         }
         u[i] = ui;
         near[i] = d;
+        largest = largest.max(d);
         guess = ui;
     }
     let param =
