@@ -22,7 +22,7 @@
 
 use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 
-use crate::xspline::XSpline;
+use crate::xspline::{Segment, XSpline};
 
 /// Curve samples per unit of parameter (one X-spline segment) when measuring a span.
 const SAMPLES_PER_SEGMENT: f64 = 20.0;
@@ -176,10 +176,13 @@ fn cusps(spline: &XSpline, t0: f64, t1: f64) -> Vec<f64> {
     let steps = ((t1 - t0) * 32.0).round().max(1.0) as usize;
     let at = |i: usize| t0 + (t1 - t0) * i as f64 / steps as f64;
     let mut found = Vec::new();
+    let mut cursor = Cursor::new(spline);
+    let mut dhi = cursor.eval_deriv(at(0)).1;
     for i in 0..steps {
         let (mut lo, mut hi) = (at(i), at(i + 1));
-        let dlo = spline.eval_deriv(lo).1;
-        if dlo.dot(spline.eval_deriv(hi).1) >= 0.0 {
+        let dlo = dhi;
+        dhi = cursor.eval_deriv(hi).1;
+        if dlo.dot(dhi) >= 0.0 {
             continue;
         }
         for _ in 0..60 {
@@ -372,6 +375,46 @@ fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
     }
 }
 
+/// Evaluates a contour at increasing parameters, keeping the current segment: the same
+/// arithmetic as [`XSpline::eval_deriv`] (so the same values, bit for bit) without
+/// locating and assembling the segment again for every point of a dense run.
+struct Cursor<'a> {
+    spline: &'a XSpline,
+    index: usize,
+    segment: Segment,
+}
+
+impl<'a> Cursor<'a> {
+    fn new(spline: &'a XSpline) -> Cursor<'a> {
+        Cursor {
+            spline,
+            index: 0,
+            segment: spline.segment(0),
+        }
+    }
+
+    /// Point and derivative at global `T`, wrapped into `[0, n)` like `XSpline::eval`.
+    fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
+        let count = self.spline.segment_count();
+        let n = count as f64;
+        // Stretch parameters lie in [0, 2n); there `T - n` is exact (Sterbenz), as is the
+        // remainder `rem_euclid` computes.
+        let wrapped = if (0.0..n).contains(&big_t) {
+            big_t
+        } else if (n..2.0 * n).contains(&big_t) {
+            big_t - n
+        } else {
+            big_t.rem_euclid(n)
+        };
+        let j = (wrapped.floor() as usize).min(count - 1);
+        if j != self.index {
+            self.index = j;
+            self.segment = self.spline.segment(j);
+        }
+        self.segment.eval_deriv(wrapped - j as f64)
+    }
+}
+
 /// Samples of the curve on one span, with derivatives: enough to measure a cubic against
 /// (between samples the curve is taken as the cubic Hermite interpolant, whose error is
 /// O(h^4) in the sample step, far below any useful tolerance at this density).
@@ -396,9 +439,10 @@ impl Samples {
             d: Vec::with_capacity(n + 1),
         };
         let mut previous: Option<(f64, Point, Vec2)> = None;
+        let mut cursor = Cursor::new(spline);
         for i in 0..=n {
             let t = a + (b - a) * i as f64 / n as f64;
-            let (mut p, d) = spline.eval_deriv(t);
+            let (mut p, d) = cursor.eval_deriv(t);
             // The ends are exact curve points (no rounding drift in `a + (b - a)`).
             if i == 0 {
                 p = spline.eval(a);
@@ -406,7 +450,7 @@ impl Samples {
                 p = spline.eval(b);
             }
             if let Some(start) = previous {
-                samples.refine(spline, start, (t, p, d), MAX_REFINE);
+                samples.refine(&mut cursor, start, (t, p, d), MAX_REFINE);
             }
             samples.push((t, p, d));
             previous = Some((t, p, d));
@@ -425,7 +469,7 @@ impl Samples {
     /// `depth` times.
     fn refine(
         &mut self,
-        spline: &XSpline,
+        cursor: &mut Cursor,
         start: (f64, Point, Vec2),
         end: (f64, Point, Vec2),
         depth: usize,
@@ -434,11 +478,11 @@ impl Samples {
             return;
         }
         let t = 0.5 * (start.0 + end.0);
-        let (p, d) = spline.eval_deriv(t);
+        let (p, d) = cursor.eval_deriv(t);
         let mid = (t, p, d);
-        self.refine(spline, start, mid, depth - 1);
+        self.refine(cursor, start, mid, depth - 1);
         self.push(mid);
-        self.refine(spline, mid, end, depth - 1);
+        self.refine(cursor, mid, end, depth - 1);
     }
 
     fn len(&self) -> usize {
@@ -688,11 +732,13 @@ fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
         largest = largest.max(d);
         guess = ui;
     }
+    // The Hermite pieces between samples, in power form, each built once.
+    let pieces: Vec<Poly> = (0..n - 1).map(|i| Poly::new(&samples.piece(i))).collect();
     let param =
         |piece: usize, s: f64| samples.t[piece] + (samples.t[piece + 1] - samples.t[piece]) * s;
     let start = |piece: usize, s: f64| u[piece] + (u[piece + 1] - u[piece]) * s;
     let hermite_at = |piece: usize, s: f64| {
-        let point = Poly::new(&samples.piece(piece)).eval(s).to_point();
+        let point = pieces[piece].eval(s).to_point();
         poly.project(point, start(piece, s)).1
     };
     let curve_at = |piece: usize, s: f64| {
@@ -719,17 +765,17 @@ fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
         } else {
             0.5
         };
-        let (s, d) = Poly::new(&samples.piece(piece)).project(q, start);
+        let (s, d) = pieces[piece].project(q, start);
         let mut best = (d, param(piece, s));
         // Clamped at a piece's end: the nearest point may lie on the neighbour.
         if s <= 0.0 && piece > 0 {
-            let (s, d) = Poly::new(&samples.piece(piece - 1)).project(q, 1.0);
+            let (s, d) = pieces[piece - 1].project(q, 1.0);
             if d < best.0 {
                 best = (d, param(piece - 1, s));
             }
         }
         if s >= 1.0 && piece + 2 < n {
-            let (s, d) = Poly::new(&samples.piece(piece + 1)).project(q, 0.0);
+            let (s, d) = pieces[piece + 1].project(q, 0.0);
             if d < best.0 {
                 best = (d, param(piece + 1, s));
             }
