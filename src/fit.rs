@@ -3,7 +3,9 @@
 //! A closed contour is cut at its sharp points (`s = 0`) and cusps into smooth stretches; a
 //! segment between two sharp points is a straight edge and becomes a `LineTo`. Each smooth
 //! stretch is covered greedily from its start with the longest span one cubic fits; the
-//! span is predicted from the error law `err ~ h^p` rather than bisected. A cubic keeps the
+//! span is predicted from the error law `err ~ h^p` rather than bisected, on the cheap
+//! sampled error of each trial; only the candidate about to be taken is measured (below),
+//! and one that fails the measure counts as a span that does not fit. A cubic keeps the
 //! curve's end points and exact end tangent directions (G1 joins; at a sharp point the true
 //! limit direction, which avoids hooks). It starts as the span's Hermite cubic and its two
 //! handle lengths are taken towards the minimax fit by Gauss-Newton on orthogonal
