@@ -274,7 +274,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, 
     for original in contour::contours(&source.path) {
         row.original_points += contour::stored_points(&original.segs);
         let cut = contour::cut(&original);
-        let Some(fitted) = fit::fit_contour(&cut, FIT_SHARE * tolerance) else {
+        let Some(fitted) = fit::fit_xspline(&cut, FIT_SHARE * tolerance) else {
             row.dropped_contours += 1;
             continue;
         };
