@@ -105,10 +105,10 @@ pub struct Shapes {
 }
 
 /// Rounds of (solve positions, re-project parameters) per fit, at most.
-const ROUNDS: usize = 12;
+const ROUNDS: usize = 20;
 /// A fit has converged when no point moved by more than this share of the target in a
 /// round: later rounds change the error by far less than the target.
-const CONVERGED: f64 = 0.01;
+const CONVERGED: f64 = 0.002;
 /// Newton steps per projection between rounds (the parameters start from the last round's).
 const ROUND_STEPS: usize = 2;
 /// Newton steps per projection when measuring.
@@ -174,11 +174,7 @@ fn best_fit(segs: &[PathSeg], closed: bool, spacing: f64, target: f64) -> Fit {
     let Search {
         fit: mut best,
         mut interior,
-        error_below,
     } = fit_stretch(segs, &samples, closed, PRIMARY, target);
-    if error_below.is_some_and(|e| e > RESCUE * target) {
-        return best;
-    }
     let min_inner = if closed { 3 } else { 0 };
     // An open stretch with no interior point is its chord whatever the settings, and the
     // primary search measured that already.
@@ -257,17 +253,11 @@ struct Fit {
     error: f64,
 }
 
-/// The result of a point-count search: the fit and its interior point count, and the
-/// error with one point fewer when that was measured.
+/// The result of a point-count search: the fit and its interior point count.
 struct Search {
     fit: Fit,
     interior: usize,
-    error_below: Option<f64>,
 }
-
-/// The alternatives are tried with one point fewer only when the primary settings missed
-/// the target there by less than this factor: none rescues a wider miss on the test fonts.
-const RESCUE: f64 = 1.5;
 
 /// Unit tangents of the original leaving the start of an open stretch and (backward)
 /// arriving at its end.
@@ -370,18 +360,14 @@ fn fit_stretch(
     let max_inner = min_inner + 3 * segs.len() + 8;
     // An open stretch without interior points is its chord: skip measuring it when a
     // sample is farther than the target from the chord's line (the error is at least that).
-    let chord = if closed { 0.0 } else { off_chord(samples) };
-    let mut lo_error = chord;
-    if chord <= target {
+    if closed || off_chord(samples) <= target {
         let first = attempt(min_inner);
         if first.error <= target {
             return Search {
                 fit: first,
                 interior: min_inner,
-                error_below: None,
             };
         }
-        lo_error = first.error;
     }
     let (mut lo, mut step) = (min_inner, 1);
     let (mut hi, mut hi_fit) = loop {
@@ -391,7 +377,6 @@ fn fit_stretch(
             break (m, fit);
         }
         lo = m;
-        lo_error = fit.error;
         step *= 2;
     };
     while hi - lo > 1 {
@@ -402,13 +387,11 @@ fn fit_stretch(
             hi_fit = fit;
         } else {
             lo = mid;
-            lo_error = fit.error;
         }
     }
     Search {
         fit: hi_fit,
         interior: hi,
-        error_below: (hi == lo + 1).then_some(lo_error),
     }
 }
 
