@@ -252,7 +252,8 @@ fn fonts_from_a_collection() {
         return;
     }
     let dir = temp_dir("ttc");
-    for (face, family) in [("0", "WenQuanYi Zen Hei"), ("1", "WenQuanYi Zen Hei Mono")] {
+    // The family is the font's first Unicode name record: the Chinese one here.
+    for (face, family) in [("0", "文泉驛正黑"), ("1", "文泉驛等寬正黑")] {
         let out = dir.join(format!("face{face}"));
         let (code, _, err) = xglyph(&[
             "import",
