@@ -23,5 +23,6 @@ pub mod outline;
 pub mod render;
 pub mod source;
 pub mod svg;
+pub mod terminal;
 pub mod write;
 pub mod xspline;

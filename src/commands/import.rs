@@ -15,6 +15,7 @@ use std::sync::Arc;
 use super::CommandError;
 use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions, Progress};
 use crate::source::emit::font_sources;
+use crate::terminal::{out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
@@ -83,8 +84,8 @@ pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
     let imported = import_inputs(&args, Progress(progress))?;
     let files = font_sources(&imported.font);
     let written = write_font_dir(&args.output, &files)?;
-    print!("{}", imported.report.render());
-    println!("wrote {written} files to {}", args.output.display());
+    out!("{}", imported.report.render());
+    outln!("wrote {written} files to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }
 
@@ -111,9 +112,16 @@ fn write_font_dir(dir: &Path, files: &[(String, String)]) -> Result<usize, Impor
         _ => PathBuf::from("."),
     };
     std::fs::create_dir_all(&parent).map_err(|e| fail("create the folder", &parent, e))?;
-    let temp = TempDir::new_in(&parent, dir).map_err(|e| fail("create a folder in", &parent, e))?;
+    // Created exclusively with an unpredictable name; removed on drop unless renamed away.
+    let stem = dir
+        .file_name()
+        .map_or_else(|| "font".into(), |n| n.to_string_lossy().into_owned());
+    let temp = tempfile::Builder::new()
+        .prefix(&format!(".{stem}.import-"))
+        .tempdir_in(&parent)
+        .map_err(|e| fail("create a folder in", &parent, e))?;
     for (name, text) in files {
-        let path = temp.path.join(name);
+        let path = temp.path().join(name);
         std::fs::write(&path, text).map_err(|e| {
             let path = dir.join(name);
             fail("write", &path, e)
@@ -126,48 +134,14 @@ fn write_font_dir(dir: &Path, files: &[(String, String)]) -> Result<usize, Impor
         if dir.is_dir() {
             std::fs::remove_dir(dir).map_err(|e| fail("replace", dir, e))?;
         }
-        std::fs::rename(&temp.path, dir).map_err(|e| fail("create", dir, e))?;
+        std::fs::rename(temp.path(), dir).map_err(|e| fail("create", dir, e))?;
     } else {
         for (name, _) in files {
             let to = dir.join(name);
-            std::fs::rename(temp.path.join(name), &to).map_err(|e| fail("write", &to, e))?;
+            std::fs::rename(temp.path().join(name), &to).map_err(|e| fail("write", &to, e))?;
         }
     }
     Ok(files.len())
-}
-
-/// A new folder `.NAME.import-PID-N` next to the output, created exclusively (never an
-/// existing one, never through a link), removed on drop unless it was renamed away.
-/// Hand-written: the crate's dependencies have no temporary-folder helper.
-struct TempDir {
-    path: PathBuf,
-}
-
-impl TempDir {
-    fn new_in(parent: &Path, dir: &Path) -> std::io::Result<Self> {
-        let stem = dir
-            .file_name()
-            .map_or_else(|| "font".into(), |n| n.to_string_lossy().into_owned());
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map_or(0, |d| d.subsec_nanos());
-        let mut k = 0u32;
-        loop {
-            let path = parent.join(format!(".{stem}.import-{}-{nanos}-{k}", std::process::id()));
-            match std::fs::create_dir(&path) {
-                Ok(()) => return Ok(TempDir { path }),
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && k < 100 => k += 1,
-                Err(e) => return Err(e),
-            }
-        }
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        // Gone already when it was renamed into place.
-        let _ = std::fs::remove_dir_all(&self.path);
-    }
 }
 
 /// Reads and fits the inputs per the arguments (no file is written).

@@ -21,4 +21,6 @@ mod source_emit;
 mod source_fmt;
 mod source_malformed;
 mod svg;
+mod terminal;
+mod writes;
 mod xspline;
