@@ -7,6 +7,9 @@
 //!   -> a model::Font (emitted by source::emit) and a report.rs summary
 //! ```
 //!
+//! Glyphs are fitted in parallel on rayon's pool, each on its own, so the output does not
+//! depend on the thread count; [`Progress`] reports the count as they finish.
+//!
 //! Tolerance budget: with an import tolerance `T` (default 1/1000 em), the fitter aims at
 //! [`FIT_SHARE`]` · T`, coordinates are then rounded to a decimal grid of at most `T / 10`
 //! (a hundred times finer if the coarse grid would break the bound) and the rounded
