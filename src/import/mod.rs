@@ -265,7 +265,7 @@ fn import_glyphs(
             fitted
         })
         .collect();
-    fitted.sort_by(|a, b| glyph_order(&a.glyph.name, &b.glyph.name));
+    fitted.sort_by(|a, b| crate::model::glyph_order(&a.glyph.name, &b.glyph.name));
     let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) =
         fitted.into_iter().map(|f| (f.glyph, f.report)).unzip();
     Imported {
@@ -280,10 +280,6 @@ fn import_glyphs(
             notes: Vec::new(),
         },
     }
-}
-
-fn glyph_order(a: &str, b: &str) -> std::cmp::Ordering {
-    (a != ".notdef", a).cmp(&(b != ".notdef", b))
 }
 
 /// The decimal rounding grid for written coordinates: the largest power of ten not above
@@ -338,9 +334,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
         };
         row.max_error = row.max_error.max(err);
         row.xspline_points += spline.points().len();
-        contours.push(Contour {
-            points: spline.points().to_vec(),
-        });
+        contours.push(Contour::from(spline));
     }
     let glyph = Glyph {
         name: source.name.clone(),

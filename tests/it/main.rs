@@ -12,6 +12,7 @@ mod import_font;
 mod import_malformed;
 mod import_output;
 mod import_svg;
+mod ir;
 mod ocr;
 mod otf;
 mod otf_random;
