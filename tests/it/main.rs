@@ -13,6 +13,7 @@ mod import_malformed;
 mod import_output;
 mod import_svg;
 mod ir;
+mod limits;
 mod ocr;
 mod otf;
 mod otf_random;
