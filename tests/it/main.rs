@@ -10,6 +10,7 @@ mod fit_count;
 mod flatten;
 mod import_font;
 mod import_malformed;
+mod import_output;
 mod import_svg;
 mod ir;
 mod limits;
