@@ -21,6 +21,7 @@ pub mod orient;
 pub mod otf;
 pub mod outline;
 pub mod render;
+pub mod serve;
 pub mod source;
 pub mod svg;
 pub mod write;
