@@ -49,7 +49,11 @@ fn main() {
 
     // The event stream, read on its own thread: (arrival time, message).
     let mut sse = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    write!(sse, "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n").unwrap();
+    write!(
+        sse,
+        "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n"
+    )
+    .unwrap();
     let (tx, events) = channel();
     std::thread::spawn(move || {
         for line in BufReader::new(sse).lines().map_while(Result::ok) {
@@ -67,11 +71,16 @@ fn main() {
     let mut to_outline = Vec::new();
     let mut raw_write = Vec::new();
     for k in 0..SAMPLES {
-        let text = original.replace("[275, -12, -1]", &format!("[275, {}, -1]", -12 - (k as i64 % 7) - 1));
+        let text = original.replace(
+            "[275, -12, -1]",
+            &format!("[275, {}, -1]", -12 - (k as i64 % 7) - 1),
+        );
         let start = Instant::now();
         fs::write(&path, &text).unwrap();
         raw_write.push(start.elapsed());
-        let (at, msg) = events.recv_timeout(Duration::from_secs(5)).expect("an event");
+        let (at, msg) = events
+            .recv_timeout(Duration::from_secs(5))
+            .expect("an event");
         assert_eq!(msg["changed"][0], "o", "{msg}");
         to_event.push(at - start);
         let glyph = request(port, "GET", "/api/glyph/o", "");
@@ -130,12 +139,27 @@ fn main() {
         median(&mut raw_write),
     );
     println!("studio (glyph o, {SAMPLES} samples each, medians):");
-    println!("  file save -> SSE event           {:7.2} ms  ({:.2}x build of one glyph)", ms(event), ms(event) / ms(build));
-    println!("  file save -> event + new outline {:7.2} ms  ({:.2}x build of one glyph)", ms(outline), ms(outline) / ms(build));
-    println!("  API edit answer (move a point)   {:7.2} ms  ({:.2}x build of one glyph)", ms(edit), ms(edit) / ms(build));
+    println!(
+        "  file save -> SSE event           {:7.2} ms  ({:.2}x build of one glyph)",
+        ms(event),
+        ms(event) / ms(build)
+    );
+    println!(
+        "  file save -> event + new outline {:7.2} ms  ({:.2}x build of one glyph)",
+        ms(outline),
+        ms(outline) / ms(build)
+    );
+    println!(
+        "  API edit answer (move a point)   {:7.2} ms  ({:.2}x build of one glyph)",
+        ms(edit),
+        ms(edit) / ms(build)
+    );
     println!("  reference: xglyph build, 1 glyph {:7.2} ms", ms(build));
     println!("  reference: fs::write of o.toml   {:7.3} ms", ms(write));
-    println!("  idle CPU over 3 s (page connected): {idle_ticks} ticks of 1/{} s", clock_ticks());
+    println!(
+        "  idle CPU over 3 s (page connected): {idle_ticks} ticks of 1/{} s",
+        clock_ticks()
+    );
 }
 
 fn median(v: &mut [Duration]) -> Duration {
@@ -149,7 +173,12 @@ fn cpu_ticks(pid: u32) -> u64 {
     let after = stat.rsplit_once(')').map_or("", |(_, r)| r);
     let fields: Vec<&str> = after.split_whitespace().collect();
     // Fields 14 and 15 of stat (utime, stime) are 12 and 13 after the command name.
-    let get = |i: usize| fields.get(i).and_then(|f| f.parse::<u64>().ok()).unwrap_or(0);
+    let get = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<u64>().ok())
+            .unwrap_or(0)
+    };
     get(11) + get(12)
 }
 
@@ -175,5 +204,7 @@ fn request(port: u16, method: &str, path: &str, body: &str) -> String {
     .unwrap();
     let mut text = String::new();
     s.read_to_string(&mut text).unwrap();
-    text.split_once("\r\n\r\n").map(|(_, b)| b.to_string()).unwrap_or_default()
+    text.split_once("\r\n\r\n")
+        .map(|(_, b)| b.to_string())
+        .unwrap_or_default()
 }

@@ -54,13 +54,13 @@ pub fn run(args: ServeArgs) -> Result<ExitCode, CommandError> {
         }
         Err(StartError::Other(e)) => return Err(e.to_string().into()),
     };
+    // The handler first: once the URL is printed, Ctrl-C must stop cleanly.
+    ctrlc::set_handler(server.stopper())?;
     let url = server.url();
     println!(
         "xglyph studio: {} at {url} (Ctrl-C stops)",
         args.font_dir.display()
     );
-    let stop = server.stopper();
-    ctrlc::set_handler(stop)?;
     if args.open {
         open_browser(&url);
     }

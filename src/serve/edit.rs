@@ -75,9 +75,8 @@ pub fn apply(text: &str, ops: &[Op]) -> Result<String, EditError> {
 /// The replacements (byte range, new text) that perform `op` on `text`, in text order;
 /// none when nothing changes.
 fn splices(text: &str, op: &Op) -> Result<Vec<(Range<usize>, String)>, EditError> {
-    let doc = DeTable::parse(text).map_err(|e| {
-        EditError::Unreadable(format!("invalid TOML: {}", e.message().trim()))
-    })?;
+    let doc = DeTable::parse(text)
+        .map_err(|e| EditError::Unreadable(format!("invalid TOML: {}", e.message().trim())))?;
     let table = doc.get_ref();
     match *op {
         Op::Advance { value } => {
@@ -171,7 +170,9 @@ fn points<'t, 'i>(
         ))
     })?;
     let DeValue::Table(t) = c.get_ref() else {
-        return Err(EditError::Unreadable(format!("contour {contour} is not a table")));
+        return Err(EditError::Unreadable(format!(
+            "contour {contour} is not a table"
+        )));
     };
     match get(t, "points").map(Spanned::get_ref) {
         Some(DeValue::Array(a)) => Ok(&a[..]),
@@ -264,7 +265,10 @@ points = [
             y: 0.0,
         }];
         let out = apply(TEXT, &ops).unwrap();
-        assert_eq!(out, TEXT.replace("[100, 0, 1.50e-1]", "[120.5, 0, 1.50e-1]"));
+        assert_eq!(
+            out,
+            TEXT.replace("[100, 0, 1.50e-1]", "[120.5, 0, 1.50e-1]")
+        );
     }
 
     #[test]
@@ -290,7 +294,10 @@ points = [
             point: [1.0, 2.0, 0.0],
         }];
         let out = apply(TEXT, &first).unwrap();
-        assert_eq!(out, TEXT.replace("  [0, 0, 0],", "  [1, 2, 0],\n  [0, 0, 0],"));
+        assert_eq!(
+            out,
+            TEXT.replace("  [0, 0, 0],", "  [1, 2, 0],\n  [0, 0, 0],")
+        );
     }
 
     #[test]

@@ -61,7 +61,10 @@ pub fn handle(mut rq: Request, ctx: &Context) {
         if let Some((content_type, body)) = assets::asset(path) {
             return respond(rq, 200, content_type, body.to_string());
         }
-        if let Some(name) = path.strip_prefix("/glyph/").and_then(|n| n.strip_suffix(".svg")) {
+        if let Some(name) = path
+            .strip_prefix("/glyph/")
+            .and_then(|n| n.strip_suffix(".svg"))
+        {
             let svg = decode(name).and_then(|n| lock(ctx)?.glyph_svg(&n));
             return match svg {
                 Some(svg) => respond(rq, 200, "image/svg+xml", svg),
@@ -190,10 +193,16 @@ fn edit(rq: &mut Request, name: &str, ctx: &Context) -> Answer {
 
 /// The request body, at most [`MAX_BODY`] bytes, JSON only.
 fn read_body(rq: &mut Request) -> Result<Vec<u8>, Answer> {
-    let json_type = header(rq, "Content-Type")
-        .is_some_and(|t| t.trim().to_ascii_lowercase().starts_with("application/json"));
+    let json_type = header(rq, "Content-Type").is_some_and(|t| {
+        t.trim()
+            .to_ascii_lowercase()
+            .starts_with("application/json")
+    });
     if !json_type {
-        return Err(error(415, "an edit must be sent as Content-Type: application/json"));
+        return Err(error(
+            415,
+            "an edit must be sent as Content-Type: application/json",
+        ));
     }
     let too_large = || error(413, format!("request body over {MAX_BODY} bytes"));
     if rq.body_length().is_some_and(|n| n > MAX_BODY) {
@@ -257,7 +266,10 @@ fn respond_json(rq: Request, Answer(code, body): Answer) {
 }
 
 fn respond(rq: Request, code: u16, content_type: &str, body: String) {
-    let mut response = Response::from_string(body).with_status_code(code);
+    // A Content-Length rather than chunks: every answer is in memory already.
+    let mut response = Response::from_string(body)
+        .with_status_code(code)
+        .with_chunked_threshold(usize::MAX);
     for (field, value) in [
         ("Content-Type", content_type),
         ("Cache-Control", "no-store"),

@@ -69,8 +69,8 @@ impl Server {
             .ok_or_else(|| StartError::Other("the server has no IP address".into()))?;
         let studio = Arc::new(Mutex::new(studio));
         let hub = Arc::new(events::Hub::default());
-        let watcher = watch::watch(dir, Arc::clone(&studio), Arc::clone(&hub))
-            .map_err(StartError::Other)?;
+        let watcher =
+            watch::watch(dir, Arc::clone(&studio), Arc::clone(&hub)).map_err(StartError::Other)?;
         let mut hosts: Vec<String> = ["localhost", "127.0.0.1", "[::1]"]
             .iter()
             .map(|h| format!("{h}:{}", addr.port()))

@@ -282,9 +282,10 @@ impl Studio {
             .components
             .iter()
             .map(|c| {
-                let placed = self.fitted.get(&c.base).map(|f| {
-                    path_data(&f.path, Affine::translate((c.offset.0, c.offset.1)))
-                });
+                let placed = self
+                    .fitted
+                    .get(&c.base)
+                    .map(|f| path_data(&f.path, Affine::translate((c.offset.0, c.offset.1))));
                 json!({"base": c.base, "offset": [c.offset.0, c.offset.1], "path": placed})
             })
             .collect();
@@ -321,10 +322,9 @@ fn files_of(files: &[crate::source::SourceFile]) -> BTreeMap<String, (PathBuf, S
     files
         .iter()
         .filter_map(|f| match &f.kind {
-            SourceKind::Glyph(name) => Some((
-                name.clone(),
-                (f.path.clone(), version(f.text.as_bytes())),
-            )),
+            SourceKind::Glyph(name) => {
+                Some((name.clone(), (f.path.clone(), version(f.text.as_bytes()))))
+            }
             _ => None,
         })
         .collect()

@@ -73,7 +73,10 @@ impl Studio {
 
     /// One request with the right Host header; (status, body).
     pub fn request(&self, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
-        let headers = format!("Host: {}\r\nContent-Type: application/json\r\n", self.host());
+        let headers = format!(
+            "Host: {}\r\nContent-Type: application/json\r\n",
+            self.host()
+        );
         raw(self.port, method, path, &headers, body.unwrap_or(""))
     }
 
@@ -226,7 +229,13 @@ fn font_glyph_and_svg_endpoints() {
     let (code, page) = studio.request("GET", "/", None);
     assert_eq!(code, 200);
     assert!(page.contains("<script type=\"module\" src=\"/studio.js\">"));
-    for asset in ["/studio.js", "/editor.js", "/overview.js", "/api.js", "/style.css"] {
+    for asset in [
+        "/studio.js",
+        "/editor.js",
+        "/overview.js",
+        "/api.js",
+        "/style.css",
+    ] {
         assert_eq!(studio.request("GET", asset, None).0, 200, "{asset}");
     }
 }
@@ -321,20 +330,33 @@ fn every_error_code_and_nothing_written() {
     assert_eq!(code, 400);
     let (code, _) = studio.edit("tri", &v, json!([{"op": "rotate", "angle": 3}]));
     assert_eq!(code, 400);
-    let (code, _) = studio.edit("tri", &v, json!([{"op": "move", "contour": 0, "point": -1, "x": 0, "y": 0}]));
+    let (code, _) = studio.edit(
+        "tri",
+        &v,
+        json!([{"op": "move", "contour": 0, "point": -1, "x": 0, "y": 0}]),
+    );
     assert_eq!(code, 400);
     let (code, body) = studio.edit(
         "tri",
         &v,
         json!([{"op": "shape", "contour": 0, "point": 3, "s": 0}]),
     );
-    assert_eq!((code, body["error"].as_str()), (400, Some("point 3 is out of range: contour 0 has 3 points")));
+    assert_eq!(
+        (code, body["error"].as_str()),
+        (400, Some("point 3 is out of range: contour 0 has 3 points"))
+    );
     let (code, body) = studio.edit(
         "tri",
         &v,
         json!([{"op": "delete", "contour": 2, "point": 0}]),
     );
-    assert_eq!((code, body["error"].as_str()), (400, Some("contour 2 is out of range: the glyph has 2 contours")));
+    assert_eq!(
+        (code, body["error"].as_str()),
+        (
+            400,
+            Some("contour 2 is out of range: the glyph has 2 contours")
+        )
+    );
     let (code, _) = studio.edit(
         "tri",
         &v,
@@ -357,7 +379,10 @@ fn every_error_code_and_nothing_written() {
         json!([{"op": "shape", "contour": 0, "point": 1, "s": 2}]),
     );
     assert_eq!(code, 422);
-    assert_eq!(body["error"], format!("{file}:10:12: error: s = 2 is outside [-1, 1]"));
+    assert_eq!(
+        body["error"],
+        format!("{file}:10:12: error: s = 2 is outside [-1, 1]")
+    );
     assert_eq!(body["diagnostics"][0]["line"], 10);
     assert_eq!(body["diagnostics"][0]["column"], 12);
     let (code, body) = studio.edit(
@@ -384,11 +409,20 @@ fn every_error_code_and_nothing_written() {
     assert_eq!(code, 422);
     unchanged();
     // 413: a body over 1 MB; 415: not JSON; 405: wrong method.
-    let big = format!("{{\"version\": \"{v}\", \"ops\": [], \"pad\": \"{}\"}}", "x".repeat(1 << 20));
-    assert_eq!(studio.request("POST", "/api/glyph/tri/edit", Some(&big)).0, 413);
+    let big = format!(
+        "{{\"version\": \"{v}\", \"ops\": [], \"pad\": \"{}\"}}",
+        "x".repeat(1 << 20)
+    );
+    assert_eq!(
+        studio.request("POST", "/api/glyph/tri/edit", Some(&big)).0,
+        413
+    );
     let headers = format!("Host: {}\r\nContent-Type: text/plain\r\n", studio.host());
     let body = json!({"version": v, "ops": mv}).to_string();
-    assert_eq!(raw(studio.port, "POST", "/api/glyph/tri/edit", &headers, &body).0, 415);
+    assert_eq!(
+        raw(studio.port, "POST", "/api/glyph/tri/edit", &headers, &body).0,
+        415
+    );
     assert_eq!(studio.request("DELETE", "/api/glyph/tri", None).0, 405);
     assert_eq!(studio.request("POST", "/api/font", Some("{}")).0, 405);
     unchanged();
@@ -398,26 +432,47 @@ fn every_error_code_and_nothing_written() {
 fn host_origin_and_traversal_are_refused() {
     let studio = Studio::start(|_| {});
     let port = studio.port;
-    for host in ["evil.example", "evil.example:{port}", "127.0.0.1:1", "localhost"] {
+    for host in [
+        "evil.example",
+        "evil.example:{port}",
+        "127.0.0.1:1",
+        "localhost",
+    ] {
         let host = host.replace("{port}", &port.to_string());
         let (code, body) = raw(port, "GET", "/api/font", &format!("Host: {host}\r\n"), "");
         assert_eq!(code, 403, "{host}: {body}");
     }
     assert_eq!(raw(port, "GET", "/api/font", "", "").0, 403);
     for host in ["localhost", "127.0.0.1", "[::1]"] {
-        let (code, _) = raw(port, "GET", "/api/font", &format!("Host: {host}:{port}\r\n"), "");
+        let (code, _) = raw(
+            port,
+            "GET",
+            "/api/font",
+            &format!("Host: {host}:{port}\r\n"),
+            "",
+        );
         assert_eq!(code, 200, "{host}");
     }
     // An edit from another site's page.
-    let v = studio.get_json("/api/glyph/o")["version"].as_str().unwrap().to_string();
+    let v = studio.get_json("/api/glyph/o")["version"]
+        .as_str()
+        .unwrap()
+        .to_string();
     let body = json!({"version": v, "ops": [{"op": "advance", "value": 1}]}).to_string();
     let headers = format!(
         "Host: {}\r\nContent-Type: application/json\r\nOrigin: http://evil.example\r\n",
         studio.host()
     );
-    assert_eq!(raw(port, "POST", "/api/glyph/o/edit", &headers, &body).0, 403);
+    assert_eq!(
+        raw(port, "POST", "/api/glyph/o/edit", &headers, &body).0,
+        403
+    );
     // Names that look like paths are only names, and unknown.
-    fs::write(studio.dir.parent().unwrap().join("secret.toml"), "advance = 1\n").unwrap();
+    fs::write(
+        studio.dir.parent().unwrap().join("secret.toml"),
+        "advance = 1\n",
+    )
+    .unwrap();
     for path in [
         "/api/glyph/../secret",
         "/api/glyph/..%2Fsecret",
@@ -432,7 +487,10 @@ fn host_origin_and_traversal_are_refused() {
     }
     let (code, _) = studio.request("POST", "/api/glyph/..%2Fsecret/edit", Some(&body));
     assert_eq!(code, 404);
-    assert_eq!(fs::read_to_string(studio.dir.parent().unwrap().join("secret.toml")).unwrap(), "advance = 1\n");
+    assert_eq!(
+        fs::read_to_string(studio.dir.parent().unwrap().join("secret.toml")).unwrap(),
+        "advance = 1\n"
+    );
     let o = fs::read(studio.file("o.toml")).unwrap();
     assert_eq!(version(&o), v);
 }
@@ -443,7 +501,10 @@ fn disk_edits_stream_events_and_conflict() {
     let events = studio.events();
     let path = studio.file("o.toml");
     let original = fs::read_to_string(&path).unwrap();
-    let v0 = studio.get_json("/api/glyph/o")["version"].as_str().unwrap().to_string();
+    let v0 = studio.get_json("/api/glyph/o")["version"]
+        .as_str()
+        .unwrap()
+        .to_string();
 
     // A save from a text editor: the changed glyph and the composites that place it.
     let saved = original.replace("[275, -12, -1]", "[275, -20, -1]");
@@ -464,14 +525,20 @@ fn disk_edits_stream_events_and_conflict() {
     assert_eq!(fs::read_to_string(&path).unwrap(), saved);
 
     // An edit through the API is announced to every page too.
-    let (code, _) = studio.edit("o", g["version"].as_str().unwrap(), json!([{"op": "advance", "value": 560}]));
+    let (code, _) = studio.edit(
+        "o",
+        g["version"].as_str().unwrap(),
+        json!([{"op": "advance", "value": 560}]),
+    );
     assert_eq!(code, 200);
     let event = next_event(&events, 5);
     assert_eq!(event["changed"][0], "o");
 
     // A broken file: errors as `check` gives them, and the last good outline is served.
     let good = studio.get_json("/api/glyph/o");
-    let broken = fs::read_to_string(&path).unwrap().replace("advance = 560", "advance = \"wide\"");
+    let broken = fs::read_to_string(&path)
+        .unwrap()
+        .replace("advance = 560", "advance = \"wide\"");
     fs::write(&path, &broken).unwrap();
     let event = next_event(&events, 5);
     let check = Command::new(env!("CARGO_BIN_EXE_xglyph"))
@@ -493,7 +560,13 @@ fn disk_edits_stream_events_and_conflict() {
     let served = studio.get_json("/api/glyph/o");
     assert_eq!(served["path"], good["path"]);
     assert_eq!(served["advance"], 560.0);
-    assert_eq!(studio.get_json("/api/font")["glyphs"].as_array().unwrap().len(), 154);
+    assert_eq!(
+        studio.get_json("/api/font")["glyphs"]
+            .as_array()
+            .unwrap()
+            .len(),
+        154
+    );
     // A page that opens now gets the errors at once.
     let late = studio.events();
     assert!(next_event(&late, 5)["errors"].is_array());
@@ -509,7 +582,11 @@ fn disk_edits_stream_events_and_conflict() {
 fn ctrl_c_stops_cleanly() {
     let mut studio = Studio::start(|_| {});
     let pid = studio.child.id().to_string();
-    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+    assert!(Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .unwrap()
+        .success());
     let status = studio.child.wait().unwrap();
     assert!(status.success(), "{status:?}");
 }

@@ -68,7 +68,10 @@ impl Browser {
                     break text;
                 }
             }
-            assert!(started.elapsed() < Duration::from_secs(30), "Chromium did not start");
+            assert!(
+                started.elapsed() < Duration::from_secs(30),
+                "Chromium did not start"
+            );
             std::thread::sleep(Duration::from_millis(50));
         };
         let mut lines = text.lines();
@@ -198,7 +201,9 @@ impl Browser {
         use base64::Engine;
         let r = self.call("Page.captureScreenshot", json!({"format": "png"}));
         let data = r["data"].as_str().unwrap();
-        base64::engine::general_purpose::STANDARD.decode(data).unwrap()
+        base64::engine::general_purpose::STANDARD
+            .decode(data)
+            .unwrap()
     }
 }
 
@@ -261,10 +266,17 @@ fn drag_watch_errors_and_undo() {
     println!("disk save to redrawn point: {} ms", took.as_millis());
     let (_, y0) = browser.point_on_screen(0, 0);
     let (_, y2) = browser.point_on_screen(0, 4);
-    let view = browser.eval("[studio.editor.view.s, studio.editor.view.ty]");
+    // Screen y = -y * scale + ty, from the canvas's top edge.
+    let view = browser.eval(
+        "[studio.editor.view.s, studio.editor.view.ty + \
+          document.getElementById('canvas').getBoundingClientRect().top]",
+    );
     let (s, ty) = (view[0].as_f64().unwrap(), view[1].as_f64().unwrap());
     assert!((y0 - (40.0 * s + ty)).abs() < 1.0, "point drawn at y {y0}");
-    assert!((y2 - (-522.0 * s + ty)).abs() < 1.0, "point drawn at y {y2}");
+    assert!(
+        (y2 - (-522.0 * s + ty)).abs() < 1.0,
+        "point drawn at y {y2}"
+    );
 
     // 3. A broken file: the error text appears; fixing it clears it.
     let broken = saved.replace("advance = 550", "advance = \"wide\"");
@@ -289,7 +301,10 @@ fn drag_watch_errors_and_undo() {
 
     // 4. Drag another point, undo with Ctrl-Z: the file is back byte for byte; redo.
     browser.wait_for(
-        &format!("studio.editor.glyph.version === {}", json!(xglyph::serve::version(saved.as_bytes()))),
+        &format!(
+            "studio.editor.glyph.version === {}",
+            json!(xglyph::serve::version(saved.as_bytes()))
+        ),
         Duration::from_secs(2),
     );
     let from = browser.point_on_screen(1, 2);
@@ -297,7 +312,7 @@ fn drag_watch_errors_and_undo() {
     browser.settle();
     let redone = fs::read_to_string(&path).unwrap();
     assert_eq!(changed_lines(&saved, &redone).len(), 1);
-    assert_eq!(changed_lines(&saved, &redone)[0].0, 17);
+    assert_eq!(changed_lines(&saved, &redone)[0].0, 20);
     browser.undo_key(false);
     browser.settle();
     assert_eq!(fs::read(&path).unwrap(), saved.as_bytes());

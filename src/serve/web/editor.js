@@ -97,6 +97,9 @@ export class Editor {
     const v = this.view;
     // Metric guides, across the whole view.
     const guides = el('g', { class: 'guides' }, svg);
+    const [bx0, by0] = this.screen([0, info.ascender]);
+    const [bx1, by1] = this.screen([g.advance, info.descender]);
+    el('rect', { x: bx0, y: by0, width: Math.max(bx1 - bx0, 0), height: by1 - by0, class: 'em-box' }, guides);
     const metrics = [
       ['ascender', info.ascender], ['cap height', info.cap_height],
       ['x-height', info.x_height], ['baseline', 0], ['descender', info.descender],

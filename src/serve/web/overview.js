@@ -9,7 +9,10 @@ export function renderOverview(root, font, open) {
   const top = info.ascender, bottom = info.descender;
   const height = top - bottom;
   const frag = document.createDocumentFragment();
-  for (const g of font.glyphs) {
+  // Code-point order, as the sheet; unencoded glyphs (accents, .notdef) last.
+  const key = (g) => (g.unicodes.length ? g.unicodes[0] : 0x110000);
+  const glyphs = [...font.glyphs].sort((a, b) => key(a) - key(b));
+  for (const g of glyphs) {
     const cell = document.createElement('a');
     cell.className = 'cell';
     cell.href = `#/glyph/${encodeURIComponent(g.name)}`;
