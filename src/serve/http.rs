@@ -173,13 +173,17 @@ fn edit(rq: &mut Request, name: &str, ctx: &Context) -> Answer {
         if let Err(e) = write_atomic(&path, edited.as_bytes()) {
             return error(500, format!("cannot write {}: {e}", path.display()));
         }
-        let outcome = match studio.reload() {
-            // Another file is broken: show this glyph's edit on the last good font.
-            Reload::Errors(errors) => {
-                studio.replace_glyph(name, &edited);
-                Reload::Errors(errors)
+        // Only this file changed, and it was checked: no need to load the folder again
+        // (the watcher's event for this write finds the font current).
+        let names = studio.replace_glyph(name, &edited);
+        let outcome = if studio.errors().is_empty() {
+            Reload::Changed {
+                names,
+                fixed: false,
             }
-            changed => changed,
+        } else {
+            // Another file is broken: this glyph shows its edit on the last good font.
+            Reload::Errors(studio.errors().to_vec())
         };
         if let Some(message) = reload_message(&outcome) {
             ctx.hub.broadcast(&message);

@@ -4,19 +4,21 @@
 //! This is the only module of the server that knows the font model and the outliner
 //! (`Font`, `XSpline`, `fit_contour`): everything else sees names, JSON and file versions.
 //!
-//! A reload loads the whole folder again (the checks across files need it) but refits only
-//! the glyphs whose model changed, and the glyphs that place them as components. While the
-//! sources have errors the last good font is kept and served.
+//! A reload loads the whole folder again (the checks across files need it) but fits only
+//! the contours that changed: each glyph's own contours are fitted once and kept, and a
+//! glyph that places components takes its bases' fits, translated (the fit of a translated
+//! contour is the translated fit, up to rounding in the last bits). While the sources have
+//! errors the last good font is kept and served.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::hash::Hasher;
 use std::path::{Path, PathBuf};
 
-use kurbo::{Affine, BezPath, PathEl};
+use kurbo::{Affine, BezPath, PathEl, Vec2};
 use serde_json::{json, Value};
 
 use crate::fit::fit_contour;
-use crate::model::{Font, Glyph};
+use crate::model::{Contour, Font, Glyph};
 use crate::orient::orient_contours;
 use crate::source::{load_glyph_text, load_sources, Diagnostic, Severity, SourceKind};
 use crate::svg::glyph_svg;
@@ -39,6 +41,17 @@ struct Fitted {
     worst_error: f64,
 }
 
+/// The fits of one glyph's own contours (no components, not yet oriented), with what they
+/// were fitted from: a composite places its bases' fits, translated, instead of fitting
+/// their contours again.
+#[derive(Clone, Debug)]
+struct OwnFit {
+    contours: Vec<Contour>,
+    tolerance: f64,
+    /// Per contour: the path and its largest measured error.
+    fits: Vec<(BezPath, f64)>,
+}
+
 /// What a reload found.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Reload {
@@ -57,6 +70,7 @@ pub struct Studio {
     /// Glyph name -> its source file and the version of the text the model came from.
     files: BTreeMap<String, (PathBuf, String)>,
     fitted: BTreeMap<String, Fitted>,
+    own: BTreeMap<String, OwnFit>,
     /// Errors of the sources on disk now (empty when they load).
     errors: Vec<Diagnostic>,
 }
@@ -70,6 +84,7 @@ impl Studio {
             font: loaded.font,
             files: files_of(&loaded.files),
             fitted: BTreeMap::new(),
+            own: BTreeMap::new(),
             errors: Vec::new(),
         };
         let all: Vec<String> = studio.font.glyphs.iter().map(|g| g.name.clone()).collect();
@@ -103,6 +118,7 @@ impl Studio {
             .cloned()
             .collect();
         self.fitted.retain(|name, _| self.files.contains_key(name));
+        self.own.retain(|name, _| self.files.contains_key(name));
         self.refit(&refit);
         Reload::Changed {
             names: changed.into_iter().collect(),
@@ -177,14 +193,101 @@ impl Studio {
         changed
     }
 
-    /// Fits `names` again (each glyph's own contours and its components' contours).
+    /// Fits `names` again: a glyph's own contours when they changed, then its outline
+    /// with the fits of its components placed.
     fn refit(&mut self, names: &[String]) {
+        let tolerance = self.font.info.tolerance;
+        for name in names {
+            let Some(glyph) = self.font.glyph(name) else {
+                continue;
+            };
+            let fresh = self
+                .own
+                .get(name)
+                .is_some_and(|o| o.tolerance == tolerance && o.contours == glyph.contours);
+            if !fresh {
+                self.own.insert(name.clone(), fit_own(glyph, tolerance));
+            }
+        }
         for name in names {
             if let Some(glyph) = self.font.glyph(name) {
-                let fitted = fit_glyph(&self.font, glyph);
+                let fitted = self.compose(glyph);
                 self.fitted.insert(name.clone(), fitted);
             }
         }
+    }
+
+    /// A glyph's outline: its own fits and its components' (recursively, translated),
+    /// oriented together, as [`crate::outline`] orients the fits of resolved contours.
+    fn compose(&self, glyph: &Glyph) -> Fitted {
+        let mut contours = Vec::new();
+        let mut worst_error: f64 = 0.0;
+        let depth = self.font.glyphs.len();
+        self.place(glyph, Vec2::ZERO, depth, &mut contours, &mut worst_error);
+        let path = orient_contours(contours);
+        let segments = path
+            .elements()
+            .iter()
+            .filter(|el| !matches!(el, PathEl::MoveTo(_) | PathEl::ClosePath))
+            .count();
+        Fitted {
+            path,
+            segments,
+            worst_error,
+        }
+    }
+
+    /// Adds `glyph`'s own fits moved by `offset`, then its components'; `depth` bounds the
+    /// recursion (the loader refuses cycles; this is a safety net).
+    fn place(
+        &self,
+        glyph: &Glyph,
+        offset: Vec2,
+        depth: usize,
+        out: &mut Vec<BezPath>,
+        worst: &mut f64,
+    ) {
+        if let Some(own) = self.own.get(&glyph.name) {
+            for (path, error) in &own.fits {
+                out.push(if offset == Vec2::ZERO {
+                    path.clone()
+                } else {
+                    Affine::translate(offset) * path
+                });
+                *worst = worst.max(*error);
+            }
+        }
+        if depth == 0 {
+            return;
+        }
+        for component in &glyph.components {
+            if let Some(base) = self.font.glyph(&component.base) {
+                let moved = offset + Vec2::new(component.offset.0, component.offset.1);
+                self.place(base, moved, depth - 1, out, worst);
+            }
+        }
+    }
+
+    /// Whether every source file among `paths` is, byte for byte, what the served font
+    /// was loaded from (then a file event needs no reload: an edit made here). Any other
+    /// file, or errors being shown, means a reload.
+    pub fn is_current(&self, paths: &[PathBuf]) -> bool {
+        self.errors.is_empty()
+            && paths.iter().all(|path| {
+                let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+                if name.is_some_and(|n| n.starts_with('.') || !n.ends_with(".toml")) {
+                    return true;
+                }
+                // One folder: the file name identifies the file, however the path is spelt.
+                let known = self
+                    .files
+                    .values()
+                    .find(|(p, _)| p.file_name() == path.file_name());
+                match (known, std::fs::read(path)) {
+                    (Some((_, v)), Ok(bytes)) => *v == version(&bytes),
+                    _ => false,
+                }
+            })
     }
 
     /// The errors of the sources on disk, empty when they load.
@@ -341,29 +444,22 @@ fn unicodes(glyph: &Glyph) -> Vec<u32> {
     glyph.unicodes.iter().map(|&c| u32::from(c)).collect()
 }
 
-/// Fits one glyph: its contours with components resolved, oriented, with its figures.
-/// A contour the model should not hold (the loader refuses them) is left out.
-fn fit_glyph(font: &Font, glyph: &Glyph) -> Fitted {
-    let tolerance = font.info.tolerance;
-    let mut contours = Vec::new();
-    let mut worst_error: f64 = 0.0;
-    for contour in font.resolved_contours(glyph) {
-        if let Ok(spline) = XSpline::new(contour.points) {
-            let fit = fit_contour(&spline, tolerance);
-            worst_error = worst_error.max(fit.max_error);
-            contours.push(fit.path);
-        }
-    }
-    let path = orient_contours(contours);
-    let segments = path
-        .elements()
+/// Fits a glyph's own contours. A contour the model should not hold (the loader refuses
+/// them) is left out.
+fn fit_own(glyph: &Glyph, tolerance: f64) -> OwnFit {
+    let fits = glyph
+        .contours
         .iter()
-        .filter(|el| !matches!(el, PathEl::MoveTo(_) | PathEl::ClosePath))
-        .count();
-    Fitted {
-        path,
-        segments,
-        worst_error,
+        .filter_map(|contour| XSpline::new(contour.points.clone()).ok())
+        .map(|spline| {
+            let fit = fit_contour(&spline, tolerance);
+            (fit.path, fit.max_error)
+        })
+        .collect();
+    OwnFit {
+        contours: glyph.contours.clone(),
+        tolerance,
+        fits,
     }
 }
 

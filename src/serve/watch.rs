@@ -5,7 +5,7 @@
 //! save or a `git checkout` touches several files, or one file several times); then the
 //! font is reloaded once and the outcome broadcast.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -30,10 +30,11 @@ pub fn watch(
     watcher.watch(dir, RecursiveMode::NonRecursive)?;
     std::thread::spawn(move || {
         while let Ok(event) = rx.recv() {
-            let mut relevant = is_source_event(&event);
+            let mut paths = Vec::new();
+            let mut relevant = source_paths(event, &mut paths);
             loop {
                 match rx.recv_timeout(SETTLE) {
-                    Ok(more) => relevant |= is_source_event(&more),
+                    Ok(more) => relevant |= source_paths(more, &mut paths),
                     Err(RecvTimeoutError::Timeout) => break,
                     Err(RecvTimeoutError::Disconnected) => return,
                 }
@@ -42,6 +43,7 @@ pub fn watch(
                 continue;
             }
             let outcome = match studio.lock() {
+                Ok(studio) if studio.is_current(&paths) => continue,
                 Ok(mut studio) => studio.reload(),
                 Err(_) => return,
             };
@@ -53,16 +55,23 @@ pub fn watch(
     Ok(watcher)
 }
 
-/// Whether an event touches a source file (`*.toml` not starting with `.`).
-fn is_source_event(event: &notify::Result<notify::Event>) -> bool {
+/// Whether an event touches a source file (`*.toml` not starting with `.`); its paths
+/// are added to `paths`. An error from the watcher counts as a change (reload to be sure).
+fn source_paths(event: notify::Result<notify::Event>, paths: &mut Vec<PathBuf>) -> bool {
     let Ok(event) = event else {
+        paths.push(PathBuf::new());
         return true;
     };
     if matches!(event.kind, notify::EventKind::Access(_)) {
         return false;
     }
-    event.paths.iter().any(|p| {
+    let mut relevant = false;
+    for p in event.paths {
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
-        name.is_some_and(|n| n.ends_with(".toml") && !n.starts_with('.'))
-    })
+        if name.is_some_and(|n| n.ends_with(".toml") && !n.starts_with('.')) {
+            relevant = true;
+            paths.push(p);
+        }
+    }
+    relevant
 }

@@ -176,6 +176,32 @@ impl Browser {
         self.mouse("mouseReleased", (from.0 + by.0, from.1 + by.1), 0);
     }
 
+    /// Presses and releases one key (no modifiers).
+    fn key(&mut self, key: &str, code: &str, key_code: u32) {
+        let text = if key.chars().count() == 1 { key } else { "" };
+        for kind in ["keyDown", "keyUp"] {
+            self.call(
+                "Input.dispatchKeyEvent",
+                json!({"type": kind, "key": key, "code": code, "text": text,
+                       "windowsVirtualKeyCode": key_code}),
+            );
+        }
+    }
+
+    /// Two clicks in a row: a double-click.
+    fn double_click(&mut self, (x, y): (f64, f64)) {
+        self.mouse("mouseMoved", (x, y), 0);
+        for count in [1, 2] {
+            for kind in ["mousePressed", "mouseReleased"] {
+                self.call(
+                    "Input.dispatchMouseEvent",
+                    json!({"type": kind, "x": x, "y": y, "button": "left",
+                           "buttons": u32::from(kind == "mousePressed"), "clickCount": count}),
+                );
+            }
+        }
+    }
+
     /// Ctrl-Z, or Ctrl-Shift-Z with `shift`.
     fn undo_key(&mut self, shift: bool) {
         let modifiers = if shift { 2 | 8 } else { 2 };
@@ -318,6 +344,38 @@ fn drag_watch_errors_and_undo() {
     assert_eq!(fs::read(&path).unwrap(), saved.as_bytes());
     browser.undo_key(true);
     browser.settle();
+    assert_eq!(fs::read_to_string(&path).unwrap(), redone);
+
+    // 5. Keys: select a point, `0` makes it a corner, Delete removes it; a double-click on
+    // an edge inserts a point there; three undos give the file back byte for byte.
+    let p = browser.point_on_screen(1, 0);
+    browser.mouse("mouseMoved", p, 0);
+    browser.mouse("mousePressed", p, 1);
+    browser.mouse("mouseReleased", p, 0);
+    browser.key("0", "Digit0", 48);
+    browser.settle();
+    let corner = fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        changed_lines(&redone, &corner),
+        vec![(18, "  [275, 60, -1],".into(), "  [275, 60, 0],".into())]
+    );
+    browser.key("Delete", "Delete", 46);
+    browser.settle();
+    let deleted = fs::read_to_string(&path).unwrap();
+    assert_eq!(deleted, corner.replace("  [275, 60, 0],\n", ""));
+    let (a, b) = (browser.point_on_screen(0, 2), browser.point_on_screen(0, 3));
+    let mid = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+    browser.double_click(mid);
+    browser.settle();
+    let inserted = fs::read_to_string(&path).unwrap();
+    let new_line = inserted.lines().nth(9).unwrap().to_string();
+    assert_eq!(inserted.lines().count(), deleted.lines().count() + 1);
+    assert!(new_line.ends_with(", 1],"), "{new_line}");
+    assert_eq!(inserted.replace(&format!("{new_line}\n"), ""), deleted);
+    for _ in 0..3 {
+        browser.undo_key(false);
+        browser.settle();
+    }
     assert_eq!(fs::read_to_string(&path).unwrap(), redone);
 }
 

@@ -202,8 +202,16 @@ export class Editor {
     const name = this.name;
     this.pending++;
     this.queue = this.queue.then(async () => {
-      const { status, body } = await edit(name, this.glyph.version, ops);
+      let { status, body } = await edit(name, this.glyph.version, ops);
       if (name !== this.name) return;
+      if (status === 409) {
+        // Saved elsewhere meanwhile: take the file as it is now and, when its points are
+        // still the same points (no insert or delete), apply this edit on top of it.
+        const now = await getGlyph(name);
+        const shape = (g) => g.contours.map((c) => c.points.length).join();
+        if (shape(now) === shape(this.glyph)) ({ status, body } = await edit(name, now.version, ops));
+        else this.glyph = now;
+      }
       if (status === 200) {
         if (record) {
           const h = this.history();
@@ -214,7 +222,7 @@ export class Editor {
         this.set(body);
         return true;
       }
-      if (status === 409) this.app.toast('The file changed on disk: showing it as it is now.');
+      if (status === 409) this.app.toast('The file changed on disk meanwhile (points added or removed): showing it as it is now; this edit was not applied.', true);
       else this.app.toast(body?.error ?? `edit refused (${status})`, true);
       this.set(await getGlyph(name));
       return false;
@@ -339,8 +347,8 @@ export class Editor {
     svg.addEventListener('pointerdown', (e) => {
       if (e.button !== 0 && e.button !== 1) return;
       if (!this.view) return;
-      this.drag = { kind: 'pan', from: this.local(e), view: { ...this.view }, moved: false };
-      svg.setPointerCapture(e.pointerId);
+      // Captured only once it moves, so that a double-click still reaches an edge.
+      this.drag = { kind: 'pan', from: this.local(e), view: { ...this.view }, moved: false, id: e.pointerId };
     });
     svg.addEventListener('pointermove', (e) => {
       const [px, py] = this.local(e);
@@ -352,7 +360,11 @@ export class Editor {
       if (!d) return;
       if (d.kind === 'pan') {
         const dx = px - d.from[0], dy = py - d.from[1];
-        d.moved ||= Math.abs(dx) + Math.abs(dy) > 2;
+        if (!d.moved && Math.abs(dx) + Math.abs(dy) > 2) {
+          d.moved = true;
+          svg.setPointerCapture(d.id);
+        }
+        if (!d.moved) return;
         this.view = { s: d.view.s, tx: d.view.tx + dx, ty: d.view.ty + dy };
         this.draw();
       } else if (d.kind === 'point') {
