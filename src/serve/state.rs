@@ -6,8 +6,10 @@
 //!
 //! A reload loads the whole folder again (the checks across files need it) but fits only
 //! the contours that changed: each glyph's own contours are fitted once and kept, and a
-//! glyph that places components takes its bases' fits, translated (the fit of a translated
-//! contour is the translated fit, up to rounding in the last bits). While the sources have
+//! glyph that places components takes its bases' fits, translated. The fit of a translated
+//! contour is the translated fit up to rounding: on the bundled typeface every outline is
+//! the one `build` makes at 1/100 unit (the precision of every output) and measured errors
+//! agree to about 1e-6 (`tests/it/serve.rs`). While the sources have
 //! errors the last good font is kept and served.
 
 use std::collections::{BTreeMap, BTreeSet};

@@ -590,3 +590,34 @@ fn ctrl_c_stops_cleanly() {
     let status = studio.child.wait().unwrap();
     assert!(status.success(), "{status:?}");
 }
+
+/// The studio fits each glyph's own contours once and places the bases' fits in a
+/// composite; every outline must be the one `build` makes (path data at 1/100 unit, as
+/// every output writes it).
+#[test]
+fn outlines_equal_builds() {
+    use kurbo::Affine;
+    use xglyph::svg::path_data::path_data;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    let studio = xglyph::serve::Studio::open(&dir).unwrap();
+    let (font, _) = xglyph::source::load_font(&dir).unwrap();
+    let outlines = xglyph::outline::outline_font(&font, font.info.tolerance).unwrap();
+    for glyph in &outlines.glyphs {
+        let served = studio.glyph_json(&glyph.name).unwrap();
+        assert_eq!(
+            served["path"],
+            path_data(&glyph.path, Affine::IDENTITY),
+            "{}",
+            glyph.name
+        );
+        let error = served["worst_error"].as_f64().unwrap();
+        // A translated contour's fit converges within rounding of the original's: the
+        // path is the same at 1/100 unit, the measured error equal to about 1e-6.
+        assert!(
+            (error - glyph.max_error).abs() < 1e-5,
+            "{} {error} {}",
+            glyph.name,
+            glyph.max_error
+        );
+    }
+}

@@ -78,11 +78,20 @@ const app = {
     }
   },
 
+  /** Loads the font again, at most one request at a time (a drag streams many edits). */
+  async refreshFont() {
+    if (this.fontLoading) { this.fontStale = true; return this.fontLoading; }
+    this.fontLoading = (async () => {
+      do { this.fontStale = false; await this.loadFont(); } while (this.fontStale);
+    })().finally(() => { this.fontLoading = null; });
+    return this.fontLoading;
+  },
+
   async onEvent(msg) {
     if (msg.errors) { this.showErrors(msg.errors); return; }
     if (msg.changed) {
       this.showErrors([]);
-      await this.loadFont();
+      await this.refreshFont();
       if (this.current) {
         const g = this.font.glyphs.find((x) => x.name === this.current);
         if (!g) { this.toast(`${this.current} is gone from the font`, true); this.go(null); return; }
@@ -98,7 +107,7 @@ async function main() {
     const s = $('status');
     s.textContent = up ? 'live' : 'reconnecting…';
     s.classList.toggle('up', up);
-    if (up) app.loadFont().catch((e) => app.toast(String(e), true));
+    if (up) app.refreshFont().catch((e) => app.toast(String(e), true));
   });
   await app.loadFont();
   window.addEventListener('hashchange', () => app.route());
