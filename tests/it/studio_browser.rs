@@ -69,7 +69,7 @@ impl Browser {
                 }
             }
             assert!(
-                started.elapsed() < Duration::from_secs(30),
+                started.elapsed() < Duration::from_secs(60),
                 "Chromium did not start"
             );
             std::thread::sleep(Duration::from_millis(50));
@@ -144,7 +144,7 @@ impl Browser {
         self.call("Page.navigate", json!({"url": url}));
         self.wait_for(
             "document.body && document.body.dataset.ready === '1'",
-            Duration::from_secs(20),
+            Duration::from_secs(60),
         );
     }
 
@@ -219,7 +219,7 @@ impl Browser {
     fn settle(&mut self) {
         self.wait_for(
             "studio.editor.pending === 0 && !studio.editor.drag",
-            Duration::from_secs(10),
+            Duration::from_secs(30),
         );
     }
 
@@ -262,7 +262,7 @@ fn drag_watch_errors_and_undo() {
     browser.open(&format!("http://{}/#/glyph/o", studio.host()));
     browser.wait_for(
         "document.querySelectorAll('.pt').length === 16",
-        Duration::from_secs(10),
+        Duration::from_secs(30),
     );
 
     // 1. Drag control point 0.1 ([477.1, 25.38, 1]) by (+40, -30) pixels.
@@ -316,13 +316,13 @@ fn drag_watch_errors_and_undo() {
             "document.getElementById('errors').textContent.includes({})",
             json!(message)
         ),
-        Duration::from_secs(2),
+        Duration::from_secs(5),
     );
     assert_eq!(browser.eval("document.querySelectorAll('.pt').length"), 16);
     fs::write(&path, &saved).unwrap();
     browser.wait_for(
         "document.getElementById('errors').hidden",
-        Duration::from_secs(2),
+        Duration::from_secs(5),
     );
 
     // 4. Drag another point, undo with Ctrl-Z: the file is back byte for byte; redo.
@@ -331,7 +331,7 @@ fn drag_watch_errors_and_undo() {
             "studio.editor.glyph.version === {}",
             json!(xglyph::serve::version(saved.as_bytes()))
         ),
-        Duration::from_secs(2),
+        Duration::from_secs(5),
     );
     let from = browser.point_on_screen(1, 2);
     browser.drag(from, (-25.0, 15.0));

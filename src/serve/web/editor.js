@@ -62,7 +62,8 @@ export class Editor {
     if (!info || !g) return;
     let x0 = Math.min(0, g.advance), x1 = Math.max(0, g.advance);
     let y0 = info.descender, y1 = info.ascender;
-    for (const c of g.contours) for (const [x, y] of c.points) {
+    const pts = g.contours.flatMap((c) => c.points).concat(onCurvePoints(g.path));
+    for (const [x, y] of pts) {
       x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
     }
     const w = this.svg.clientWidth || 800, h = this.svg.clientHeight || 600;
@@ -120,8 +121,12 @@ export class Editor {
       if (comp.path) el('path', { d: comp.path, class: 'component' }, ink).dataset.base = comp.base;
     }
     for (const comp of g.components) {
-      const [cx, cy] = this.screen(comp.offset);
-      const t = el('text', { x: cx + 4, y: cy + 14, class: 'component-label' }, svg);
+      // The label sits above the component's ink, at its left edge.
+      const ink = comp.path ? onCurvePoints(comp.path) : [];
+      const left = ink.length ? Math.min(...ink.map((p) => p[0])) : comp.offset[0];
+      const top = ink.length ? Math.max(...ink.map((p) => p[1])) : comp.offset[1];
+      const [cx, cy] = this.screen([left, top]);
+      const t = el('text', { x: cx, y: cy - 6, class: 'component-label' }, svg);
       t.textContent = `${comp.base} +${fmt(comp.offset[0])},${fmt(comp.offset[1])}`;
     }
 
