@@ -47,7 +47,7 @@ pub fn run() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(err) => {
-            eprintln!("error: {err}");
+            crate::terminal::errln!("error: {err}");
             ExitCode::FAILURE
         }
     }

@@ -24,5 +24,6 @@ pub mod render;
 pub mod serve;
 pub mod source;
 pub mod svg;
+pub mod terminal;
 pub mod write;
 pub mod xspline;

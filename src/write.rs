@@ -1,44 +1,729 @@
-//! Atomic output: a file is written to a temporary name in its folder, then renamed.
+//! Writing outputs all-or-nothing: an [`OutputSet`] of `(path, bytes)` is committed as one
+//! transaction.
 //!
-//! Callers render every output into memory first and write only when all succeeded, so a
-//! failed build leaves no half-written file; a reader never sees a partial file.
+//! [`OutputSet::commit`] works in two phases:
+//!
+//! 1. **Stage.** Missing folders are created (and remembered). Each file's bytes go to a
+//!    new temporary file in its final folder, created exclusively (`O_EXCL`) under an
+//!    unpredictable name (`.xglyph-PID-RANDOM.tmp`, by [`tempfile`]), so a planted file or
+//!    link at a guessed name is never opened or followed. Each file is flushed to disk.
+//! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
+//!    system; a link at the final name is replaced, never followed). A file it replaces is
+//!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file
+//!    system allows it, so the final name never goes missing).
+//!
+//! If anything fails, everything is rolled back: temporary files are removed, replaced
+//! files are restored from their backups, added files and created folders are removed, so
+//! the output folders are left exactly as they were. The error names the output path and
+//! the reason. On success the backups are removed.
+//!
+//! A build killed with `SIGKILL` leaves only complete files under final names (each one
+//! old or new), plus temporary or backup files of our naming. The next commit into the same
+//! folder removes those whose process is gone ([`remove_stale`]); it never touches another
+//! name, nor the files of a build that is still running.
+//!
+//! Limits: folders on the way to an output may be links (an output folder that is a link to
+//! another folder is written through); only the final name is never followed. A rollback
+//! can itself fail (the disk removed mid-way): the error then says so and which file is
+//! affected. A second build writing into the same folder at the same time is not locked
+//! out; each file is still whole, but the set may mix both builds.
 
-use std::fs;
+use std::fmt;
+use std::fs::{self, File};
 use std::io::{self, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` atomically (temp file in the same folder, fsync, rename),
-/// creating the parent folder if needed.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    fs::create_dir_all(dir)?;
-    let name = path.file_name().ok_or_else(|| {
-        io::Error::new(io::ErrorKind::InvalidInput, "output path has no file name")
-    })?;
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| {
-        let mut file = fs::File::create(&tmp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result
+use tempfile::{Builder, NamedTempFile};
+
+/// Prefix of every temporary or backup file we create (followed by `PID-`).
+const PREFIX: &str = ".xglyph-";
+/// Suffix of a staged file.
+const TMP: &str = ".tmp";
+/// Suffix of a backup of a replaced file.
+const OLD: &str = ".old";
+/// Random characters in a temporary name (62 possibilities each).
+const RANDOM_LEN: usize = 10;
+
+/// Outputs to write together: all of them, or none.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OutputSet {
+    files: Vec<(PathBuf, Vec<u8>)>,
 }
 
-/// Writes every `(path, bytes)` pair atomically, in order; stops at the first error.
-pub fn write_all_atomic<P: AsRef<Path>>(files: &[(P, Vec<u8>)]) -> io::Result<()> {
-    for (path, bytes) in files {
-        write_atomic(path.as_ref(), bytes)?;
+/// Why an [`OutputSet`] could not be committed: the output path and the reason.
+#[derive(Debug)]
+pub struct WriteError {
+    /// The output file or folder that could not be written or created.
+    pub path: PathBuf,
+    /// What went wrong.
+    pub kind: WriteErrorKind,
+    /// Set when the rollback also failed: what could not be restored, and why.
+    pub rollback: Option<String>,
+}
+
+/// The reason part of a [`WriteError`].
+#[derive(Debug)]
+pub enum WriteErrorKind {
+    /// A folder stands where the output file goes.
+    FolderInTheWay,
+    /// A file (not a folder) stands where an output folder goes.
+    FileInTheWay,
+    /// Two outputs of one set have the same path.
+    Duplicate,
+    /// The file system refused to create an output folder.
+    Folder(io::Error),
+    /// The file system refused to write or rename an output file.
+    Io(io::Error),
+}
+
+impl fmt::Display for WriteError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let path = self.path.display();
+        match &self.kind {
+            WriteErrorKind::FolderInTheWay => {
+                write!(
+                    f,
+                    "cannot write {path}: a folder of that name is in the way"
+                )
+            }
+            WriteErrorKind::FileInTheWay => write!(
+                f,
+                "cannot create the folder {path}: a file of that name is in the way"
+            ),
+            WriteErrorKind::Duplicate => write!(f, "cannot write {path} twice in one set"),
+            WriteErrorKind::Folder(e) => {
+                write!(f, "cannot create the folder {path}: {}", reason(e))
+            }
+            WriteErrorKind::Io(e) => write!(f, "cannot write {path}: {}", reason(e)),
+        }?;
+        if let Some(rollback) = &self.rollback {
+            write!(f, "; and the rollback failed: {rollback}")?;
+        }
+        Ok(())
     }
-    Ok(())
+}
+
+impl std::error::Error for WriteError {}
+
+/// The operating system's message for `e`, without the `(os error N)` tail and with a
+/// lowercase first letter, to follow a colon ("file name too long").
+pub fn reason(e: &io::Error) -> String {
+    let text = e.to_string();
+    let text = match text.rfind(" (os error ") {
+        Some(i) if text.ends_with(')') => &text[..i],
+        _ => &text,
+    };
+    let mut chars = text.chars();
+    match chars.next() {
+        Some(c) => c.to_lowercase().chain(chars).collect(),
+        None => String::new(),
+    }
+}
+
+impl OutputSet {
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds an output. Parent folders are created on commit. A link at `path` is replaced
+    /// by the file, not followed (resolve it first to write through it).
+    pub fn add(&mut self, path: impl Into<PathBuf>, bytes: impl Into<Vec<u8>>) {
+        self.files.push((path.into(), bytes.into()));
+    }
+
+    /// The outputs in the order they were added.
+    pub fn files(&self) -> &[(PathBuf, Vec<u8>)] {
+        &self.files
+    }
+
+    /// Number of outputs.
+    pub fn len(&self) -> usize {
+        self.files.len()
+    }
+
+    /// Whether the set has no outputs.
+    pub fn is_empty(&self) -> bool {
+        self.files.is_empty()
+    }
+
+    /// Writes every output, or none (see the module docs). Stale temporary files of a
+    /// killed earlier commit in the output folders are removed first.
+    pub fn commit(self) -> Result<(), WriteError> {
+        self.commit_with(Transaction::default())
+    }
+
+    fn commit_with(self, mut tx: Transaction) -> Result<(), WriteError> {
+        let result = tx.run(self.files);
+        match result {
+            Ok(()) => {
+                tx.finish();
+                Ok(())
+            }
+            Err(mut err) => {
+                err.rollback = tx.roll_back();
+                Err(err)
+            }
+        }
+    }
+}
+
+/// One output on its way into place: the backup of the file it replaces, and whether the
+/// new file is in place yet.
+struct Committed {
+    path: PathBuf,
+    backup: Option<PathBuf>,
+    placed: bool,
+}
+
+/// The undo log of one commit.
+#[derive(Default)]
+struct Transaction {
+    /// Folders we created, parents first.
+    created_dirs: Vec<PathBuf>,
+    /// Staged files not yet renamed; dropping one removes it.
+    staged: Vec<(NamedTempFile, PathBuf)>,
+    committed: Vec<Committed>,
+    /// Tests: fail just before renaming the staged file with this index.
+    #[cfg(test)]
+    fail_before_rename: Option<usize>,
+}
+
+impl Transaction {
+    fn run(&mut self, files: Vec<(PathBuf, Vec<u8>)>) -> Result<(), WriteError> {
+        let mut seen = std::collections::HashSet::new();
+        for (path, _) in &files {
+            if !seen.insert(path.clone()) {
+                return Err(error(path, WriteErrorKind::Duplicate));
+            }
+        }
+        let mut cleaned = std::collections::HashSet::new();
+        for (path, bytes) in &files {
+            let dir = parent(path);
+            self.create_dirs(dir)?;
+            if cleaned.insert(dir.to_path_buf()) {
+                remove_stale(dir, &files);
+            }
+            self.stage(path, bytes)?;
+        }
+        // On an error the staged files not yet renamed are dropped, which removes them.
+        for (temp, path) in std::mem::take(&mut self.staged) {
+            // Tests: an injected failure before the k-th rename (k = renames done so far).
+            #[cfg(test)]
+            if self.fail_before_rename == Some(self.committed.len()) {
+                let injected = io::Error::other("injected failure");
+                return Err(error(&path, WriteErrorKind::Io(injected)));
+            }
+            self.rename_into_place(temp, path)?;
+        }
+        sync_dirs(&self.committed);
+        Ok(())
+    }
+
+    /// Creates `dir` and its missing ancestors, remembering each one created.
+    fn create_dirs(&mut self, dir: &Path) -> Result<(), WriteError> {
+        let mut missing = Vec::new();
+        let mut at = Some(dir);
+        while let Some(d) = at.filter(|d| !d.as_os_str().is_empty()) {
+            match fs::metadata(d) {
+                Ok(meta) if meta.is_dir() => break,
+                Ok(_) => return Err(error(d, WriteErrorKind::FileInTheWay)),
+                Err(e) if e.kind() == io::ErrorKind::NotFound => missing.push(d),
+                Err(e) => return Err(error(d, WriteErrorKind::Folder(e))),
+            }
+            at = d.parent();
+        }
+        for d in missing.into_iter().rev() {
+            match fs::create_dir(d) {
+                Ok(()) => self.created_dirs.push(d.to_path_buf()),
+                Err(e) => return Err(error(d, WriteErrorKind::Folder(e))),
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `bytes` to a new temporary file next to `path`.
+    fn stage(&mut self, path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+        let io_err = |e| error(path, WriteErrorKind::Io(e));
+        let existing = match fs::symlink_metadata(path) {
+            Ok(meta) if meta.is_dir() => {
+                return Err(error(path, WriteErrorKind::FolderInTheWay));
+            }
+            Ok(meta) => Some(meta),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+            Err(e) => return Err(io_err(e)),
+        };
+        let prefix = format!("{PREFIX}{}-", std::process::id());
+        let mut options = fs::OpenOptions::new();
+        // Exclusive: fails on any existing name, a link included, which is never followed.
+        options.write(true).create_new(true);
+        #[cfg(unix)]
+        {
+            // A new file's mode as `File::create` gives it, 0o666 less the umask
+            // (tempfile's own default is 0o600).
+            use std::os::unix::fs::OpenOptionsExt;
+            options.mode(0o666);
+        }
+        // `make_in` retries on a name clash and, unlike `tempfile_in`, returns the file
+        // system's error as it is (no temporary path in the message).
+        let mut temp = Builder::new()
+            .prefix(&prefix)
+            .suffix(TMP)
+            .rand_bytes(RANDOM_LEN)
+            .make_in(parent(path), |name| options.open(name))
+            .map_err(io_err)?;
+        // A replaced regular file keeps its permissions (a link gets a new file's).
+        if let Some(meta) = existing.filter(|m| m.is_file()) {
+            temp.as_file()
+                .set_permissions(meta.permissions())
+                .map_err(io_err)?;
+        }
+        temp.as_file_mut().write_all(bytes).map_err(io_err)?;
+        temp.as_file().sync_all().map_err(io_err)?;
+        self.staged.push((temp, path.to_path_buf()));
+        Ok(())
+    }
+
+    /// Backs up what is at `path`, then renames the staged file over it.
+    fn rename_into_place(&mut self, temp: NamedTempFile, path: PathBuf) -> Result<(), WriteError> {
+        let backup = match fs::symlink_metadata(&path) {
+            Ok(meta) if meta.is_dir() => {
+                return Err(error(&path, WriteErrorKind::FolderInTheWay));
+            }
+            Ok(_) => Some(back_up(&path).map_err(|e| error(&path, WriteErrorKind::Io(e)))?),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+            Err(e) => return Err(error(&path, WriteErrorKind::Io(e))),
+        };
+        // Recorded before the rename, so that a failed rename still restores the backup.
+        self.committed.push(Committed {
+            path: path.clone(),
+            backup,
+            placed: false,
+        });
+        temp.persist(&path)
+            .map_err(|e| error(&path, WriteErrorKind::Io(e.error)))?;
+        if let Some(c) = self.committed.last_mut() {
+            c.placed = true;
+        }
+        Ok(())
+    }
+
+    /// Undoes everything; `None` when it all came back, else what did not.
+    fn roll_back(&mut self) -> Option<String> {
+        self.staged.clear();
+        let mut failures = Vec::new();
+        while let Some(c) = self.committed.pop() {
+            if let Err(e) = restore(&c) {
+                failures.push(format!("{}: {}", c.path.display(), reason(&e)));
+            }
+        }
+        while let Some(d) = self.created_dirs.pop() {
+            if let Err(e) = fs::remove_dir(&d) {
+                failures.push(format!("{}: {}", d.display(), reason(&e)));
+            }
+        }
+        (!failures.is_empty()).then(|| failures.join("; "))
+    }
+
+    /// After success: the backups are no longer needed.
+    fn finish(&mut self) {
+        for c in self.committed.drain(..) {
+            if let Some(b) = c.backup {
+                // A backup left behind is stale and removed by the next commit.
+                let _ = fs::remove_file(b);
+            }
+        }
+    }
+}
+
+/// Puts `c.path` back as it was: the backup over it, or else removes the new file.
+fn restore(c: &Committed) -> io::Result<()> {
+    match &c.backup {
+        Some(b) => fs::rename(b, &c.path),
+        None if c.placed => fs::remove_file(&c.path),
+        None => Ok(()),
+    }
+}
+
+/// Keeps what is at `path` under a new backup name in its folder: a hard link, so `path`
+/// stays in place; where the file system has no hard links, the file itself is moved (onto
+/// a name reserved exclusively first).
+fn back_up(path: &Path) -> io::Result<PathBuf> {
+    let prefix = format!("{PREFIX}{}-", std::process::id());
+    let mut builder = Builder::new();
+    builder.prefix(&prefix).suffix(OLD).rand_bytes(RANDOM_LEN);
+    let dir = parent(path);
+    match builder.make_in(dir, |name| fs::hard_link(path, name)) {
+        Ok(linked) => return linked.into_temp_path().keep().map_err(|e| e.error),
+        Err(e) if e.kind() == io::ErrorKind::StorageFull => return Err(e),
+        Err(_) => {}
+    }
+    let reserved = builder.tempfile_in(dir)?.into_temp_path();
+    fs::rename(path, &reserved)?;
+    reserved.keep().map_err(|e| e.error)
+}
+
+/// Removes, from `dir`, temporary and backup files left by a killed commit: regular files
+/// named `.xglyph-PID-RANDOM.tmp` or `.old` whose process `PID` is gone, and the temporary
+/// names of earlier versions (`.NAME.tmpPID`) for the outputs `files` write into `dir`.
+/// Links, folders and every other name are left alone. Errors are ignored (a file that
+/// stays is harmless).
+pub fn remove_stale(dir: &Path, files: &[(PathBuf, Vec<u8>)]) {
+    let Ok(entries) = fs::read_dir(if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    }) else {
+        return;
+    };
+    let ours: Vec<String> = files
+        .iter()
+        .filter(|(p, _)| parent(p) == dir)
+        .filter_map(|(p, _)| Some(format!(".{}.tmp", p.file_name()?.to_str()?)))
+        .collect();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        let pid = stale_pid(name).or_else(|| {
+            ours.iter()
+                .find_map(|legacy| name.strip_prefix(legacy.as_str()))
+                .and_then(parse_pid)
+        });
+        let Some(pid) = pid else { continue };
+        if process_alive(pid) {
+            continue;
+        }
+        if entry.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// The PID in a name of our temporary naming, `.xglyph-PID-RANDOM.tmp` (or `.old`).
+fn stale_pid(name: &str) -> Option<u32> {
+    let rest = name.strip_prefix(PREFIX)?;
+    let rest = rest.strip_suffix(TMP).or_else(|| rest.strip_suffix(OLD))?;
+    let (pid, random) = rest.split_once('-')?;
+    let random_ok = random.len() == RANDOM_LEN && random.bytes().all(|b| b.is_ascii_alphanumeric());
+    random_ok.then(|| parse_pid(pid)).flatten()
+}
+
+fn parse_pid(digits: &str) -> Option<u32> {
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// Whether process `pid` may still be running (and writing its temporary files). Ours is;
+/// on Linux, any PID with an entry in /proc is. Where that cannot be known (no /proc), every
+/// process counts as alive, so nothing is removed.
+fn process_alive(pid: u32) -> bool {
+    if pid == std::process::id() {
+        return true;
+    }
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return true;
+    }
+    proc.join(pid.to_string()).exists()
+}
+
+/// The folder of `path` (empty for a bare file name, meaning the current folder).
+fn parent(path: &Path) -> &Path {
+    path.parent().unwrap_or(Path::new(""))
+}
+
+fn error(path: &Path, kind: WriteErrorKind) -> WriteError {
+    WriteError {
+        path: path.to_path_buf(),
+        kind,
+        rollback: None,
+    }
+}
+
+/// Flushes the renames: syncs each folder that received a file (Unix; elsewhere a no-op).
+fn sync_dirs(committed: &[Committed]) {
+    let mut dirs: Vec<&Path> = committed.iter().map(|c| parent(&c.path)).collect();
+    dirs.sort();
+    dirs.dedup();
+    for d in dirs {
+        let d = if d.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            d
+        };
+        if cfg!(unix) {
+            if let Ok(f) = File::open(d) {
+                let _ = f.sync_all();
+            }
+        }
+    }
+}
+
+/// Writes one file atomically (an [`OutputSet`] of one).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let mut set = OutputSet::new();
+    set.add(path, bytes);
+    set.commit().map_err(io::Error::other)
+}
+
+/// Writes every `(path, bytes)` pair, all or none (an [`OutputSet`]).
+pub fn write_all_atomic<P: AsRef<Path>>(files: &[(P, Vec<u8>)]) -> io::Result<()> {
+    let mut set = OutputSet::new();
+    for (path, bytes) in files {
+        set.add(path.as_ref(), bytes.clone());
+    }
+    set.commit().map_err(io::Error::other)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every entry under `dir` (relative, sorted), with file contents; links as `-> target`.
+    fn tree(dir: &Path) -> Vec<(String, String)> {
+        fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
+            for entry in fs::read_dir(dir).unwrap() {
+                let path = entry.unwrap().path();
+                let rel = path.strip_prefix(root).unwrap().display().to_string();
+                let meta = fs::symlink_metadata(&path).unwrap();
+                if meta.file_type().is_symlink() {
+                    let target = fs::read_link(&path).unwrap();
+                    out.push((rel, format!("-> {}", target.display())));
+                } else if meta.is_dir() {
+                    out.push((rel.clone() + "/", String::new()));
+                    walk(root, &path, out);
+                } else {
+                    out.push((rel, fs::read_to_string(&path).unwrap()));
+                }
+            }
+        }
+        let mut out = Vec::new();
+        walk(dir, dir, &mut out);
+        out.sort();
+        out
+    }
+
+    fn entries(list: &[(&str, &str)]) -> Vec<(String, String)> {
+        list.iter()
+            .map(|(a, b)| (a.to_string(), b.to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn commit_writes_every_file_and_creates_folders() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let mut set = OutputSet::new();
+        set.add(out.join("a.txt"), "A");
+        set.add(out.join("sub/deeper/b.txt"), "B");
+        set.commit().unwrap();
+        assert_eq!(
+            tree(&out),
+            entries(&[
+                ("a.txt", "A"),
+                ("sub/", ""),
+                ("sub/deeper/", ""),
+                ("sub/deeper/b.txt", "B")
+            ])
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn new_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let usual = dir.path().join("usual");
+        File::create(&usual).unwrap();
+        let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        let kept = dir.path().join("kept.txt");
+        fs::write(&kept, "old").unwrap();
+        fs::set_permissions(&kept, fs::Permissions::from_mode(0o640)).unwrap();
+        let mut set = OutputSet::new();
+        set.add(dir.path().join("new.txt"), "new");
+        set.add(&kept, "replaced");
+        set.commit().unwrap();
+        assert_eq!(mode(&dir.path().join("new.txt")), mode(&usual));
+        assert_eq!(mode(&kept), 0o640);
+        assert_eq!(fs::read_to_string(&kept).unwrap(), "replaced");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_at_an_output_name_is_replaced_not_followed() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim");
+        fs::write(&victim, "precious").unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir(&out).unwrap();
+        std::os::unix::fs::symlink("../victim", out.join("sheet.png")).unwrap();
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "png");
+        set.commit().unwrap();
+        assert_eq!(fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(tree(&out), entries(&[("sheet.png", "png")]));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_failure_while_renaming_restores_everything() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir(&out).unwrap();
+        fs::write(out.join("a.txt"), "old a").unwrap();
+        fs::write(out.join("b.txt"), "old b").unwrap();
+        std::os::unix::fs::symlink("a.txt", out.join("link")).unwrap();
+        let before = tree(&out);
+        for fail_at in 0..4 {
+            let mut set = OutputSet::new();
+            set.add(out.join("a.txt"), "new a");
+            set.add(out.join("c/new.txt"), "new c");
+            set.add(out.join("link"), "no longer a link");
+            set.add(out.join("b.txt"), "new b");
+            let tx = Transaction {
+                fail_before_rename: Some(fail_at),
+                ..Transaction::default()
+            };
+            let err = set.commit_with(tx).unwrap_err();
+            let failed = ["a.txt", "c/new.txt", "link", "b.txt"][fail_at];
+            assert_eq!(
+                err.to_string(),
+                format!(
+                    "cannot write {}: injected failure",
+                    out.join(failed).display()
+                )
+            );
+            assert_eq!(tree(&out), before, "failing before rename {fail_at}");
+        }
+    }
+
+    #[test]
+    fn things_in_the_way_are_named_and_nothing_is_left() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        fs::create_dir_all(out.join("proof.png")).unwrap();
+        fs::write(out.join("svg"), "a file").unwrap();
+        let before = tree(&out);
+
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("new/folder/x.svg"), "x");
+        set.add(out.join("proof.png"), "proof");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {}: a folder of that name is in the way",
+                out.join("proof.png").display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("svg/a.svg"), "a");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot create the folder {}: a file of that name is in the way",
+                out.join("svg").display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        let long = "n".repeat(300) + ".svg";
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("glyphs").join(&long), "long");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {}: file name too long",
+                out.join("glyphs").join(&long).display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+
+        // A folder name too long: the error names it as a folder.
+        let mut set = OutputSet::new();
+        set.add(out.join("sheet.png"), "sheet");
+        set.add(out.join("new").join(&long).join("x.svg"), "x");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot create the folder {}: file name too long",
+                out.join("new").join(&long).display()
+            )
+        );
+        assert_eq!(tree(&out), before);
+    }
+
+    #[test]
+    fn a_path_given_twice_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut set = OutputSet::new();
+        set.add(dir.path().join("a"), "1");
+        set.add(dir.path().join("a"), "2");
+        let err = set.commit().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "cannot write {} twice in one set",
+                dir.path().join("a").display()
+            )
+        );
+        assert_eq!(tree(dir.path()), []);
+    }
+
+    #[test]
+    fn only_stale_files_of_our_naming_are_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        // A PID that is gone: a child that has exited and been waited for.
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        child.wait().unwrap();
+        let dead = child.id();
+        let live = std::process::id();
+        let stale = [
+            format!(".xglyph-{dead}-abcdeABCDE.tmp"),
+            format!(".xglyph-{dead}-0123456789.old"),
+            format!(".sheet.png.tmp{dead}"),
+        ];
+        let kept = [
+            format!(".xglyph-{live}-abcdeABCDE.tmp"),
+            format!(".xglyph-{dead}-short.tmp"),
+            format!(".xglyph-{dead}-abcdeABCDE.tmp.bak"),
+            format!("xglyph-{dead}-abcdeABCDE.tmp"),
+            format!(".other.png.tmp{dead}"),
+            ".sheet.png.tmpabc".to_string(),
+            "notes.tmp".to_string(),
+        ];
+        for name in stale.iter().chain(&kept) {
+            fs::write(dir.path().join(name), "x").unwrap();
+        }
+        // A folder of our naming stays too.
+        let folder = format!(".xglyph-{dead}-folderFOLD.tmp");
+        fs::create_dir(dir.path().join(&folder)).unwrap();
+        remove_stale(dir.path(), &[(dir.path().join("sheet.png"), Vec::new())]);
+        let mut left: Vec<String> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        let mut want: Vec<String> = kept.to_vec();
+        want.push(folder);
+        want.sort();
+        assert_eq!(left, want);
+    }
+
+    #[test]
+    fn reasons_read_after_a_colon() {
+        let e = io::Error::from_raw_os_error(28);
+        assert_eq!(reason(&e), "no space left on device");
+        assert_eq!(reason(&io::Error::other("Odd")), "odd");
+    }
 }

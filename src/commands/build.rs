@@ -16,7 +16,8 @@ use crate::outline::{outline_font, FontOutlines};
 use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
 use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
-use crate::write::write_all_atomic;
+use crate::terminal::{err, out};
+use crate::write::OutputSet;
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -49,7 +50,7 @@ pub struct Loaded {
 
 /// Prints a diagnostic as `check` does (source line and caret), to stderr.
 pub fn print_diagnostic(d: &Diagnostic) {
-    eprint!("{}", crate::commands::check::text(d));
+    err!("{}", crate::commands::check::text(d));
 }
 
 /// Loads `font_dir` (printing its diagnostics) and fits every glyph, with `tolerance`
@@ -143,13 +144,14 @@ pub fn svg_outputs(font: &Font, outlines: &FontOutlines) -> Vec<(PathBuf, Vec<u8
     files
 }
 
-/// Writes `files` (relative paths) under `out`, each atomically.
+/// Writes `files` (relative paths) under `out`, all or none ([`OutputSet`]).
 pub fn write_outputs(out: &Path, files: &[(PathBuf, Vec<u8>)]) -> Result<(), CommandError> {
-    let joined: Vec<(PathBuf, Vec<u8>)> = files
-        .iter()
-        .map(|(p, b)| (out.join(p), b.clone()))
-        .collect();
-    write_all_atomic(&joined).map_err(|e| format!("cannot write to {}: {e}", out.display()))?;
+    let mut set = OutputSet::new();
+    for (path, bytes) in files {
+        set.add(out.join(path), bytes.clone());
+    }
+    set.commit()
+        .map_err(|e| format!("{e}; {} is unchanged", out.display()))?;
     Ok(())
 }
 
@@ -214,6 +216,6 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     };
     let files = outputs(&loaded.font, &loaded.outlines, &opts)?;
     write_outputs(&args.font.out, &files)?;
-    print!("{}", summary(&loaded, &args.font.out, &files));
+    out!("{}", summary(&loaded, &args.font.out, &files));
     Ok(ExitCode::SUCCESS)
 }

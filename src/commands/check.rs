@@ -10,6 +10,7 @@ use serde_json::json;
 
 use super::CommandError;
 use crate::source::{load_font, Diagnostic, Severity};
+use crate::terminal::out;
 
 /// How `check` prints its diagnostics.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -44,7 +45,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
     match args.format {
         Format::Text => {
             for d in &diags {
-                print!("{}", text(d));
+                out!("{}", text(d));
             }
             println!("{}", summary(errors, warnings));
         }

@@ -2,14 +2,17 @@
 //!
 //! Only when the sources load without errors (otherwise the diagnostics are printed and
 //! nothing is touched); only the files whose text changes; each glyph stays in its file;
-//! every file is written atomically. `--check` writes nothing and lists the files that
+//! all changed files are written together or none ([`crate::write::OutputSet`]). A source
+//! that is a symbolic link is written through: its target gets the new text and the link
+//! stays. `--check` writes nothing and lists the files that
 //! would change (exit 1 if any), for CI.
 //!
 //! Comments: a file's leading comment block is kept. Any other comment would be lost, so
 //! `fmt` then refuses to write anything (exit 1, listing each such comment) unless
 //! `--force` is given, which drops them.
 
-use std::path::PathBuf;
+use std::fs;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use super::check;
@@ -19,7 +22,8 @@ use crate::source::{
     line_col, load_glyph_text, load_info_text, load_kerning_text, load_sources, LoadedFont,
     SourceKind,
 };
-use crate::write::write_atomic;
+use crate::terminal::{err, errln, outln};
+use crate::write::{reason, OutputSet};
 
 #[derive(Debug, clap::Args)]
 pub struct FmtArgs {
@@ -39,14 +43,14 @@ pub fn run(args: FmtArgs) -> Result<ExitCode, CommandError> {
         Ok(loaded) => loaded,
         Err(diags) => {
             for d in &diags {
-                eprint!("{}", check::text(d));
+                err!("{}", check::text(d));
             }
-            eprintln!("fmt: the sources have errors; nothing was changed");
+            errln!("fmt: the sources have errors; nothing was changed");
             return Ok(ExitCode::FAILURE);
         }
     };
     for d in &loaded.warnings {
-        eprint!("{}", check::text(d));
+        err!("{}", check::text(d));
     }
     let changes: Vec<Rewrite> = rewrites(&loaded)
         .into_iter()
@@ -55,12 +59,12 @@ pub fn run(args: FmtArgs) -> Result<ExitCode, CommandError> {
 
     if args.check {
         for r in &changes {
-            println!("{}", r.path.display());
+            outln!("{}", r.path.display());
         }
         if changes.is_empty() {
             return Ok(ExitCode::SUCCESS);
         }
-        eprintln!("fmt --check: {} files are not formatted", changes.len());
+        errln!("fmt --check: {} files are not formatted", changes.len());
         return Ok(ExitCode::FAILURE);
     }
 
@@ -72,13 +76,13 @@ pub fn run(args: FmtArgs) -> Result<ExitCode, CommandError> {
         for r in &with_comments {
             for &off in &r.dropped_comments {
                 let (line, col) = line_col(&r.old, off);
-                eprintln!(
+                errln!(
                     "{}:{line}:{col}: error: fmt would drop this comment",
                     r.path.display()
                 );
             }
         }
-        eprintln!(
+        errln!(
             "fmt: only the comment block at the top of a file survives formatting; move these \
              comments there, or run `xglyph fmt --force` to drop them. Nothing was changed."
         );
@@ -86,12 +90,33 @@ pub fn run(args: FmtArgs) -> Result<ExitCode, CommandError> {
     }
 
     verify(&loaded, &changes)?;
+    let mut set = OutputSet::new();
     for r in &changes {
-        write_atomic(&r.path, r.new.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", r.path.display()))?;
-        println!("{}", r.path.display());
+        set.add(write_through(&r.path)?, r.new.as_bytes());
+    }
+    set.commit()
+        .map_err(|e| format!("{e}; nothing was changed"))?;
+    for r in &changes {
+        outln!("{}", r.path.display());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Where the formatted text of `path` goes: the file itself, or for a link the file it
+/// points to (the link stays a link).
+fn write_through(path: &Path) -> Result<PathBuf, CommandError> {
+    let link = fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink());
+    if !link {
+        return Ok(path.to_path_buf());
+    }
+    fs::canonicalize(path).map_err(|e| {
+        format!(
+            "cannot follow the link {}: {}; nothing was changed",
+            path.display(),
+            reason(&e)
+        )
+        .into()
+    })
 }
 
 /// A safety net before writing: every new text loads back to the same model (the writer

@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use super::CommandError;
 use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions};
 use crate::source::emit::font_sources;
+use crate::terminal::{out, outln};
 use crate::write::write_all_atomic;
 
 #[derive(Debug, clap::Args)]
@@ -82,8 +83,8 @@ pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
             format!("cannot write the font directory: {e}"),
         )
     })?;
-    print!("{}", imported.report.render());
-    println!("wrote {} files to {}", files.len(), args.output.display());
+    out!("{}", imported.report.render());
+    outln!("wrote {} files to {}", files.len(), args.output.display());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -5,7 +5,11 @@ use std::process::ExitCode;
 
 use super::build::{load, write_outputs};
 use super::{CommandError, FontArgs};
-use crate::render::{encode_png, render_proof, render_sheet, ProofOptions, SheetOptions};
+use crate::render::{
+    encode_png, render_proof, render_sheet, ProofOptions, RenderError, SheetOptions, MAX_AREA,
+    MAX_SIDE,
+};
+use crate::terminal::outln;
 
 /// Which image to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -46,15 +50,16 @@ pub struct RenderArgs {
     /// Proof text (default: lines the font covers); `\n` starts a new line.
     #[arg(long)]
     pub text: Option<String>,
-    /// Proof sizes, pixels per em, comma-separated.
+    /// Proof sizes, pixels per em (each 1..=1000), comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "12,16,24,36,48,72")]
     pub sizes: Vec<f64>,
-    /// Largest proof width, pixels (the image fits its longest line up to this).
+    /// Largest proof width, pixels, 1..=30000 (the image fits its longest line up to this).
     #[arg(long, default_value_t = ProofOptions::default().width_px)]
     pub width: u32,
 }
 
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
+    check_flags(&args)?;
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let (font, outlines) = (&loaded.font, &loaded.outlines);
     let mut files = Vec::new();
@@ -69,10 +74,8 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         } else {
             "sheet.png"
         };
-        files.push((
-            PathBuf::from(name),
-            encode_png(&render_sheet(font, outlines, &opts)?)?,
-        ));
+        let sheet = render_sheet(font, outlines, &opts).map_err(|e| sheet_flags(e, &opts))?;
+        files.push((PathBuf::from(name), encode_png(&sheet)?));
     }
     if args.only != Some(Only::Sheet) {
         let opts = ProofOptions {
@@ -80,16 +83,71 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
             sizes: args.sizes,
             width_px: args.width,
         };
-        files.push((
-            PathBuf::from("proof.png"),
-            encode_png(&render_proof(font, outlines, &opts)?)?,
-        ));
+        let proof = render_proof(font, outlines, &opts).map_err(|e| proof_flags(e, &opts))?;
+        files.push((PathBuf::from("proof.png"), encode_png(&proof)?));
     }
     write_outputs(&args.font.out, &files)?;
     for (path, _) in &files {
-        println!("wrote {}", args.font.out.join(path).display());
+        outln!("wrote {}", args.font.out.join(path).display());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Checks each flag's own range before any work; the error names the flag.
+fn check_flags(args: &RenderArgs) -> Result<(), String> {
+    if !(32..=2048).contains(&args.cell) {
+        return Err(format!(
+            "--cell {}: the cell size must be 32..=2048 px",
+            args.cell
+        ));
+    }
+    if args.columns == 0 {
+        return Err("--columns 0: at least 1 column is needed".into());
+    }
+    if !(1..=MAX_SIDE).contains(&args.width) {
+        return Err(format!(
+            "--width {}: the proof width must be 1..={MAX_SIDE} px",
+            args.width
+        ));
+    }
+    if args.sizes.is_empty() {
+        return Err("--sizes: at least one size is needed".into());
+    }
+    if let Some(bad) = args
+        .sizes
+        .iter()
+        .find(|s| !(s.is_finite() && (1.0..=1000.0).contains(*s)))
+    {
+        return Err(format!("--sizes: {bad} px per em is out of range 1..=1000"));
+    }
+    Ok(())
+}
+
+/// An image too large for the sheet flags, said in their terms.
+fn sheet_flags(e: RenderError, opts: &SheetOptions) -> CommandError {
+    match e {
+        RenderError::Size { width, height } => format!(
+            "--cell {} --columns {}: the sheet would be {width} x {height} px; at most \
+             {MAX_SIDE} px a side and {MAX_AREA} px in all (use a smaller --cell or fewer \
+             --columns)",
+            opts.cell_px, opts.columns
+        )
+        .into(),
+        e => e.into(),
+    }
+}
+
+/// An image too large for the proof flags, said in their terms.
+fn proof_flags(e: RenderError, opts: &ProofOptions) -> CommandError {
+    match e {
+        RenderError::Size { width, height } => format!(
+            "--sizes: {} sizes make an image of {width} x {height} px; at most {MAX_SIDE} px \
+             a side and {MAX_AREA} px in all (give fewer or smaller sizes, or a shorter --text)",
+            opts.sizes.len()
+        )
+        .into(),
+        e => e.into(),
+    }
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@ use std::process::ExitCode;
 
 use super::build::{load, svg_outputs, write_outputs};
 use super::{CommandError, FontArgs};
+use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -23,7 +24,7 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let files = svg_outputs(&loaded.font, &loaded.outlines);
     write_outputs(&args.font.out, &files)?;
-    println!(
+    outln!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",
         files.len(),
         args.font.out.display(),

@@ -22,4 +22,6 @@ mod source_fmt;
 mod source_malformed;
 mod studio_browser;
 mod svg;
+mod terminal;
+mod writes;
 mod xspline;

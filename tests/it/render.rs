@@ -290,3 +290,93 @@ fn bad_options_are_errors_not_panics() {
         })
     );
 }
+
+/// `xglyph render` with `flags` on `font` into a scratch folder: (exit code, stderr, whether
+/// the folder was created).
+fn render_cli(tag: &str, font: &Path, flags: &[&str]) -> (Option<i32>, String, bool) {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("render-flags-{tag}"));
+    let _ = std::fs::remove_dir_all(&out);
+    let result = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .arg("render")
+        .arg(font)
+        .arg("-o")
+        .arg(&out)
+        .args(flags)
+        .output()
+        .expect("xglyph runs");
+    let stderr = String::from_utf8_lossy(&result.stderr).into_owned();
+    (result.status.code(), stderr, out.exists())
+}
+
+/// Issue 13, item 21: a flag out of range, or one that makes the image too large, is named
+/// in the error; nothing is written.
+#[test]
+fn the_flag_at_fault_is_named() {
+    let mini = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
+    let sizes = ["12,16,24,36,48,72"; 167].join(",");
+    let cases: [(&str, &[&str], &str); 6] = [
+        (
+            "width",
+            &["--width", "0"],
+            "--width 0: the proof width must be 1..=30000 px",
+        ),
+        (
+            "cell",
+            &["--cell", "0"],
+            "--cell 0: the cell size must be 32..=2048 px",
+        ),
+        (
+            "columns",
+            &["--columns", "0"],
+            "--columns 0: at least 1 column is needed",
+        ),
+        (
+            "small-size",
+            &["--sizes", "12,0.5"],
+            "--sizes: 0.5 px per em is out of range 1..=1000",
+        ),
+        (
+            "sizes",
+            &["--sizes", &sizes],
+            "--sizes: 1002 sizes make an image of 217 x 101902 px; at most 30000 px a side and \
+             100000000 px in all (give fewer or smaller sizes, or a shorter --text)",
+        ),
+        (
+            "width-with-only-sheet",
+            &["--only", "sheet", "--width", "0"],
+            "--width 0: the proof width must be 1..=30000 px",
+        ),
+    ];
+    for (tag, flags, message) in cases {
+        let (code, stderr, created) = render_cli(tag, &mini, flags);
+        assert_eq!(code, Some(1), "{tag}");
+        assert_eq!(stderr, format!("error: {message}\n"), "{tag}");
+        assert!(!created, "{tag}: the output folder was created");
+    }
+
+    // A sheet too wide: 18 glyphs, 18 cells of 2048 px in a row.
+    let font = Path::new(env!("CARGO_TARGET_TMPDIR")).join("render-flags-font");
+    let _ = std::fs::remove_dir_all(&font);
+    std::fs::create_dir_all(&font).unwrap();
+    for entry in std::fs::read_dir(&mini).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, font.join(path.file_name().unwrap())).unwrap();
+    }
+    for k in 0..10 {
+        let glyph =
+            "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [100, 100, 0]]\n";
+        std::fs::write(font.join(format!("extra{k}.toml")), glyph).unwrap();
+    }
+    let (code, stderr, created) = render_cli(
+        "sheet",
+        &font,
+        &["--only", "sheet", "--cell", "2048", "--columns", "18"],
+    );
+    assert_eq!(code, Some(1));
+    assert_eq!(
+        stderr,
+        "error: --cell 2048 --columns 18: the sheet would be 36864 x 2048 px; at most 30000 px \
+         a side and 100000000 px in all (use a smaller --cell or fewer --columns)\n"
+    );
+    assert!(!created);
+}

@@ -277,3 +277,53 @@ fn crlf_files_get_lf_line_ends() {
     assert_eq!(load_font(&dir).expect("loads").0, before);
     std::fs::remove_dir_all(&dir).expect("cleanup");
 }
+
+/// A glyph file that is a link: fmt writes the formatted text to the link's target and
+/// leaves the link a link (issue 13, item 20).
+#[cfg(unix)]
+#[test]
+fn a_linked_source_is_formatted_through_the_link() {
+    let plain = copy("tests/fixtures/messy", "link-plain");
+    let linked = copy("tests/fixtures/messy", "link");
+    let elsewhere = linked.with_extension("target");
+    let _ = std::fs::remove_dir_all(&elsewhere);
+    std::fs::create_dir_all(&elsewhere).expect("mkdir");
+    let target = elsewhere.join("real-a.toml");
+    std::fs::rename(linked.join("a.toml"), &target).expect("move");
+    std::os::unix::fs::symlink(&target, linked.join("a.toml")).expect("link");
+
+    let out = xglyph(&["fmt"], &plain);
+    assert_eq!(out.status.code(), Some(0));
+    let out = xglyph(&["fmt"], &linked);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        listed(&out, &linked),
+        [
+            "font.toml",
+            "a.toml",
+            "b.toml",
+            "space.toml",
+            "kerning.toml"
+        ]
+    );
+    let link = std::fs::symlink_metadata(linked.join("a.toml")).expect("stat");
+    assert!(link.file_type().is_symlink(), "the link was replaced");
+    assert_eq!(
+        std::fs::read_link(linked.join("a.toml")).expect("link"),
+        target
+    );
+    let formatted = snapshot(&plain);
+    assert_eq!(
+        std::fs::read_to_string(&target).expect("target"),
+        formatted["a.toml"]
+    );
+    assert_eq!(snapshot(&linked), formatted);
+    for dir in [plain, linked, elsewhere] {
+        std::fs::remove_dir_all(&dir).expect("cleanup");
+    }
+}
