@@ -22,16 +22,16 @@ fn run(font_dir: &Path, out_dir: &Path) -> Result<Vec<String>, String> {
         let lines: Vec<String> = diags.iter().map(ToString::to_string).collect();
         format!("{} has errors:\n{}", font_dir.display(), lines.join("\n"))
     })?;
-    let outlines = outline_font(&font, font.info.tolerance).map_err(|e| e.to_string())?;
+    let font = outline_font(&font, font.info.tolerance);
     let stem: String = format!("{}-{}", font.info.family, font.info.style)
         .chars()
         .filter(|c| !c.is_whitespace())
         .collect();
     let ttf_name = format!("{stem}.ttf");
     let otf_name = format!("{stem}.otf");
-    let ttf_bytes = ttf(&font, &outlines).map_err(|e| format!("TTF: {e}"))?;
-    let otf_bytes = otf(&font, &outlines).map_err(|e| format!("OTF: {e}"))?;
-    let order = glyph_order(&font, &outlines).map_err(|e| e.to_string())?;
+    let ttf_bytes = ttf(&font).map_err(|e| format!("TTF: {e}"))?;
+    let otf_bytes = otf(&font).map_err(|e| format!("OTF: {e}"))?;
+    let order = glyph_order(&font).map_err(|e| e.to_string())?;
 
     let ps_name = |model: &str| {
         order

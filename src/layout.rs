@@ -1,21 +1,19 @@
 //! Text layout: characters -> glyphs with advances and kerning, positions in font units.
 //!
-//! One place for the rule, shared by the text proof, the sheet labels and (later) font
-//! specimens. Limits: one line at a time, left to right, no shaping (no contextual forms,
+//! One place for the rule, shared by the text proof and the sheet labels; it reads the
+//! outlined font ([`crate::outline`]). Limits: one line at a time, left to right, no shaping (no contextual forms,
 //! no mark positioning: a combining mark sits where its own outline puts it), no
 //! composition of a base letter and a combining mark into a precomposed glyph.
 
 use std::collections::BTreeMap;
 
-use kurbo::{BezPath, Rect, Shape};
-
-use crate::model::{Font, FontInfo};
+use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
 /// One glyph placed on a line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placed {
-    /// Index into [`Font::glyphs`] (and into `FontOutlines::glyphs`, same order), or `None`
-    /// when the font has neither the character nor a `.notdef`: draw [`fallback_box`].
+    /// Index into [`OutlinedFont::glyphs`], or `None` when the font has neither the
+    /// character nor a `.notdef`: [`Layout::outline`] then gives the [`notdef_box`].
     pub glyph: Option<usize>,
     /// Pen position of the glyph origin, font units from the line start (kerning included).
     pub x: f64,
@@ -26,6 +24,7 @@ pub struct Placed {
 /// A laid-out line: placed glyphs and the total advance width.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Line {
+    /// The glyphs, left to right.
     pub glyphs: Vec<Placed>,
     /// Pen position after the last glyph, font units.
     pub width: f64,
@@ -34,14 +33,17 @@ pub struct Line {
 /// Character and kerning lookups for one font, built once.
 #[derive(Clone, Debug)]
 pub struct Layout<'a> {
-    font: &'a Font,
+    font: &'a OutlinedFont,
     by_char: BTreeMap<char, usize>,
     kerning: BTreeMap<(usize, usize), f64>,
     notdef: Option<usize>,
+    /// The box drawn for characters the font lacks when it has no `.notdef`.
+    fallback: OutlinedGlyph,
 }
 
 impl<'a> Layout<'a> {
-    pub fn new(font: &'a Font) -> Self {
+    /// The lookups for `font`.
+    pub fn new(font: &'a OutlinedFont) -> Self {
         let index: BTreeMap<&str, usize> = font
             .glyphs
             .iter()
@@ -69,6 +71,7 @@ impl<'a> Layout<'a> {
             by_char,
             kerning,
             notdef: index.get(".notdef").copied(),
+            fallback: notdef_box(&font.info),
         }
     }
 
@@ -87,6 +90,14 @@ impl<'a> Layout<'a> {
         self.kerning.get(&(left, right)).copied().unwrap_or(0.0)
     }
 
+    /// The outline to draw for a placed glyph (the [`notdef_box`] for `None`).
+    pub fn outline(&self, placed: &Placed) -> &OutlinedGlyph {
+        match placed.glyph {
+            Some(i) => &self.font.glyphs[i],
+            None => &self.fallback,
+        }
+    }
+
     /// Lays out one line of text; line breaks are the caller's (a `'\n'` here is just a
     /// character the font lacks).
     pub fn line(&self, text: &str) -> Line {
@@ -100,7 +111,7 @@ impl<'a> Layout<'a> {
             }
             let advance = match glyph {
                 Some(i) => self.font.glyphs[i].advance,
-                None => fallback_advance(&self.font.info),
+                None => self.fallback.advance,
             };
             glyphs.push(Placed { glyph, x, advance });
             x += advance;
@@ -110,36 +121,13 @@ impl<'a> Layout<'a> {
     }
 }
 
-/// Advance of the fallback box: half an em.
-pub fn fallback_advance(info: &FontInfo) -> f64 {
-    f64::from(info.units_per_em) / 2.0
-}
-
-/// The box drawn for a character when the font has no glyph and no `.notdef`: a hollow
-/// rectangle from the baseline to the cap height, inset by a tenth of the advance, in font
-/// units (y up), outer contour counter-clockwise and the counter clockwise (nonzero rule).
-pub fn fallback_box(info: &FontInfo) -> BezPath {
-    let advance = fallback_advance(info);
-    let height = if info.cap_height > 0.0 {
-        info.cap_height
-    } else {
-        info.ascender
-    };
-    let outer = Rect::new(advance * 0.1, 0.0, advance * 0.9, height);
-    let stem = advance * 0.08;
-    let inner = outer.inset(-stem);
-    let mut path = BezPath::new();
-    // kurbo's Rect path runs counter-clockwise in y-up coordinates (clockwise on screen).
-    path.extend(outer.path_elements(0.1));
-    let inner_path: BezPath = inner.path_elements(0.1).collect();
-    path.extend(inner_path.reverse_subpaths());
-    path
-}
-
 #[cfg(test)]
 mod tests {
+    use kurbo::Shape;
+
     use super::*;
-    use crate::model::{Glyph, KernPair};
+    use crate::model::{test_info, Font, Glyph, KernPair};
+    use crate::outline::outline_font;
 
     fn glyph(name: &str, c: Option<char>, advance: f64) -> Glyph {
         Glyph {
@@ -151,25 +139,17 @@ mod tests {
         }
     }
 
-    fn font(with_notdef: bool) -> Font {
+    fn font(with_notdef: bool) -> OutlinedFont {
+        outline_font(&model(with_notdef), 0.5)
+    }
+
+    fn model(with_notdef: bool) -> Font {
         let mut glyphs = vec![glyph("A", Some('A'), 600.0), glyph("V", Some('V'), 580.0)];
         if with_notdef {
             glyphs.insert(0, glyph(".notdef", None, 500.0));
         }
         Font {
-            info: FontInfo {
-                family: "T".into(),
-                style: "Regular".into(),
-                units_per_em: 1000,
-                ascender: 800.0,
-                descender: -200.0,
-                x_height: 500.0,
-                cap_height: 700.0,
-                tolerance: 0.5,
-                copyright: None,
-                designer: None,
-                version: None,
-            },
+            info: test_info(),
             glyphs,
             kerning: vec![KernPair {
                 left: "A".into(),
@@ -201,11 +181,10 @@ mod tests {
         assert_eq!(line.glyphs[1].advance, 500.0);
         // No kerning across the box.
         assert_eq!(line.glyphs[2].x, 1100.0);
-        let area = fallback_box(&f.info).area();
-        // Outer 400 x 700 minus inner (400 - 80) x (700 - 80), positive = counter-clockwise.
-        assert!(
-            (area - (400.0 * 700.0 - 320.0 * 620.0)).abs() < 1e-6,
-            "{area}"
-        );
+        let layout = Layout::new(&f);
+        let area = layout.outline(&line.glyphs[1]).path.area();
+        // Outer 400 x 700 minus inner 300 x 600, positive = counter-clockwise.
+        assert_eq!(area, 400.0 * 700.0 - 300.0 * 600.0);
+        assert_eq!(layout.outline(&line.glyphs[0]).name, "A");
     }
 }

@@ -1,70 +1,120 @@
 //! The typed font model: what the sources mean, after parsing and validation.
 //!
 //! Everything downstream of [`crate::source`] works on these types only; it never sees
-//! TOML and never re-validates. Coordinates are font units, y up.
+//! TOML and never re-validates: a [`Contour`] holds a validated [`XSpline`], so a model
+//! can only be built from curves that evaluate. Coordinates are font units, y up.
 
-use crate::xspline::ControlPoint;
+use std::cmp::Ordering;
 
-/// A whole font: metrics, glyphs in source order, and kerning.
+use crate::xspline::{ControlPoint, XSpline, XSplineError};
+
+/// A whole font: metrics, glyphs and kerning.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Font {
+    /// `font.toml`.
     pub info: FontInfo,
-    /// Glyphs, sorted by name for determinism (`.notdef` first when present).
+    /// Glyphs; the loader and the importer sort them by [`glyph_order`].
     pub glyphs: Vec<Glyph>,
+    /// `kerning.toml`.
     pub kerning: Vec<KernPair>,
+}
+
+/// The one glyph order of sources and outputs: `.notdef` first, then by name.
+pub fn glyph_order(a: &str, b: &str) -> Ordering {
+    (a != ".notdef", a).cmp(&(b != ".notdef", b))
 }
 
 /// Font-wide metadata and vertical metrics (`font.toml`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct FontInfo {
+    /// Family name, e.g. `"Xglyph Sans"`.
     pub family: String,
     /// Default `"Regular"`.
     pub style: String,
+    /// Font units per em.
     pub units_per_em: u16,
     /// Font units above the baseline (positive).
     pub ascender: f64,
     /// Font units below the baseline (negative, y-up).
     pub descender: f64,
+    /// Height of flat lowercase letters (`x`), font units.
     pub x_height: f64,
+    /// Height of flat capitals (`H`), font units.
     pub cap_height: f64,
     /// Maximum distance, in font units, between the X-splines and the exported Béziers.
     pub tolerance: f64,
     /// Optional free-form metadata (copyright, designer, ...), written into outputs.
     pub copyright: Option<String>,
+    /// The designer's name.
     pub designer: Option<String>,
+    /// Version text, e.g. `"1.002"`.
     pub version: Option<String>,
 }
 
 /// One glyph: its own contours plus components placed from other glyphs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Glyph {
+    /// Glyph name (unique in the font).
     pub name: String,
     /// Code points mapped to this glyph (may be empty, e.g. accents or `.notdef`).
     pub unicodes: Vec<char>,
     /// Horizontal advance in font units.
     pub advance: f64,
+    /// The glyph's own contours.
     pub contours: Vec<Contour>,
+    /// Other glyphs placed into this one.
     pub components: Vec<Component>,
 }
 
 /// One closed X-spline contour, as written (direction is fixed on output).
+///
+/// It holds a validated [`XSpline`]: [`Contour::new`] is the only check, and the loader
+/// turns its [`XSplineError`] into a diagnostic at the point's place in the source.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contour {
-    pub points: Vec<ControlPoint>,
+    spline: XSpline,
+}
+
+impl Contour {
+    /// Validates `points` as a closed X-spline ([`XSpline::new`]).
+    pub fn new(points: Vec<ControlPoint>) -> Result<Self, XSplineError> {
+        XSpline::new(points).map(Contour::from)
+    }
+
+    /// The control points, as written.
+    pub fn points(&self) -> &[ControlPoint] {
+        self.spline.points()
+    }
+
+    /// The validated curve.
+    pub fn spline(&self) -> &XSpline {
+        &self.spline
+    }
+}
+
+impl From<XSpline> for Contour {
+    fn from(spline: XSpline) -> Self {
+        Contour { spline }
+    }
 }
 
 /// Another glyph's outline placed into this one, translated by `offset`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Component {
+    /// Name of the placed glyph.
     pub base: String,
+    /// Translation `(x, y)`, font units.
     pub offset: (f64, f64),
 }
 
 /// A kerning pair by glyph name; `value` in font units, negative = tighter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct KernPair {
+    /// Name of the first glyph.
     pub left: String,
+    /// Name of the second glyph.
     pub right: String,
+    /// Adjustment of the first glyph's advance, font units.
     pub value: f64,
 }
 
@@ -79,32 +129,25 @@ impl Font {
         self.glyphs.iter().find(|g| g.unicodes.contains(&c))
     }
 
-    /// All contours of `glyph` with components resolved (recursively) and offsets applied.
+    /// Every contour of `glyph` with the offset that places it: its own contours at
+    /// `(0, 0)`, then each component's contours (recursively) at the summed offsets.
     ///
     /// The model is validated, so bases exist and there are no cycles; a missing base
     /// is skipped and recursion is bounded by the glyph count as a safety net.
-    pub fn resolved_contours(&self, glyph: &Glyph) -> Vec<Contour> {
+    pub fn placed_contours<'a>(&'a self, glyph: &'a Glyph) -> Vec<(&'a Contour, (f64, f64))> {
         let mut out = Vec::new();
         self.collect_contours(glyph, (0.0, 0.0), self.glyphs.len(), &mut out);
         out
     }
 
-    fn collect_contours(
-        &self,
-        glyph: &Glyph,
+    fn collect_contours<'a>(
+        &'a self,
+        glyph: &'a Glyph,
         offset: (f64, f64),
         depth: usize,
-        out: &mut Vec<Contour>,
+        out: &mut Vec<(&'a Contour, (f64, f64))>,
     ) {
-        out.extend(glyph.contours.iter().map(|c| {
-            Contour {
-                points: c
-                    .points
-                    .iter()
-                    .map(|p| ControlPoint::new(p.pos.x + offset.0, p.pos.y + offset.1, p.s))
-                    .collect(),
-            }
-        }));
+        out.extend(glyph.contours.iter().map(|c| (c, offset)));
         if depth == 0 {
             return;
         }
@@ -153,6 +196,24 @@ pub fn weight_class(style: &str) -> u16 {
         .iter()
         .find(|(name, _)| compact.contains(name))
         .map_or(400, |&(_, weight)| weight)
+}
+
+/// A 1000-unit em with typical metrics, for unit tests across the crate.
+#[cfg(test)]
+pub(crate) fn test_info() -> FontInfo {
+    FontInfo {
+        family: "Test".into(),
+        style: "Regular".into(),
+        units_per_em: 1000,
+        ascender: 800.0,
+        descender: -200.0,
+        x_height: 500.0,
+        cap_height: 700.0,
+        tolerance: 0.5,
+        copyright: None,
+        designer: None,
+        version: None,
+    }
 }
 
 #[cfg(test)]

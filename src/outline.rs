@@ -1,92 +1,354 @@
-//! Per-glyph outlines: the model through [`crate::fit`] and [`crate::orient`].
+//! Outlining: the model through [`crate::fit`] and [`crate::orient`] into the one IR that
+//! every output reads.
 //!
-//! The result is what every output consumes: one [`kurbo::BezPath`] per glyph, in font
-//! units (y up), contours oriented for the nonzero rule (outer counter-clockwise).
+//! [`OutlinedFont`] is all a backend needs (render, svg, otf, layout, specimen): the font's
+//! metrics and kerning, and per glyph its name, code points, advance, the X-spline contours
+//! as placed, and the fitted [`BezPath`] in font units (y up, outer contours
+//! counter-clockwise for the nonzero rule) with its measured error. No backend goes back to
+//! the [`Font`] model, so the two cannot drift apart.
+//!
+//! The glyph order is decided here, once: `.notdef` first when the font has one, then the
+//! model's order (the loader sorts by [`crate::model::glyph_order`]). A font without
+//! `.notdef` gets the box of [`notdef_box`] wherever a missing glyph is drawn or stored.
+//!
+//! Each glyph is outlined on its own by [`outline_glyph`], a pure function of the model, the
+//! glyph and the tolerance: glyphs can be fitted in any order or in parallel, cached, or
+//! refitted one at a time. Outlines at another design-space position (masters) are the
+//! same type: outline the model instantiated there.
 
-use kurbo::BezPath;
+use std::borrow::Cow;
+
+use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
 
 use crate::fit::fit_contour;
-use crate::model::Font;
+use crate::model::{Component, Font, FontInfo, Glyph, KernPair};
 use crate::orient::orient_contours;
-use crate::xspline::{XSpline, XSplineError};
+use crate::xspline::{ControlPoint, XSpline};
+
+/// A font with every glyph fitted: what every output reads.
+#[derive(Clone, Debug)]
+pub struct OutlinedFont {
+    /// Names and metrics (`font.toml`).
+    pub info: FontInfo,
+    /// Kerning pairs by glyph name.
+    pub kerning: Vec<KernPair>,
+    /// The tolerance the outlines were fitted to (font units).
+    pub tolerance: f64,
+    /// Every glyph: `.notdef` first when the font has one, then the model's order.
+    pub glyphs: Vec<OutlinedGlyph>,
+}
 
 /// One glyph ready for output.
 #[derive(Clone, Debug)]
-pub struct GlyphOutline {
+pub struct OutlinedGlyph {
+    /// Glyph name.
     pub name: String,
+    /// Code points mapped to the glyph (may be empty).
     pub unicodes: Vec<char>,
+    /// Horizontal advance, font units.
     pub advance: f64,
-    /// Closed subpaths (MoveTo … ClosePath), components resolved.
+    /// The components the glyph places (their contours are in `contours` and `path`).
+    pub components: Vec<Component>,
+    /// The X-spline contours the path was fitted to: the glyph's own, then its components'.
+    pub contours: Vec<PlacedContour>,
+    /// Closed subpaths (MoveTo … ClosePath), components resolved, oriented.
     pub path: BezPath,
     /// Largest measured distance between the path and the true X-splines (font units).
     pub max_error: f64,
+    /// Number of segments (lines and cubics) in the path.
+    pub segments: usize,
 }
 
-/// Outlines of every glyph, in the model's glyph order.
-#[derive(Clone, Debug)]
-pub struct FontOutlines {
-    pub glyphs: Vec<GlyphOutline>,
-    /// The tolerance the outlines were fitted to (font units).
-    pub tolerance: f64,
+/// An X-spline contour as written in its own glyph, and where it is placed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedContour {
+    /// The contour in the coordinates of the glyph that draws it.
+    pub spline: XSpline,
+    /// The summed component offsets (zero for the glyph's own contours), font units.
+    pub offset: Vec2,
 }
 
-impl FontOutlines {
-    pub fn glyph(&self, name: &str) -> Option<&GlyphOutline> {
+impl PlacedContour {
+    /// The control points where they are placed.
+    pub fn points(&self) -> impl Iterator<Item = ControlPoint> + '_ {
+        let (dx, dy) = (self.offset.x, self.offset.y);
+        self.spline
+            .points()
+            .iter()
+            .map(move |p| ControlPoint::new(p.pos.x + dx, p.pos.y + dy, p.s))
+    }
+}
+
+impl OutlinedFont {
+    /// The glyph with this name.
+    pub fn glyph(&self, name: &str) -> Option<&OutlinedGlyph> {
         self.glyphs.iter().find(|g| g.name == name)
+    }
+
+    /// The glyph mapped to code point `c`.
+    pub fn glyph_for_char(&self, c: char) -> Option<&OutlinedGlyph> {
+        self.glyphs.iter().find(|g| g.unicodes.contains(&c))
+    }
+
+    /// Kerning value between two glyph names (0 when there is no pair).
+    pub fn kern(&self, left: &str, right: &str) -> f64 {
+        self.kerning
+            .iter()
+            .find(|k| k.left == left && k.right == right)
+            .map_or(0.0, |k| k.value)
+    }
+
+    /// Whether the font has a `.notdef` of its own (then it is `glyphs[0]`).
+    pub fn has_notdef(&self) -> bool {
+        self.glyphs.first().is_some_and(|g| g.name == ".notdef")
+    }
+
+    /// The glyph for characters the font lacks: its own `.notdef`, else [`notdef_box`].
+    pub fn notdef(&self) -> Cow<'_, OutlinedGlyph> {
+        match self.glyphs.first() {
+            Some(g) if g.name == ".notdef" => Cow::Borrowed(g),
+            _ => Cow::Owned(notdef_box(&self.info)),
+        }
     }
 
     /// Largest measured fitting error over all glyphs.
     pub fn max_error(&self) -> f64 {
         self.glyphs.iter().map(|g| g.max_error).fold(0.0, f64::max)
     }
-}
 
-/// A contour that is not a valid X-spline (the source checks should have caught it).
-#[derive(Clone, Debug, PartialEq)]
-pub struct OutlineError {
-    pub glyph: String,
-    pub contour: usize,
-    pub error: XSplineError,
-}
-
-impl std::fmt::Display for OutlineError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "glyph '{}', contour {}: {}",
-            self.glyph, self.contour, self.error
-        )
+    /// The ink box of every non-empty glyph outline together, if there is any ink.
+    pub fn ink_bounds(&self) -> Option<Rect> {
+        self.glyphs
+            .iter()
+            .filter(|g| !g.path.elements().is_empty())
+            .map(|g| g.path.bounding_box())
+            .reduce(|a, b| a.union(b))
     }
 }
 
-impl std::error::Error for OutlineError {}
+/// Fits every glyph of `font` within `tolerance` font units ([`outline_glyph`] each).
+pub fn outline_font(font: &Font, tolerance: f64) -> OutlinedFont {
+    let notdef = font.glyphs.iter().filter(|g| g.name == ".notdef");
+    let rest = font.glyphs.iter().filter(|g| g.name != ".notdef");
+    OutlinedFont {
+        info: font.info.clone(),
+        kerning: font.kerning.clone(),
+        tolerance,
+        glyphs: notdef
+            .chain(rest)
+            .map(|glyph| outline_glyph(font, glyph, tolerance))
+            .collect(),
+    }
+}
 
-/// Fits every glyph of `font` within `tolerance` font units.
-pub fn outline_font(font: &Font, tolerance: f64) -> Result<FontOutlines, OutlineError> {
-    let glyphs = font
-        .glyphs
+/// Fits one glyph of `font` (its contours and its components') within `tolerance`.
+pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyph {
+    let mut contours = Vec::new();
+    let mut fitted = Vec::new();
+    let mut max_error: f64 = 0.0;
+    for (contour, offset) in font.placed_contours(glyph) {
+        let placed = PlacedContour {
+            spline: contour.spline().clone(),
+            offset: Vec2::new(offset.0, offset.1),
+        };
+        let (path, error) = fit_placed(&placed, tolerance);
+        max_error = max_error.max(error);
+        fitted.push(path);
+        contours.push(placed);
+    }
+    let path = orient_contours(fitted);
+    let segments = path
+        .elements()
         .iter()
-        .map(|glyph| {
-            let mut fitted = Vec::new();
-            let mut max_error: f64 = 0.0;
-            for (index, contour) in font.resolved_contours(glyph).into_iter().enumerate() {
-                let spline = XSpline::new(contour.points).map_err(|error| OutlineError {
-                    glyph: glyph.name.clone(),
-                    contour: index,
-                    error,
-                })?;
-                let fit = fit_contour(&spline, tolerance);
-                max_error = max_error.max(fit.max_error);
-                fitted.push(fit.path);
-            }
-            Ok(GlyphOutline {
-                name: glyph.name.clone(),
-                unicodes: glyph.unicodes.clone(),
-                advance: glyph.advance,
-                path: orient_contours(fitted),
-                max_error,
-            })
+        .filter(|el| {
+            matches!(
+                el,
+                PathEl::LineTo(_) | PathEl::QuadTo(..) | PathEl::CurveTo(..)
+            )
         })
-        .collect::<Result<_, _>>()?;
-    Ok(FontOutlines { glyphs, tolerance })
+        .count();
+    OutlinedGlyph {
+        name: glyph.name.clone(),
+        unicodes: glyph.unicodes.clone(),
+        advance: glyph.advance,
+        components: glyph.components.clone(),
+        contours,
+        path,
+        max_error,
+        segments,
+    }
+}
+
+/// Fits a contour where it is placed: the moved control points, so that a component fits
+/// as if it had been drawn there. Moving can break the curve's rules only by rounding
+/// (two points a few ulps apart landing on one value, or a sum overflowing); then the
+/// contour is fitted where it was drawn and the fitted path moved instead.
+fn fit_placed(placed: &PlacedContour, tolerance: f64) -> (BezPath, f64) {
+    match XSpline::new(placed.points().collect()) {
+        Ok(moved) => {
+            let fit = fit_contour(&moved, tolerance);
+            (fit.path, fit.max_error)
+        }
+        Err(_) => {
+            let fit = fit_contour(&placed.spline, tolerance);
+            (Affine::translate(placed.offset) * fit.path, fit.max_error)
+        }
+    }
+}
+
+/// The missing glyph of a font that has no `.notdef`: a hollow box half an em wide
+/// (rounded) and cap-height tall (ascender when the cap height is 0), inset by a twentieth
+/// of an em, with a stem of a twentieth of an em (at least 1 unit); outer contour
+/// counter-clockwise, the counter clockwise. Used by the TTF/OTF `.notdef`, the SVG font's
+/// `<missing-glyph>` and the PNG outputs, so all of them show the same box.
+pub fn notdef_box(info: &FontInfo) -> OutlinedGlyph {
+    let upm = f64::from(info.units_per_em);
+    let advance = (upm / 2.0).round();
+    let height = if info.cap_height > 0.0 {
+        info.cap_height
+    } else {
+        info.ascender
+    };
+    let margin = (upm / 20.0).round();
+    let stem = (upm / 20.0).round().max(1.0);
+    let (x0, x1) = (margin, advance - margin);
+    let mut path = BezPath::new();
+    rectangle(&mut path, [x0, 0.0, x1, height], true);
+    rectangle(
+        &mut path,
+        [x0 + stem, stem, x1 - stem, height - stem],
+        false,
+    );
+    OutlinedGlyph {
+        name: ".notdef".into(),
+        unicodes: Vec::new(),
+        advance,
+        components: Vec::new(),
+        contours: Vec::new(),
+        path,
+        max_error: 0.0,
+        segments: 8,
+    }
+}
+
+/// Appends the rectangle `[x0, y0, x1, y1]` starting at `(x0, y0)`, counter-clockwise
+/// (y up) or clockwise.
+fn rectangle(path: &mut BezPath, [x0, y0, x1, y1]: [f64; 4], ccw: bool) {
+    path.move_to((x0, y0));
+    if ccw {
+        path.line_to((x1, y0));
+        path.line_to((x1, y1));
+        path.line_to((x0, y1));
+    } else {
+        path.line_to((x0, y1));
+        path.line_to((x1, y1));
+        path.line_to((x1, y0));
+    }
+    path.close_path();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{test_info as info, Contour};
+
+    fn square(x0: f64, y0: f64, side: f64) -> Contour {
+        let p = |x, y| ControlPoint::new(x, y, 0.0);
+        Contour::new(vec![
+            p(x0, y0),
+            p(x0 + side, y0),
+            p(x0 + side, y0 + side),
+            p(x0, y0 + side),
+        ])
+        .expect("a square is a valid contour")
+    }
+
+    fn glyph(name: &str, contours: Vec<Contour>, components: Vec<Component>) -> Glyph {
+        Glyph {
+            name: name.into(),
+            unicodes: Vec::new(),
+            advance: 500.0,
+            contours,
+            components,
+        }
+    }
+
+    #[test]
+    fn notdef_box_geometry() {
+        let g = notdef_box(&info());
+        assert_eq!(g.advance, 500.0);
+        // Outer 50..450 x 0..700, inner 100..400 x 50..650, counter clockwise.
+        let area = g.path.area();
+        assert_eq!(area, 400.0 * 700.0 - 300.0 * 600.0);
+        assert_eq!(g.path.bounding_box(), Rect::new(50.0, 0.0, 450.0, 700.0));
+        assert_eq!(g.segments, g.path.segments().count());
+    }
+
+    #[test]
+    fn notdef_first_components_placed_and_counted() {
+        let font = Font {
+            info: info(),
+            glyphs: vec![
+                glyph("dot", vec![square(0.0, 0.0, 100.0)], vec![]),
+                glyph(
+                    "two",
+                    vec![square(200.0, 0.0, 100.0)],
+                    vec![Component {
+                        base: "dot".into(),
+                        offset: (10.0, 20.0),
+                    }],
+                ),
+                glyph(".notdef", vec![square(50.0, 0.0, 400.0)], vec![]),
+            ],
+            kerning: Vec::new(),
+        };
+        let out = outline_font(&font, 0.5);
+        let names: Vec<&str> = out.glyphs.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(names, [".notdef", "dot", "two"]);
+        assert!(out.has_notdef());
+        assert_eq!(out.notdef().path, out.glyphs[0].path);
+        let two = out.glyph("two").expect("two");
+        assert_eq!(two.segments, 8);
+        assert_eq!(two.contours.len(), 2);
+        assert_eq!(two.contours[1].offset, Vec2::new(10.0, 20.0));
+        let first = two.contours[1].points().next().expect("a point");
+        assert_eq!((first.pos.x, first.pos.y), (10.0, 20.0));
+        assert_eq!(two.path.bounding_box(), Rect::new(10.0, 0.0, 300.0, 120.0));
+        // Squares of sharp points are exact: lines only.
+        assert_eq!(out.max_error(), 0.0);
+    }
+
+    #[test]
+    fn a_placement_that_rounds_points_together_is_fitted_in_place() {
+        // 1 + 1e-17 == 1: moved by 1, the first two points would coincide.
+        let tiny = Contour::new(vec![
+            ControlPoint::new(0.0, 0.0, 0.0),
+            ControlPoint::new(1e-17, 0.0, 0.0),
+            ControlPoint::new(100.0, 50.0, 0.0),
+            ControlPoint::new(0.0, 100.0, 0.0),
+        ])
+        .expect("distinct points");
+        let font = Font {
+            info: info(),
+            glyphs: vec![
+                glyph("base", vec![tiny], vec![]),
+                glyph(
+                    "user",
+                    vec![],
+                    vec![Component {
+                        base: "base".into(),
+                        offset: (1.0, 0.0),
+                    }],
+                ),
+            ],
+            kerning: Vec::new(),
+        };
+        let out = outline_font(&font, 0.5);
+        let user = out.glyph("user").expect("user");
+        let base = out.glyph("base").expect("base");
+        assert_eq!(user.path, Affine::translate((1.0, 0.0)) * base.path.clone());
+        assert_eq!(user.path.area(), 5000.0);
+        assert!(!out.has_notdef());
+        assert_eq!(out.notdef().path, notdef_box(&out.info).path);
+    }
 }

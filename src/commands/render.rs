@@ -3,8 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::build::{load, write_outputs};
+use super::build::load;
 use super::{CommandError, FontArgs};
+use crate::pipeline::write_outputs;
 use crate::render::{
     encode_png, render_proof, render_sheet, ProofOptions, RenderError, SheetOptions, MAX_AREA,
     MAX_SIDE,
@@ -58,10 +59,11 @@ pub struct RenderArgs {
     pub width: u32,
 }
 
+/// Runs `xglyph render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     check_flags(&args)?;
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let (font, outlines) = (&loaded.font, &loaded.outlines);
+    let font = &loaded.font;
     let mut files = Vec::new();
     if args.only != Some(Only::Proof) {
         let opts = SheetOptions {
@@ -74,7 +76,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         } else {
             "sheet.png"
         };
-        let sheet = render_sheet(font, outlines, &opts).map_err(|e| sheet_flags(e, &opts))?;
+        let sheet = render_sheet(font, &opts).map_err(|e| sheet_flags(e, &opts))?;
         files.push((PathBuf::from(name), encode_png(&sheet)?));
     }
     if args.only != Some(Only::Sheet) {
@@ -83,7 +85,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
             sizes: args.sizes,
             width_px: args.width,
         };
-        let proof = render_proof(font, outlines, &opts).map_err(|e| proof_flags(e, &opts))?;
+        let proof = render_proof(font, &opts).map_err(|e| proof_flags(e, &opts))?;
         files.push((PathBuf::from("proof.png"), encode_png(&proof)?));
     }
     write_outputs(&args.font.out, &files)?;

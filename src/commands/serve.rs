@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use super::build::print_diagnostic;
 use super::CommandError;
 use crate::serve::{Server, StartError};
+use crate::terminal::{errln, outln};
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
@@ -35,7 +36,7 @@ pub struct ServeArgs {
 
 pub fn run(args: ServeArgs) -> Result<ExitCode, CommandError> {
     if !args.host.is_loopback() {
-        eprintln!(
+        errln!(
             "warning: listening on {}: anyone who can reach this machine can read and edit \
              the sources in {}",
             args.host,
@@ -57,7 +58,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode, CommandError> {
     // The handler first: once the URL is printed, Ctrl-C must stop cleanly.
     ctrlc::set_handler(server.stopper())?;
     let url = server.url();
-    println!(
+    outln!(
         "xglyph studio: {} at {url} (Ctrl-C stops)",
         args.font_dir.display()
     );
@@ -65,7 +66,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode, CommandError> {
         open_browser(&url);
     }
     server.run();
-    println!("stopped");
+    outln!("stopped");
     Ok(ExitCode::SUCCESS)
 }
 
@@ -79,6 +80,6 @@ fn open_browser(url: &str) {
         "xdg-open"
     };
     if let Err(e) = std::process::Command::new(opener).arg(url).spawn() {
-        eprintln!("warning: cannot open a browser ({opener}: {e}); open {url} yourself");
+        errln!("warning: cannot open a browser ({opener}: {e}); open {url} yourself");
     }
 }

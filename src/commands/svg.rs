@@ -2,8 +2,9 @@
 
 use std::process::ExitCode;
 
-use super::build::{load, svg_outputs, write_outputs};
+use super::build::load;
 use super::{CommandError, FontArgs};
+use crate::pipeline::{svg_outputs, write_outputs};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -20,9 +21,10 @@ pub struct SvgArgs {
     pub font: FontArgs,
 }
 
+/// Runs `xglyph svg`.
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let files = svg_outputs(&loaded.font, &loaded.outlines);
+    let files = svg_outputs(&loaded.font);
     write_outputs(&args.font.out, &files)?;
     outln!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",

@@ -225,7 +225,7 @@ fn import_glyphs(sources: &[SourceGlyph], info: FontInfo, tolerance: f64) -> Imp
         .iter()
         .map(|g| import_glyph(g, tolerance, grid))
         .collect();
-    pairs.sort_by(|a, b| glyph_order(&a.0.name, &b.0.name));
+    pairs.sort_by(|a, b| crate::model::glyph_order(&a.0.name, &b.0.name));
     let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) = pairs.into_iter().unzip();
     Imported {
         font: Font {
@@ -239,10 +239,6 @@ fn import_glyphs(sources: &[SourceGlyph], info: FontInfo, tolerance: f64) -> Imp
             notes: Vec::new(),
         },
     }
-}
-
-fn glyph_order(a: &str, b: &str) -> std::cmp::Ordering {
-    (a != ".notdef", a).cmp(&(b != ".notdef", b))
 }
 
 /// The decimal rounding grid for written coordinates: the largest power of ten not above
@@ -290,9 +286,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, 
         };
         row.max_error = row.max_error.max(err);
         row.xspline_points += spline.points().len();
-        contours.push(Contour {
-            points: spline.points().to_vec(),
-        });
+        contours.push(Contour::from(spline));
     }
     let glyph = Glyph {
         name: source.name.clone(),

@@ -6,7 +6,7 @@
 
 use kurbo::{BezPath, PathEl, Point};
 
-use super::{GlyphSet, OtfError};
+use super::{OtGlyph, OtfError};
 
 /// A value as a signed 16-bit table field, or an error naming it.
 pub fn to_i16(value: f64, what: impl FnOnce() -> String) -> Result<i16, OtfError> {
@@ -110,8 +110,8 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
 }
 
 /// Every glyph's outline on the grid, in glyph order (cubic, for CFF).
-pub fn round_glyph_paths(set: &GlyphSet) -> Result<Vec<BezPath>, OtfError> {
-    set.glyphs
+pub fn round_glyph_paths(glyphs: &[OtGlyph]) -> Result<Vec<BezPath>, OtfError> {
+    glyphs
         .iter()
         .map(|g| round_path(&g.path, &g.model_name))
         .collect()

@@ -19,15 +19,15 @@ use write_fonts::tables::layout::{
 use write_fonts::types::{GlyphId16, Tag};
 
 use super::{grid, GlyphSet, OtfError};
-use crate::model::Font;
+use crate::model::KernPair;
 
 /// Kerning by glyph id: first -> (second -> value), sorted, zero values dropped.
 pub type KernPairs = BTreeMap<u16, BTreeMap<u16, i16>>;
 
 /// The model's kerning as glyph-id pairs (pairs naming unknown glyphs are skipped).
-pub fn kern_pairs(font: &Font, set: &GlyphSet) -> Result<KernPairs, OtfError> {
+pub fn kern_pairs(kerning: &[KernPair], set: &GlyphSet) -> Result<KernPairs, OtfError> {
     let mut pairs = KernPairs::new();
-    for pair in &font.kerning {
+    for pair in kerning {
         let (Some(left), Some(right)) = (set.gid(&pair.left), set.gid(&pair.right)) else {
             continue;
         };

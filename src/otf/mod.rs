@@ -1,12 +1,13 @@
 //! TTF and OTF export: the fitted outlines as installable OpenType fonts.
 //!
-//! Both flavours share one glyph order (`.notdef` first, then the model's order), one set
-//! of PostScript glyph names and the same metrics tables ([`tables`]); they differ only in
-//! the outline table:
+//! Both read the outlined font only ([`OutlinedFont`]) and share one glyph order (its
+//! order, which has `.notdef` first, with the [`notdef_box`] put first when the font has
+//! none), one set of PostScript glyph names and the tables built in `tables.rs` (one module
+//! per table); they differ only in the outline table:
 //!
 //! - TTF: `glyf`/`loca` with the cubics converted to quadratic splines within the font's
-//!   tolerance ([`quadratic`]), points on the integer grid, outer contours clockwise.
-//! - OTF: a `CFF ` table ([`cff`], [`charstring`]) holding the cubics exactly, points
+//!   tolerance (`quadratic.rs`), points on the integer grid, outer contours clockwise.
+//! - OTF: a `CFF ` table (`cff.rs`, `charstring.rs`) holding the cubics exactly, points
 //!   rounded to the integer grid, outer contours counter-clockwise.
 //!
 //! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
@@ -14,15 +15,21 @@
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
 //!
 //! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
-//! `kern` table ([`kern`]). Components are already resolved into the outlines; no composite glyphs.
+//! `kern` table (`kern.rs`). Components are already resolved into the outlines; no
+//! composite glyphs.
 
 mod cff;
 mod charstring;
+mod cmap;
 mod glyph_names;
 mod grid;
+mod head;
+mod hmtx;
 mod kern;
+mod maxp;
 mod naming;
 mod os2;
+mod post;
 mod quadratic;
 mod specimen;
 mod tables;
@@ -32,12 +39,8 @@ use std::collections::BTreeMap;
 
 use kurbo::BezPath;
 
-use crate::model::Font;
-use crate::outline::FontOutlines;
+use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
-pub use cff::{encode_dict_int, encode_dict_real, encode_index};
-pub use charstring::encode_charstring_int;
-pub use glyph_names::is_valid_glyph_name;
 pub use specimen::{specimen_html, specimen_text};
 
 /// Something the model holds that an OpenType font cannot.
@@ -47,12 +50,13 @@ pub enum OtfError {
     TooManyGlyphs(usize),
     /// A coordinate, advance or metric outside the signed 16-bit range of the tables.
     OutOfRange {
+        /// What the value is, e.g. `advance of 'A'`.
         what: String,
+        /// The value.
         value: f64,
+        /// The range it must be in, e.g. `-32768..=32767`.
         range: &'static str,
     },
-    /// A glyph in the model with no outline (model and outlines out of step).
-    MissingOutline(String),
     /// Two glyphs mapped to one code point.
     CmapConflict(String),
     /// write-fonts rejected a table.
@@ -68,7 +72,6 @@ impl std::fmt::Display for OtfError {
             OtfError::OutOfRange { what, value, range } => {
                 write!(f, "{what} is {value}, outside the OpenType range {range}")
             }
-            OtfError::MissingOutline(name) => write!(f, "glyph '{name}' has no outline"),
             OtfError::CmapConflict(msg) => write!(f, "cmap: {msg}"),
             OtfError::Table(msg) => write!(f, "{msg}"),
         }
@@ -101,39 +104,19 @@ pub(crate) struct GlyphSet {
 }
 
 impl GlyphSet {
-    /// `.notdef` first (synthesised as an empty box when the model has none), then the
-    /// model's order.
-    pub fn new(font: &Font, outlines: &FontOutlines) -> Result<Self, OtfError> {
-        let has_notdef = font.glyph(".notdef").is_some();
-        let count = font.glyphs.len() + usize::from(!has_notdef);
+    /// The outlined font's glyphs in its order, after the [`notdef_box`] when the font
+    /// has no `.notdef`.
+    pub fn new(font: &OutlinedFont) -> Result<Self, OtfError> {
+        let notdef = (!font.has_notdef()).then(|| notdef_box(&font.info));
+        let count = font.glyphs.len() + usize::from(notdef.is_some());
         if count > usize::from(u16::MAX) {
             return Err(OtfError::TooManyGlyphs(count));
         }
-        let mut glyphs = Vec::with_capacity(count);
-        if !has_notdef {
-            glyphs.push(synthetic_notdef(font));
-        }
-        let indexed = font.glyphs.iter().enumerate();
-        let notdef = indexed.clone().filter(|(_, g)| g.name == ".notdef");
-        let rest = indexed.filter(|(_, g)| g.name != ".notdef");
-        for (index, glyph) in notdef.chain(rest) {
-            // Outlines come in model order; search only if they do not.
-            let outline = outlines
-                .glyphs
-                .get(index)
-                .filter(|o| o.name == glyph.name)
-                .or_else(|| outlines.glyph(&glyph.name))
-                .ok_or_else(|| OtfError::MissingOutline(glyph.name.clone()))?;
-            let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
-            glyphs.push(OtGlyph {
-                model_name: glyph.name.clone(),
-                ps_name: String::new(),
-                unicodes: glyph.unicodes.clone(),
-                advance,
-                path: outline.path.clone(),
-                from_components: !glyph.components.is_empty(),
-            });
-        }
+        let mut glyphs = notdef
+            .iter()
+            .chain(&font.glyphs)
+            .map(OtGlyph::new)
+            .collect::<Result<Vec<_>, _>>()?;
         let names = glyph_names::ps_names(&glyphs);
         for (glyph, name) in glyphs.iter_mut().zip(names) {
             glyph.ps_name = name;
@@ -153,62 +136,32 @@ impl GlyphSet {
     }
 }
 
-/// A hollow box, half an em wide and cap-height tall: the conventional missing glyph.
-fn synthetic_notdef(font: &Font) -> OtGlyph {
-    let upm = f64::from(font.info.units_per_em);
-    let advance = (upm / 2.0).round();
-    let height = if font.info.cap_height > 0.0 {
-        font.info.cap_height
-    } else {
-        font.info.ascender
-    };
-    let margin = (upm / 20.0).round();
-    let stroke = (upm / 20.0).round().max(1.0);
-    let mut path = BezPath::new();
-    let rect = |path: &mut BezPath, x0: f64, y0: f64, x1: f64, y1: f64, ccw: bool| {
-        path.move_to((x0, y0));
-        if ccw {
-            path.line_to((x1, y0));
-            path.line_to((x1, y1));
-            path.line_to((x0, y1));
-        } else {
-            path.line_to((x0, y1));
-            path.line_to((x1, y1));
-            path.line_to((x1, y0));
-        }
-        path.close_path();
-    };
-    let (x0, x1) = (margin, advance - margin);
-    rect(&mut path, x0, 0.0, x1, height, true);
-    rect(
-        &mut path,
-        x0 + stroke,
-        stroke,
-        x1 - stroke,
-        height - stroke,
-        false,
-    );
-    OtGlyph {
-        model_name: ".notdef".into(),
-        ps_name: ".notdef".into(),
-        unicodes: Vec::new(),
-        advance: advance.clamp(0.0, f64::from(u16::MAX)) as u16,
-        path,
-        from_components: false,
+impl OtGlyph {
+    /// The glyph with its advance on the grid; the PostScript name comes later.
+    fn new(glyph: &OutlinedGlyph) -> Result<Self, OtfError> {
+        let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
+        Ok(OtGlyph {
+            model_name: glyph.name.clone(),
+            ps_name: String::new(),
+            unicodes: glyph.unicodes.clone(),
+            advance,
+            path: glyph.path.clone(),
+            from_components: !glyph.components.is_empty(),
+        })
     }
 }
 
 /// The font as TrueType (`glyf` outlines, quadratic splines on the integer grid).
-pub fn ttf(font: &Font, outlines: &FontOutlines) -> Result<Vec<u8>, OtfError> {
-    let set = GlyphSet::new(font, outlines)?;
-    let glyphs = truetype::glyphs(&set, outlines.tolerance)?;
+pub fn ttf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::new(font)?;
+    let glyphs = truetype::glyphs(&set.glyphs, font.tolerance)?;
     tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
 }
 
 /// The font as OpenType/CFF (cubic outlines, points rounded to the integer grid).
-pub fn otf(font: &Font, outlines: &FontOutlines) -> Result<Vec<u8>, OtfError> {
-    let set = GlyphSet::new(font, outlines)?;
-    let glyphs = grid::round_glyph_paths(&set)?;
+pub fn otf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::new(font)?;
+    let glyphs = grid::round_glyph_paths(&set.glyphs)?;
     tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
 }
 
@@ -219,14 +172,15 @@ pub struct OrderedGlyph {
     pub model_name: String,
     /// The PostScript name in `post` / the CFF charset.
     pub ps_name: String,
+    /// Code points mapped to the glyph.
     pub unicodes: Vec<char>,
     /// Advance on the grid, font units.
     pub advance: u16,
 }
 
 /// The glyph order, PostScript names, code points and advances both fonts are built with.
-pub fn glyph_order(font: &Font, outlines: &FontOutlines) -> Result<Vec<OrderedGlyph>, OtfError> {
-    let set = GlyphSet::new(font, outlines)?;
+pub fn glyph_order(font: &OutlinedFont) -> Result<Vec<OrderedGlyph>, OtfError> {
+    let set = GlyphSet::new(font)?;
     Ok(set
         .glyphs
         .into_iter()

@@ -9,7 +9,7 @@
 use write_fonts::tables::name::{Name, NameRecord};
 use write_fonts::types::NameId;
 
-use crate::model::Font;
+use crate::model::FontInfo;
 
 /// Names and style facts derived from `font.toml`.
 pub struct Naming {
@@ -26,10 +26,10 @@ pub struct Naming {
 }
 
 impl Naming {
-    pub fn new(font: &Font) -> Self {
-        let family = font.info.family.trim().to_owned();
-        let style = font.info.style.trim().to_owned();
-        let (revision, version_text) = parse_version(font.info.version.as_deref());
+    pub fn new(info: &FontInfo) -> Self {
+        let family = info.family.trim().to_owned();
+        let style = info.style.trim().to_owned();
+        let (revision, version_text) = parse_version(info.version.as_deref());
         let words: Vec<String> = style.split_whitespace().map(str::to_lowercase).collect();
         let italic = words.iter().any(|w| w == "italic" || w == "oblique");
         let weight = crate::model::weight_class(&style);
@@ -92,9 +92,9 @@ fn ps_font_name(family: &str, style: &str) -> String {
 }
 
 /// Windows (3, 1, en-US) name records, sorted by name ID.
-pub fn name_table(font: &Font, naming: &Naming) -> Name {
+pub fn name_table(info: &FontInfo, naming: &Naming) -> Name {
     let mut records: Vec<(u16, String)> = Vec::new();
-    if let Some(c) = &font.info.copyright {
+    if let Some(c) = &info.copyright {
         records.push((0, c.clone()));
     }
     let (family1, style2) = if naming.ribbi {
@@ -127,7 +127,7 @@ pub fn name_table(font: &Font, naming: &Naming) -> Name {
     records.push((4, naming.full_name.clone()));
     records.push((5, naming.version_text.clone()));
     records.push((6, naming.ps_name.clone()));
-    if let Some(d) = &font.info.designer {
+    if let Some(d) = &info.designer {
         records.push((9, d.clone()));
     }
     if !naming.ribbi {

@@ -14,7 +14,7 @@
 
 use std::fmt::Write;
 
-use crate::model::Font;
+use crate::outline::OutlinedFont;
 
 /// The CSS family name the page gives the font (never the model's text).
 const CSS_FAMILY: &str = "xglyph-specimen";
@@ -53,7 +53,7 @@ fn is_combining_or_control(c: char) -> bool {
 
 /// Characters to set as text: each glyph's first code point in glyph order, marks and
 /// controls left out.
-fn sample_chars(font: &Font) -> Vec<char> {
+fn sample_chars(font: &OutlinedFont) -> Vec<char> {
     font.glyphs
         .iter()
         .filter_map(|g| g.unicodes.first().copied())
@@ -62,7 +62,7 @@ fn sample_chars(font: &Font) -> Vec<char> {
 }
 
 /// The kerning pairs that can be typed (both glyphs have a usable code point).
-fn kern_strings(font: &Font) -> Vec<(String, f64)> {
+fn kern_strings(font: &OutlinedFont) -> Vec<(String, f64)> {
     font.kerning
         .iter()
         .filter_map(|k| {
@@ -80,7 +80,7 @@ fn kern_strings(font: &Font) -> Vec<(String, f64)> {
 
 /// The measured line: the sample characters, then the kerning pairs, separated by spaces
 /// when the font has a space glyph.
-pub fn specimen_text(font: &Font) -> String {
+pub fn specimen_text(font: &OutlinedFont) -> String {
     let sep = if font.glyph_for_char(' ').is_some() {
         " "
     } else {
@@ -94,7 +94,7 @@ pub fn specimen_text(font: &Font) -> String {
 
 /// Width of `text` in font units: advances plus kerning between neighbours, as a shaper
 /// applying the `kern` feature gives it.
-fn text_width(font: &Font, text: &str) -> f64 {
+fn text_width(font: &OutlinedFont, text: &str) -> f64 {
     let mut width = 0.0;
     let mut prev: Option<&str> = None;
     for c in text.chars() {
@@ -111,7 +111,7 @@ fn text_width(font: &Font, text: &str) -> f64 {
 }
 
 /// The specimen page for the font file `font_file_name` (next to the page).
-pub fn specimen_html(font: &Font, font_file_name: &str) -> String {
+pub fn specimen_html(font: &OutlinedFont, font_file_name: &str) -> String {
     let info = &font.info;
     let title = escape_html(&format!("{} {}", info.family, info.style));
     let upm = info.units_per_em;

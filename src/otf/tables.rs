@@ -1,5 +1,8 @@
-//! The tables both flavours share (head, hhea, hmtx, maxp, cmap, name, OS/2, post,
-//! GPOS, kern), assembled with write-fonts' `FontBuilder` around the outline tables.
+//! The font file: the outline tables of one flavour and the tables both share, assembled
+//! with write-fonts' `FontBuilder`. One builder per table, each in its own module:
+//! [`super::head`], [`super::hmtx`] (hhea, hmtx), [`super::maxp`], [`super::cmap`],
+//! [`super::post`], [`super::os2`], [`super::naming`] (name), [`super::kern`] (GPOS, kern),
+//! [`super::truetype`] (glyf, loca) and [`super::cff`].
 //!
 //! Vertical metrics are the model's ascender and descender everywhere (hhea, OS/2 typo with
 //! USE_TYPO_METRICS, line gap 0; see [`super::os2`]); names come from [`super::naming`].
@@ -7,33 +10,35 @@
 //! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
 use kurbo::{BezPath, Shape};
-use write_fonts::tables::cmap::Cmap;
-use write_fonts::tables::head::{Flags, Head, MacStyle};
-use write_fonts::tables::hhea::Hhea;
-use write_fonts::tables::hmtx::{Hmtx, LongMetric};
-use write_fonts::tables::maxp::Maxp;
-use write_fonts::tables::post::Post;
-use write_fonts::types::{FWord, Fixed, GlyphId, LongDateTime, Tag, UfWord, Version16Dot16};
-use write_fonts::FontBuilder;
+use write_fonts::types::Tag;
+use write_fonts::{BuilderError, FontBuilder};
 
 use super::cff::{cff_table, CffInfo};
 use super::charstring::charstring;
+use super::cmap::cmap;
+use super::grid::to_i16;
+use super::head::head;
+use super::hmtx::{hhea, hmtx};
 use super::kern::{gpos, kern_pairs, legacy_kern};
+use super::maxp::{cff_maxp, truetype_maxp};
 use super::naming::{name_table, Naming};
 use super::os2::os2_table;
+use super::post::post;
 use super::truetype::{glyf_loca, TtGlyph};
 use super::{GlyphSet, OtfError};
-use crate::model::Font;
+use crate::model::FontInfo;
+use crate::outline::OutlinedFont;
 
 /// The outline data of one flavour, in glyph order.
 pub enum Outlines {
+    /// Quadratic glyphs on the grid, for `glyf`.
     TrueType(Vec<TtGlyph>),
     /// Cubic paths already on the grid.
     Cff(Vec<BezPath>),
 }
 
 /// Vertical metrics on the grid and the union of the glyph boxes (head, hhea, OS/2).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Metrics {
     pub upm: u16,
     pub ascender: i16,
@@ -43,14 +48,30 @@ pub struct Metrics {
     pub bbox: GridBox,
 }
 
-/// `head.created` and `head.modified`: a fixed 2020-01-01T00:00:00Z (seconds since
-/// 1904), not the build time, so the same model always gives the same bytes. (Zero would
-/// do too, but fontTools then warns that the date "seems very low".)
-const FIXED_DATE: i64 = 3_660_681_600;
-
 /// A box on the grid: `(x_min, y_min, x_max, y_max)`.
 pub type GridBox = (i16, i16, i16, i16);
 
+impl Metrics {
+    /// The font's metrics on the grid and the union of `boxes` (all zero without ink).
+    pub fn new(info: &FontInfo, boxes: &[Option<GridBox>]) -> Result<Self, OtfError> {
+        let bbox = boxes
+            .iter()
+            .flatten()
+            .copied()
+            .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3)))
+            .unwrap_or((0, 0, 0, 0));
+        Ok(Metrics {
+            upm: info.units_per_em,
+            ascender: to_i16(info.ascender, || "ascender".into())?,
+            descender: to_i16(info.descender, || "descender".into())?,
+            x_height: to_i16(info.x_height, || "x_height".into())?,
+            cap_height: to_i16(info.cap_height, || "cap_height".into())?,
+            bbox,
+        })
+    }
+}
+
+/// Per glyph, its box on the grid (`None` when empty).
 fn glyph_boxes(outlines: &Outlines) -> Vec<Option<GridBox>> {
     match outlines {
         Outlines::TrueType(glyphs) => glyphs
@@ -76,201 +97,165 @@ fn glyph_boxes(outlines: &Outlines) -> Vec<Option<GridBox>> {
     }
 }
 
-/// The whole font file.
-pub fn build_font(font: &Font, set: &GlyphSet, outlines: Outlines) -> Result<Vec<u8>, OtfError> {
-    let naming = Naming::new(font);
-    let info = &font.info;
-    let upm = info.units_per_em;
-    let em = f64::from(upm);
-    let ascender = super::grid::to_i16(info.ascender, || "ascender".into())?;
-    let descender = super::grid::to_i16(info.descender, || "descender".into())?;
-    let x_height = super::grid::to_i16(info.x_height, || "x_height".into())?;
-    let cap_height = super::grid::to_i16(info.cap_height, || "cap_height".into())?;
-
-    let boxes = glyph_boxes(&outlines);
-    let bbox = boxes
+/// The `CFF ` table: the charset of PostScript names and one charstring per glyph.
+fn cff(
+    info: &FontInfo,
+    naming: &Naming,
+    set: &GlyphSet,
+    paths: &[BezPath],
+    bbox: GridBox,
+) -> Vec<u8> {
+    let names: Vec<&str> = set.glyphs.iter().map(|g| g.ps_name.as_str()).collect();
+    let charstrings: Vec<Vec<u8>> = paths
         .iter()
-        .flatten()
-        .copied()
-        .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3)))
-        .unwrap_or((0, 0, 0, 0));
-    let metrics = Metrics {
-        upm,
-        ascender,
-        descender,
-        x_height,
-        cap_height,
-        bbox,
-    };
+        .zip(&set.glyphs)
+        .map(|(p, g)| charstring(p, i32::from(g.advance)))
+        .collect();
+    let version = format!("{:.3}", naming.revision);
+    cff_table(
+        &CffInfo {
+            ps_name: &naming.ps_name,
+            version: &version,
+            copyright: info.copyright.as_deref(),
+            full_name: &naming.full_name,
+            family_name: &naming.family,
+            units_per_em: info.units_per_em,
+            bbox: [bbox.0, bbox.1, bbox.2, bbox.3],
+        },
+        &names,
+        &charstrings,
+    )
+}
+
+/// The whole font file: `set` with the outline tables of `outlines`.
+pub fn build_font(
+    font: &OutlinedFont,
+    set: &GlyphSet,
+    outlines: Outlines,
+) -> Result<Vec<u8>, OtfError> {
+    let info = &font.info;
+    let naming = Naming::new(info);
+    let boxes = glyph_boxes(&outlines);
+    let metrics = Metrics::new(info, &boxes)?;
     let advances: Vec<u16> = set.glyphs.iter().map(|g| g.advance).collect();
+    let pairs = kern_pairs(&font.kerning, set)?;
+    let truetype = matches!(outlines, Outlines::TrueType(_));
 
     let mut builder = FontBuilder::new();
-    let table_err = |e: write_fonts::BuilderError| OtfError::Table(e.to_string());
-
-    // Outline tables.
+    let table_err = |e: BuilderError| OtfError::Table(e.to_string());
     let index_to_loc_format = match &outlines {
         Outlines::TrueType(glyphs) => {
             let (glyf, loca, format) = glyf_loca(glyphs)?;
             builder.add_table(&glyf).map_err(table_err)?;
             builder.add_table(&loca).map_err(table_err)?;
-            let max_points = glyphs.iter().map(TtGlyph::num_points).max().unwrap_or(0);
-            let max_contours = glyphs.iter().map(TtGlyph::num_contours).max().unwrap_or(0);
-            let maxp = Maxp {
-                num_glyphs: set.glyphs.len() as u16,
-                max_points: Some(max_points.min(usize::from(u16::MAX)) as u16),
-                max_contours: Some(max_contours.min(usize::from(u16::MAX)) as u16),
-                max_composite_points: Some(0),
-                max_composite_contours: Some(0),
-                max_zones: Some(2),
-                max_twilight_points: Some(0),
-                max_storage: Some(0),
-                max_function_defs: Some(0),
-                max_instruction_defs: Some(0),
-                max_stack_elements: Some(0),
-                max_size_of_instructions: Some(0),
-                max_component_elements: Some(0),
-                max_component_depth: Some(0),
-            };
-            builder.add_table(&maxp).map_err(table_err)?;
+            builder
+                .add_table(&truetype_maxp(glyphs))
+                .map_err(table_err)?;
             format
         }
         Outlines::Cff(paths) => {
-            let names: Vec<&str> = set.glyphs.iter().map(|g| g.ps_name.as_str()).collect();
-            let charstrings: Vec<Vec<u8>> = paths
-                .iter()
-                .zip(&advances)
-                .map(|(p, &w)| charstring(p, i32::from(w)))
-                .collect();
-            let version = format!("{:.3}", naming.revision);
-            let cff = cff_table(
-                &CffInfo {
-                    ps_name: &naming.ps_name,
-                    version: &version,
-                    copyright: info.copyright.as_deref(),
-                    full_name: &naming.full_name,
-                    family_name: &naming.family,
-                    units_per_em: upm,
-                    bbox: [bbox.0, bbox.1, bbox.2, bbox.3],
-                },
-                &names,
-                &charstrings,
-            );
-            builder.add_raw(Tag::new(b"CFF "), cff);
+            let table = cff(info, &naming, set, paths, metrics.bbox);
+            builder.add_raw(Tag::new(b"CFF "), table);
+            // At most 65535 glyphs: the glyph set checks it.
             builder
-                .add_table(&Maxp::new(set.glyphs.len() as u16))
+                .add_table(&cff_maxp(set.glyphs.len() as u16))
                 .map_err(table_err)?;
             0
         }
     };
-
-    // head
-    let mut mac_style = MacStyle::empty();
-    if naming.bold() {
-        mac_style |= MacStyle::BOLD;
-    }
-    if naming.italic {
-        mac_style |= MacStyle::ITALIC;
-    }
-    let head = Head::new(
-        Fixed::from_f64(naming.revision),
-        0,
-        Flags::BASELINE_AT_Y_0 | Flags::LSB_AT_X_0 | Flags::FORCE_INTEGER_PPEM,
-        upm,
-        LongDateTime::new(FIXED_DATE),
-        LongDateTime::new(FIXED_DATE),
-        bbox.0,
-        bbox.1,
-        bbox.2,
-        bbox.3,
-        mac_style,
-        8,
-        index_to_loc_format,
-    );
-    builder.add_table(&head).map_err(table_err)?;
-
-    // hhea + hmtx
-    let h_metrics: Vec<LongMetric> = advances
-        .iter()
-        .zip(&boxes)
-        .map(|(&adv, b)| LongMetric::new(adv, b.map_or(0, |b| b.0)))
-        .collect();
-    let inked = || {
-        advances
-            .iter()
-            .zip(&boxes)
-            .filter_map(|(&a, b)| b.map(|b| (a, b)))
-    };
-    let min_lsb = inked().map(|(_, b)| b.0).min().unwrap_or(0);
-    let min_rsb = inked()
-        .map(|(a, b)| (i32::from(a) - i32::from(b.2)).clamp(-32768, 32767) as i16)
-        .min()
-        .unwrap_or(0);
-    let x_max_extent = inked().map(|(_, b)| b.2).max().unwrap_or(0);
-    let hhea = Hhea::new(
-        FWord::new(ascender),
-        FWord::new(descender),
-        FWord::new(0),
-        UfWord::new(advances.iter().copied().max().unwrap_or(0)),
-        FWord::new(min_lsb),
-        FWord::new(min_rsb),
-        FWord::new(x_max_extent),
-        1,
-        0,
-        0,
-        set.glyphs.len() as u16,
-    );
-    builder.add_table(&hhea).map_err(table_err)?;
     builder
-        .add_table(&Hmtx::new(h_metrics, Vec::new()))
+        .add_table(&head(&naming, &metrics, index_to_loc_format))
         .map_err(table_err)?;
-
-    // cmap
-    let mappings = set.glyphs.iter().enumerate().flat_map(|(gid, g)| {
-        g.unicodes
-            .iter()
-            .map(move |&c| (c, GlyphId::new(gid as u32)))
-    });
-    let cmap = Cmap::from_mappings(mappings).map_err(|e| OtfError::CmapConflict(e.to_string()))?;
-    builder.add_table(&cmap).map_err(table_err)?;
-
-    // kerning
-    let pairs = kern_pairs(font, set)?;
+    builder
+        .add_table(&hhea(&metrics, &advances, &boxes))
+        .map_err(table_err)?;
+    builder
+        .add_table(&hmtx(&advances, &boxes))
+        .map_err(table_err)?;
+    builder.add_table(&cmap(&set.glyphs)?).map_err(table_err)?;
     if let Some(gpos) = gpos(&pairs) {
         builder.add_table(&gpos).map_err(table_err)?;
     }
     // The legacy table only in the TTF: OTS (the sanitizer in Chrome and Firefox) drops
     // `kern` from fonts without `glyf` ("this table is not for CFF fonts"), and GPOS
     // carries the same pairs.
-    if matches!(outlines, Outlines::TrueType(_)) {
+    if truetype {
         if let Some(kern) = legacy_kern(&pairs) {
             builder.add_raw(Tag::new(b"kern"), kern);
         }
     }
-
     builder
         .add_table(&os2_table(&naming, &metrics, set, !pairs.is_empty()))
         .map_err(table_err)?;
-
-    // name
     builder
-        .add_table(&name_table(font, &naming))
+        .add_table(&name_table(info, &naming))
         .map_err(table_err)?;
-
-    // post
-    let widths: Vec<u16> = advances.iter().copied().filter(|&a| a > 0).collect();
-    let fixed_pitch = widths.len() > 1 && widths.iter().all(|&w| w == widths[0]);
-    let mut post = match outlines {
-        Outlines::TrueType(_) => Post::new_v2(set.glyphs.iter().map(|g| g.ps_name.as_str())),
-        Outlines::Cff(_) => Post {
-            version: Version16Dot16::VERSION_3_0,
-            ..Default::default()
-        },
-    };
-    let scaled = |f: f64| (em * f).round() as i16;
-    post.underline_position = FWord::new(-scaled(0.075));
-    post.underline_thickness = FWord::new(scaled(0.05));
-    post.is_fixed_pitch = u32::from(fixed_pitch);
-    builder.add_table(&post).map_err(table_err)?;
-
+    builder
+        .add_table(&post(&set.glyphs, info.units_per_em, truetype))
+        .map_err(table_err)?;
     Ok(builder.build())
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::otf::OtGlyph;
+
+    pub(crate) use crate::model::test_info as info;
+
+    /// [`info`]'s metrics with the box `(-10, -200, 900, 750)`.
+    pub(crate) fn metrics() -> Metrics {
+        Metrics::new(&info(), &[Some((-10, -200, 900, 750))]).expect("metrics in range")
+    }
+
+    /// A glyph with an empty outline and its name as PostScript name.
+    pub(crate) fn ot_glyph(name: &str, unicodes: &[char], advance: u16) -> OtGlyph {
+        OtGlyph {
+            model_name: name.into(),
+            ps_name: name.into(),
+            unicodes: unicodes.to_vec(),
+            advance,
+            path: BezPath::new(),
+            from_components: false,
+        }
+    }
+
+    #[test]
+    fn metrics_on_the_grid_and_the_union_of_boxes() {
+        let mut font_info = info();
+        font_info.x_height = 499.6;
+        let boxes = [Some((0, -5, 400, 700)), None, Some((-20, 0, 300, 720))];
+        let m = Metrics::new(&font_info, &boxes).expect("in range");
+        assert_eq!(
+            m,
+            Metrics {
+                upm: 1000,
+                ascender: 800,
+                descender: -200,
+                x_height: 500,
+                cap_height: 700,
+                bbox: (-20, -5, 400, 720),
+            }
+        );
+        assert_eq!(
+            Metrics::new(&font_info, &[None]).expect("in range").bbox,
+            (0, 0, 0, 0)
+        );
+        font_info.ascender = 40_000.0;
+        assert!(matches!(
+            Metrics::new(&font_info, &boxes),
+            Err(OtfError::OutOfRange { .. })
+        ));
+    }
+
+    #[test]
+    fn cff_boxes_are_tight_truetype_boxes_hold_the_points() {
+        let mut arc = BezPath::new();
+        arc.move_to((0.0, 0.0));
+        arc.curve_to((0.0, 100.0), (100.0, 100.0), (100.0, 0.0));
+        arc.close_path();
+        // The curve peaks at y = 75; its control points reach 100.
+        let boxes = glyph_boxes(&Outlines::Cff(vec![arc.clone(), BezPath::new()]));
+        assert_eq!(boxes, [Some((0, 0, 100, 75)), None]);
+    }
 }

@@ -4,7 +4,7 @@ use read_fonts::tables::glyf::CurvePoint;
 use write_fonts::tables::glyf::{Bbox, GlyfLocaBuilder, Glyph, SimpleGlyph};
 
 use super::quadratic::truetype_contours;
-use super::{grid, GlyphSet, OtfError};
+use super::{grid, OtGlyph, OtfError};
 
 /// One glyph ready for `glyf`: no outline (`None`) or a simple glyph with its box.
 pub struct TtGlyph {
@@ -28,9 +28,9 @@ impl TtGlyph {
     }
 }
 
-/// Every glyph of `set` as TrueType, quadratics within `accuracy` before grid rounding.
-pub fn glyphs(set: &GlyphSet, accuracy: f64) -> Result<Vec<TtGlyph>, OtfError> {
-    set.glyphs
+/// Every glyph as TrueType, quadratics within `accuracy` before grid rounding.
+pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfError> {
+    glyphs
         .iter()
         .map(|g| {
             let mut contours = Vec::new();

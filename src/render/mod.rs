@@ -5,7 +5,7 @@
 //! background), glyphs are anti-aliased and filled with the nonzero rule.
 
 pub mod draw;
-pub mod overlay;
+mod overlay;
 pub mod proof;
 pub mod sheet;
 
@@ -27,7 +27,12 @@ pub enum RenderError {
     /// The font has no glyphs, so there is nothing to draw.
     NoGlyphs,
     /// The requested image is too large (or has a zero side).
-    Size { width: u64, height: u64 },
+    Size {
+        /// Width asked for, pixels.
+        width: u64,
+        /// Height asked for, pixels.
+        height: u64,
+    },
     /// An option is out of range.
     Option(String),
     /// PNG encoding failed.

@@ -10,7 +10,7 @@ use kurbo::{BezPath, PathEl, Point};
 use tiny_skia::Pixmap;
 
 use super::draw::{fill_circle_px, fill_px, rgb, stroke_px, Placement};
-use crate::model::Font;
+use crate::outline::OutlinedGlyph;
 
 pub const POLYGON: [u8; 3] = [95, 125, 190];
 pub const SHARP: [u8; 3] = [215, 40, 40];
@@ -60,26 +60,18 @@ pub fn on_curve_points(path: &BezPath) -> Vec<Point> {
     out
 }
 
-/// Draws the overlay of glyph `index` onto a cell `cell_px` wide.
-pub fn draw(
-    img: &mut Pixmap,
-    font: &Font,
-    index: usize,
-    path: &BezPath,
-    at: Placement,
-    cell_px: f64,
-) {
+/// Draws the overlay of `glyph` onto a cell `cell_px` wide.
+pub fn draw(img: &mut Pixmap, glyph: &OutlinedGlyph, at: Placement, cell_px: f64) {
     let r = (cell_px / 55.0).max(2.0);
-    let contours = font.resolved_contours(&font.glyphs[index]);
-    for contour in &contours {
-        let poly: Vec<Point> = contour.points.iter().map(|p| at.to_px(p.pos)).collect();
+    for contour in &glyph.contours {
+        let poly: Vec<Point> = contour.points().map(|p| at.to_px(p.pos)).collect();
         stroke_px(img, &poly, true, 1.0, rgb(POLYGON));
     }
-    for p in on_curve_points(path) {
+    for p in on_curve_points(&glyph.path) {
         fill_circle_px(img, at.to_px(p), r * 0.55, rgb(ON_CURVE));
     }
-    for contour in &contours {
-        for p in &contour.points {
+    for contour in &glyph.contours {
+        for p in contour.points() {
             marker(img, at.to_px(p.pos), PointKind::of(p.s), r);
         }
     }

@@ -5,14 +5,12 @@
 //! text; the image is as wide as the longest line (plus margins) up to a maximum width,
 //! and lines longer than that are cut at the right edge (no wrapping).
 
-use kurbo::Shape;
 use tiny_skia::{Color, Pixmap};
 
 use super::draw::{fill_glyph, Placement};
 use super::{white_pixmap, RenderError};
-use crate::layout::{fallback_box, Layout};
-use crate::model::Font;
-use crate::outline::FontOutlines;
+use crate::layout::Layout;
+use crate::outline::OutlinedFont;
 
 /// How to set the proof.
 #[derive(Clone, Debug, PartialEq)]
@@ -48,7 +46,7 @@ const CANDIDATES: &[&str] = &[
 
 /// A text for the font: the candidate lines it covers; if it covers none, every character
 /// it has (in code-point order, marks and spaces left out) followed by its kerning pairs.
-pub fn default_text(font: &Font) -> String {
+pub fn default_text(font: &OutlinedFont) -> String {
     let layout = Layout::new(font);
     let lines: Vec<&str> = CANDIDATES
         .iter()
@@ -87,12 +85,8 @@ pub fn default_text(font: &Font) -> String {
 /// Left and top margin, pixels.
 const MARGIN: f64 = 16.0;
 
-/// Renders the proof of `font`; `outlines` is `outline_font(font, ..)`.
-pub fn render_proof(
-    font: &Font,
-    outlines: &FontOutlines,
-    opts: &ProofOptions,
-) -> Result<Pixmap, RenderError> {
+/// Renders the proof of `font`.
+pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
     if opts.sizes.is_empty() {
         return Err(RenderError::Option("at least one size is needed".into()));
     }
@@ -112,12 +106,9 @@ pub fn render_proof(
     // Lines are spaced by the em box, widened to the font's ink (accented capitals reach
     // above the ascender), so no glyph is cut off or touches the next line.
     let (mut top, mut bottom) = (info.ascender, info.descender);
-    for g in &outlines.glyphs {
-        if !g.path.elements().is_empty() {
-            let bbox = g.path.bounding_box();
-            top = top.max(bbox.y1);
-            bottom = bottom.min(bbox.y0);
-        }
+    if let Some(ink) = font.ink_bounds() {
+        top = top.max(ink.y1);
+        bottom = bottom.min(ink.y0);
     }
     let em = (info.ascender - info.descender).max(top - bottom);
     let layout = Layout::new(font);
@@ -142,7 +133,6 @@ pub fn render_proof(
     let height = (y + MARGIN).ceil() as u64;
     let width = (width as u64).min(u64::from(opts.width_px));
     let mut img = white_pixmap(width, height)?;
-    let fallback = fallback_box(info);
     for (scale, baselines) in blocks {
         for (line, baseline) in laid.iter().zip(baselines) {
             for placed in &line.glyphs {
@@ -155,11 +145,7 @@ pub fn render_proof(
                     origin_x,
                     baseline_y: baseline,
                 };
-                let path = match placed.glyph {
-                    Some(i) => &outlines.glyphs[i].path,
-                    None => &fallback,
-                };
-                fill_glyph(&mut img, path, at, Color::BLACK);
+                fill_glyph(&mut img, &layout.outline(placed).path, at, Color::BLACK);
             }
         }
     }

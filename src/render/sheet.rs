@@ -8,14 +8,13 @@
 //! `U+XXXX`) is set in the font's own glyphs (`.notdef` or a box for characters it lacks),
 //! shrunk to fit the cell width.
 
-use kurbo::{Point, Shape};
+use kurbo::Point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
 use super::{overlay, white_pixmap, RenderError, MAX_SIDE};
-use crate::layout::{fallback_box, Layout};
-use crate::model::Font;
-use crate::outline::FontOutlines;
+use crate::layout::Layout;
+use crate::outline::OutlinedFont;
 
 /// How to draw the sheet.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,7 +52,7 @@ const GLYPH_UNDER_OVERLAY: [u8; 3] = [185, 185, 185];
 const OUTLINE_UNDER_OVERLAY: [u8; 3] = [60, 60, 60];
 
 /// Glyph indices in sheet order: by lowest code point, then unencoded glyphs by name.
-pub fn sheet_order(font: &Font) -> Vec<usize> {
+pub fn sheet_order(font: &OutlinedFont) -> Vec<usize> {
     let mut encoded: Vec<(char, usize)> = Vec::new();
     let mut unencoded: Vec<(&str, usize)> = Vec::new();
     for (i, g) in font.glyphs.iter().enumerate() {
@@ -79,12 +78,8 @@ pub fn label(name: &str, unicodes: &[char]) -> String {
     }
 }
 
-/// Renders the sheet for every glyph of `font`; `outlines` is `outline_font(font, ..)`.
-pub fn render_sheet(
-    font: &Font,
-    outlines: &FontOutlines,
-    opts: &SheetOptions,
-) -> Result<Pixmap, RenderError> {
+/// Renders the sheet for every glyph of `font`.
+pub fn render_sheet(font: &OutlinedFont, opts: &SheetOptions) -> Result<Pixmap, RenderError> {
     if !(32..=2048).contains(&opts.cell_px) {
         return Err(RenderError::Option(format!(
             "cell size {} px is out of range 32..=2048",
@@ -105,11 +100,11 @@ pub fn render_sheet(
     let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
     let rows = n.div_ceil(columns);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
-    let geometry = CellGeometry::new(font, outlines, opts.cell_px);
+    let geometry = CellGeometry::new(font, opts.cell_px);
     let layout = Layout::new(font);
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
-        let img = render_cell(font, outlines, &layout, &geometry, index, opts)?;
+        let img = render_cell(font, &layout, &geometry, index, opts)?;
         sheet.draw_pixmap(
             ((k % columns) * cell) as i32,
             ((k / columns) * cell) as i32,
@@ -135,17 +130,12 @@ struct CellGeometry {
 }
 
 impl CellGeometry {
-    fn new(font: &Font, outlines: &FontOutlines, cell_px: u32) -> Self {
+    fn new(font: &OutlinedFont, cell_px: u32) -> Self {
         let cell = f64::from(cell_px);
         let pad = (cell / 32.0).round().max(2.0);
         let label_em = (cell * 0.15).round();
         let (mut high, mut low) = (font.info.ascender, font.info.descender);
-        for g in outlines
-            .glyphs
-            .iter()
-            .filter(|g| !g.path.elements().is_empty())
-        {
-            let ink = g.path.bounding_box();
+        if let Some(ink) = font.ink_bounds() {
             high = high.max(ink.y1);
             low = low.min(ink.y0);
         }
@@ -165,15 +155,13 @@ impl CellGeometry {
 }
 
 fn render_cell(
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     layout: &Layout<'_>,
     geo: &CellGeometry,
     index: usize,
     opts: &SheetOptions,
 ) -> Result<Pixmap, RenderError> {
     let glyph = &font.glyphs[index];
-    let outline = &outlines.glyphs[index];
     let mut img = white_pixmap(u64::from(opts.cell_px), u64::from(opts.cell_px))?;
     let at = Placement {
         scale: geo.scale,
@@ -212,12 +200,12 @@ fn render_cell(
     } else {
         Color::BLACK
     };
-    fill_glyph(&mut img, &outline.path, at, ink);
+    fill_glyph(&mut img, &glyph.path, at, ink);
     if opts.overlay {
-        stroke_glyph(&mut img, &outline.path, at, rgb(OUTLINE_UNDER_OVERLAY));
-        overlay::draw(&mut img, font, index, &outline.path, at, geo.cell);
+        stroke_glyph(&mut img, &glyph.path, at, rgb(OUTLINE_UNDER_OVERLAY));
+        overlay::draw(&mut img, glyph, at, geo.cell);
     }
-    draw_label(&mut img, font, outlines, layout, geo, index);
+    draw_label(&mut img, font, layout, geo, index);
     // Grid: right and bottom edges, so neighbouring cells share one line.
     let edge = geo.cell - 0.5;
     line_px(
@@ -237,8 +225,7 @@ fn render_cell(
 
 fn draw_label(
     img: &mut Pixmap,
-    font: &Font,
-    outlines: &FontOutlines,
+    font: &OutlinedFont,
     layout: &Layout<'_>,
     geo: &CellGeometry,
     index: usize,
@@ -251,17 +238,12 @@ fn draw_label(
     if line.width * scale > room {
         scale = room / line.width;
     }
-    let fallback = fallback_box(&font.info);
     for placed in &line.glyphs {
         let at = Placement {
             scale,
             origin_x: geo.pad + placed.x * scale,
             baseline_y: geo.pad + font.info.ascender * scale,
         };
-        let path = match placed.glyph {
-            Some(i) => &outlines.glyphs[i].path,
-            None => &fallback,
-        };
-        fill_glyph(img, path, at, rgb(LABEL));
+        fill_glyph(img, &layout.outline(placed).path, at, rgb(LABEL));
     }
 }

@@ -18,29 +18,47 @@ use crate::source::emit::number;
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(tag = "op", rename_all = "lowercase", deny_unknown_fields)]
 pub enum Op {
-    /// Moves point `point` of contour `contour` to `(x, y)`.
+    /// Moves a point to `(x, y)`.
     Move {
+        /// Contour index in the glyph file.
         contour: usize,
+        /// Point index in the contour.
         point: usize,
+        /// New x, font units.
         x: f64,
+        /// New y, font units.
         y: f64,
     },
     /// Sets the shape parameter of a point.
     Shape {
+        /// Contour index in the glyph file.
         contour: usize,
+        /// Point index in the contour.
         point: usize,
+        /// New shape parameter (the loader checks `[-1, 1]`).
         s: f64,
     },
-    /// Inserts `[x, y, s]` so that it gets index `index` (`index` = length appends).
+    /// Inserts a point so that it gets index `index` (the contour's length appends).
     Insert {
+        /// Contour index in the glyph file.
         contour: usize,
+        /// Index the new point gets.
         index: usize,
+        /// `[x, y, s]`.
         point: [f64; 3],
     },
     /// Deletes a point.
-    Delete { contour: usize, point: usize },
+    Delete {
+        /// Contour index in the glyph file.
+        contour: usize,
+        /// Point index in the contour.
+        point: usize,
+    },
     /// Sets the advance.
-    Advance { value: f64 },
+    Advance {
+        /// New advance, font units.
+        value: f64,
+    },
 }
 
 /// Why an op cannot be applied to the text.

@@ -22,10 +22,10 @@ use serde_json::{json, Value};
 use crate::fit::fit_contour;
 use crate::model::{Contour, Font, Glyph};
 use crate::orient::orient_contours;
+use crate::outline::{OutlinedGlyph, PlacedContour};
 use crate::source::{load_glyph_text, load_sources, Diagnostic, Severity, SourceKind};
 use crate::svg::glyph_svg;
 use crate::svg::path_data::path_data;
-use crate::xspline::XSpline;
 
 /// The opaque version of a file: a hash of its bytes (FNV-1a 64, as 16 hex digits).
 pub fn version(bytes: &[u8]) -> String {
@@ -60,7 +60,12 @@ pub enum Reload {
     /// The sources load; these glyphs (sorted) changed, possibly none. `fixed`: the
     /// sources had errors before this reload (pages must clear them even if no glyph
     /// changed).
-    Changed { names: Vec<String>, fixed: bool },
+    Changed {
+        /// The glyphs that changed, by name.
+        names: Vec<String>,
+        /// Whether the sources had errors before.
+        fixed: bool,
+    },
     /// The sources have errors; the last good font is still served.
     Errors(Vec<Diagnostic>),
 }
@@ -376,7 +381,7 @@ impl Studio {
             .iter()
             .map(|c| {
                 let points: Vec<Value> = c
-                    .points
+                    .points()
                     .iter()
                     .map(|p| json!([p.pos.x, p.pos.y, p.s]))
                     .collect();
@@ -411,12 +416,23 @@ impl Studio {
     pub fn glyph_svg(&self, name: &str) -> Option<String> {
         let glyph = self.font.glyph(name)?;
         let fitted = self.fitted.get(name)?;
-        let outline = crate::outline::GlyphOutline {
+        let outline = OutlinedGlyph {
             name: glyph.name.clone(),
             unicodes: glyph.unicodes.clone(),
             advance: glyph.advance,
+            components: glyph.components.clone(),
+            contours: self
+                .font
+                .placed_contours(glyph)
+                .into_iter()
+                .map(|(contour, (dx, dy))| PlacedContour {
+                    spline: contour.spline().clone(),
+                    offset: Vec2::new(dx, dy),
+                })
+                .collect(),
             path: fitted.path.clone(),
             max_error: fitted.worst_error,
+            segments: fitted.segments,
         };
         Some(glyph_svg(&self.font.info, &outline))
     }
@@ -446,15 +462,13 @@ fn unicodes(glyph: &Glyph) -> Vec<u32> {
     glyph.unicodes.iter().map(|&c| u32::from(c)).collect()
 }
 
-/// Fits a glyph's own contours. A contour the model should not hold (the loader refuses
-/// them) is left out.
+/// Fits a glyph's own contours (the model holds validated X-splines).
 fn fit_own(glyph: &Glyph, tolerance: f64) -> OwnFit {
     let fits = glyph
         .contours
         .iter()
-        .filter_map(|contour| XSpline::new(contour.points.clone()).ok())
-        .map(|spline| {
-            let fit = fit_contour(&spline, tolerance);
+        .map(|contour| {
+            let fit = fit_contour(contour.spline(), tolerance);
             (fit.path, fit.max_error)
         })
         .collect();

@@ -65,7 +65,7 @@ pub fn glyph_toml(glyph: &Glyph) -> String {
     let _ = writeln!(out, "advance = {}", number(glyph.advance));
     for contour in &glyph.contours {
         out.push_str("\n[[contour]]\npoints = [\n");
-        for p in &contour.points {
+        for p in contour.points() {
             let _ = writeln!(
                 out,
                 "  [{}, {}, {}],",

@@ -16,9 +16,13 @@ use super::load::{LoadedFont, SourceKind};
 /// One source file and its canonical text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rewrite {
+    /// The file.
     pub path: PathBuf,
+    /// What the file holds.
     pub kind: SourceKind,
+    /// Its text as read.
     pub old: String,
+    /// Its canonical text.
     pub new: String,
     /// Byte offsets (in `old`) of the comments the rewrite drops.
     pub dropped_comments: Vec<usize>,

@@ -68,13 +68,12 @@ pub fn is_flat(points: &[ControlPoint]) -> bool {
         .all(|p| (ab.cross(p.pos - a) / len).abs() <= FLAT_RELATIVE * len)
 }
 
-/// Whether and why a contour (already checked for 3+ points, finite values, `s` in
-/// range and distinct neighbours) encloses no area; see the module docs.
-pub fn no_area(points: &[ControlPoint]) -> Option<NoArea> {
+/// Whether and why a validated contour encloses no area; see the module docs.
+pub fn no_area(curve: &XSpline) -> Option<NoArea> {
+    let points = curve.points();
     if is_flat(points) {
         return Some(NoArea::Collinear);
     }
-    let curve = XSpline::new(points.to_vec()).ok()?;
     let steps = points.len() * SAMPLES_PER_SEGMENT;
     let samples: Vec<Point> = (0..steps)
         .map(|k| curve.eval(k as f64 / SAMPLES_PER_SEGMENT as f64))
@@ -143,6 +142,10 @@ pub fn distance_outside(p: Point, bounds: Rect) -> f64 {
 mod tests {
     use super::*;
 
+    fn spline(points: Vec<ControlPoint>) -> XSpline {
+        XSpline::new(points).expect("a valid contour")
+    }
+
     fn pts(xy: &[(f64, f64)]) -> Vec<ControlPoint> {
         xy.iter()
             .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
@@ -174,24 +177,24 @@ mod tests {
     #[test]
     fn out_and_back_contours() {
         let spike = pts(&[(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (100.0, 0.0)]);
-        assert_eq!(no_area(&spike), Some(NoArea::OutAndBack));
+        assert_eq!(no_area(&spline(spike.clone())), Some(NoArea::OutAndBack));
         let line = pts(&[(0.0, 0.0), (100.0, 100.0), (50.0, 50.0)]);
-        assert_eq!(no_area(&line), Some(NoArea::Collinear));
+        assert_eq!(no_area(&spline(line)), Some(NoArea::Collinear));
         let bow_tie = pts(&[(0.0, 0.0), (100.0, 100.0), (100.0, 0.0), (0.0, 100.0)]);
-        assert_eq!(no_area(&bow_tie), None);
+        assert_eq!(no_area(&spline(bow_tie)), None);
         // A thin but real sliver (1 unit over 1000) has area.
         let sliver = pts(&[(0.0, 0.0), (1000.0, 0.0), (500.0, 1.0)]);
-        assert_eq!(no_area(&sliver), None);
+        assert_eq!(no_area(&spline(sliver)), None);
         // With smooth points the spike still retraces itself: reversing a contour gives the
         // same curve, and this one is its own reverse from the tip on.
         let smooth: Vec<ControlPoint> = spike
             .iter()
             .map(|p| ControlPoint::new(p.pos.x, p.pos.y, -1.0))
             .collect();
-        assert_eq!(no_area(&smooth), Some(NoArea::OutAndBack));
+        assert_eq!(no_area(&spline(smooth)), Some(NoArea::OutAndBack));
         // Coming back 10 units to the side encloses a thin triangle.
         let thin = pts(&[(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (90.0, 0.0)]);
-        assert_eq!(no_area(&thin), None);
+        assert_eq!(no_area(&spline(thin)), None);
     }
 
     #[test]

@@ -15,7 +15,7 @@ use super::value::{
     check_keys, first_offset, get, integer, number, parse, require, string, tables, type_name,
 };
 use crate::model::{Component, Contour, Glyph};
-use crate::xspline::ControlPoint;
+use crate::xspline::{ControlPoint, XSplineError};
 
 /// Every key a glyph file may contain at the top level.
 const KEYS: &[&str] = &["name", "unicode", "advance", "contour", "component"];
@@ -127,8 +127,8 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     if let Some(v) = get(t, "contour") {
         for (ct, header) in tables(ctx, v, "contour", &mut ok) {
             match load_contour(ctx, ct, header) {
-                Some((points, offs)) => {
-                    contours.push(Contour { points });
+                Some((contour, offs)) => {
+                    contours.push(contour);
                     spans.points.push(offs);
                 }
                 None => ok = false,
@@ -187,12 +187,17 @@ fn code_point(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, n: i64) -> Option<cha
     None
 }
 
-/// One `[[contour]]` table: its points and where each point was written.
+/// One `[[contour]]` table: the validated contour and where each point was written.
+///
+/// The rules of a closed X-spline are [`Contour::new`]'s; this reads the points and puts
+/// its error at the place of the point it names. Each `s` is also range-checked as it is
+/// read, like every number, so that one unreadable point does not hide a bad `s` in
+/// another (the contour check needs every point).
 fn load_contour(
     ctx: &mut Ctx<'_>,
     ct: &DeTable<'_>,
     header: usize,
-) -> Option<(Vec<ControlPoint>, Vec<usize>)> {
+) -> Option<(Contour, Vec<usize>)> {
     let suggested = check_keys(ctx, ct, &["points"]);
     let example = "points = [[0, 0, 0], [100, 0, 0], [50, 100, 0]]";
     let v = require(ctx, ct, "points", example, header, &suggested)?;
@@ -207,7 +212,9 @@ fn load_contour(
         return None;
     };
     let mut points = Vec::new();
+    // Per point: where it starts and where its `s` is.
     let mut offs = Vec::new();
+    let mut s_offs = Vec::new();
     let mut ok = true;
     for p in arr {
         let items = match p.get_ref() {
@@ -245,6 +252,7 @@ fn load_contour(
             (Some(x), Some(y), Some(s)) => {
                 points.push(ControlPoint::new(x, y, s));
                 offs.push(p.span().start);
+                s_offs.push(items[2].span().start);
             }
             _ => ok = false,
         }
@@ -252,29 +260,30 @@ fn load_contour(
     if !ok {
         return None;
     }
-    if points.len() < 3 {
-        ctx.err(
-            v.span().start,
-            format!("a contour needs at least 3 points, found {}", points.len()),
-        );
-        return None;
-    }
-    let n = points.len();
-    let mut coincident = false;
-    for i in 0..n {
-        let j = (i + 1) % n;
-        if points[i].pos == points[j].pos {
-            ctx.err(
-                offs[j],
-                format!("point {j} coincides with point {i} before it"),
-            );
-            coincident = true;
+    let contour = match Contour::new(points) {
+        Ok(contour) => contour,
+        Err(error) => {
+            let (at, message) = match error {
+                XSplineError::TooFewPoints { count } => (
+                    v.span().start,
+                    format!("a contour needs at least 3 points, found {count}"),
+                ),
+                XSplineError::ShapeOutOfRange { index, s } => {
+                    (s_offs[index], format!("s = {s} is outside [-1, 1]"))
+                }
+                XSplineError::CoincidentPoints { index, next } => (
+                    offs[next],
+                    format!("point {next} coincides with point {index} before it"),
+                ),
+                // `number` already refused non-finite values; kept for completeness.
+                XSplineError::NonFinite { index } => (offs[index], error.to_string()),
+            };
+            ctx.err(at, message);
+            return None;
         }
-    }
-    if coincident {
-        return None;
-    }
-    if let Some(why) = no_area(&points) {
+    };
+    if let Some(why) = no_area(contour.spline()) {
+        let n = contour.points().len();
         let how = match why {
             NoArea::Collinear => format!("its {n} points lie on one straight line"),
             NoArea::OutAndBack => "it runs out and back along itself".to_string(),
@@ -282,7 +291,7 @@ fn load_contour(
         ctx.err(v.span().start, format!("contour encloses no area: {how}"));
         return None;
     }
-    Some((points, offs))
+    Some((contour, offs))
 }
 
 /// One `[[component]]` table and where its `base` was written.

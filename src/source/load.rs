@@ -10,7 +10,7 @@ use super::geometry::{distance_outside, glyph_box, FAR_EMS};
 use super::glyph::{load_glyph, GlyphSpans};
 use super::info::load_info;
 use super::kerning::load_kerning;
-use crate::model::{Font, FontInfo, Glyph};
+use crate::model::{glyph_order, Font, FontInfo, Glyph};
 
 /// What a source file holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -26,15 +26,20 @@ pub enum SourceKind {
 /// One source file as it was read.
 #[derive(Clone, Debug)]
 pub struct SourceFile {
+    /// The file.
     pub path: PathBuf,
+    /// Its text.
     pub text: String,
+    /// What it holds.
     pub kind: SourceKind,
 }
 
 /// A font that loaded without errors, with its warnings and the files it came from.
 #[derive(Clone, Debug)]
 pub struct LoadedFont {
+    /// The model.
     pub font: Font,
+    /// Warnings of the sources.
     pub warnings: Vec<Diagnostic>,
     /// `font.toml`, the glyph files in file-name order, then `kerning.toml` if present.
     pub files: Vec<SourceFile>,
@@ -186,8 +191,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             kind: SourceKind::Kerning,
         });
     }
-    model_glyphs
-        .sort_by(|a, b| (a.name != ".notdef", &a.name).cmp(&(b.name != ".notdef", &b.name)));
+    model_glyphs.sort_by(|a, b| glyph_order(&a.name, &b.name));
     Ok(LoadedFont {
         font: Font {
             info,
@@ -356,13 +360,14 @@ fn check_far_points(glyphs: &[GlyphFile], info: &FontInfo, out: &mut Vec<Diagnos
             out,
         };
         for (contour, offs) in g.glyph.contours.iter().zip(&g.spans.points) {
-            let far: Vec<usize> = (0..contour.points.len())
-                .filter(|&i| distance_outside(contour.points[i].pos, bounds) > limit)
+            let points = contour.points();
+            let far: Vec<usize> = (0..points.len())
+                .filter(|&i| distance_outside(points[i].pos, bounds) > limit)
                 .collect();
             let Some(&i) = far.first() else {
                 continue;
             };
-            let p = contour.points[i].pos;
+            let p = points[i].pos;
             let more = match far.len() - 1 {
                 0 => String::new(),
                 1 => "; 1 more point of this contour too".to_string(),

@@ -4,7 +4,8 @@
 //! and a positive `descent` with `ascent + descent = units-per-em` (when the font's
 //! ascender - descender differs from the em, the descent is scaled to keep that sum);
 //! y-up path data with absolute `M L C Z`; `horiz-adv-x` on every glyph; code points as
-//! `&#xHEX;`; `.notdef` becomes the `<missing-glyph>` (a box when the font has none);
+//! `&#xHEX;`; `.notdef` becomes the `<missing-glyph>` (when the font has none, the box of
+//! [`crate::outline::notdef_box`], as in the TTF and OTF);
 //! `d=""` for empty glyphs; kerning as `<hkern g1 g2 k>` with `k = -value` (positive =
 //! tighter). Metadata (copyright, designer, version) goes into `<metadata>`.
 //!
@@ -14,13 +15,12 @@
 //! comma-separated lists in SVG, so a glyph name containing a comma will be misread by
 //! consumers (the XML stays valid).
 
-use kurbo::{Affine, BezPath};
+use kurbo::Affine;
 
 use super::path_data::path_data;
 use super::xml::{escape, is_xml_char, num};
-use crate::layout::{fallback_advance, fallback_box};
-use crate::model::{Font, FontInfo};
-use crate::outline::FontOutlines;
+use crate::model::FontInfo;
+use crate::outline::OutlinedFont;
 
 /// `(ascent, descent)` as positive integers with `ascent + descent = units_per_em`.
 pub fn ascent_descent(info: &FontInfo) -> (i64, i64) {
@@ -68,16 +68,13 @@ fn glyph_element(
     out.push_str(&format!(" horiz-adv-x=\"{}\" d=\"{d}\"/>\n", num(adv)));
 }
 
-/// The SVG font document for `font`; `outlines` is `outline_font(font, ..)`.
-pub fn svg_font(font: &Font, outlines: &FontOutlines) -> String {
+/// The SVG font document for `font`.
+pub fn svg_font(font: &OutlinedFont) -> String {
     let info = &font.info;
     let (ascent, descent) = ascent_descent(info);
     let (weight, slant) = weight_and_style(&info.style);
-    let notdef = outlines.glyph(".notdef");
-    let (missing_adv, missing_path): (f64, BezPath) = match notdef {
-        Some(g) => (g.advance, g.path.clone()),
-        None => (fallback_advance(info), fallback_box(info)),
-    };
+    let missing = font.notdef();
+    let missing_adv = missing.advance;
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n");
     s.push_str("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\">\n");
@@ -107,9 +104,9 @@ pub fn svg_font(font: &Font, outlines: &FontOutlines) -> String {
         info.x_height.round(),
         info.cap_height.round(),
     ));
-    let d = path_data(&missing_path, Affine::IDENTITY);
+    let d = path_data(&missing.path, Affine::IDENTITY);
     glyph_element(&mut s, "missing-glyph", None, None, missing_adv, &d);
-    for g in outlines.glyphs.iter().filter(|g| g.name != ".notdef") {
+    for g in font.glyphs.iter().filter(|g| g.name != ".notdef") {
         let d = path_data(&g.path, Affine::IDENTITY);
         let mut cps: Vec<char> = g
             .unicodes
@@ -127,7 +124,7 @@ pub fn svg_font(font: &Font, outlines: &FontOutlines) -> String {
         }
     }
     for k in &font.kerning {
-        let known = |n: &str| n != ".notdef" && outlines.glyph(n).is_some();
+        let known = |n: &str| n != ".notdef" && font.glyph(n).is_some();
         if known(&k.left) && known(&k.right) {
             s.push_str(&format!(
                 "<hkern g1=\"{}\" g2=\"{}\" k=\"{}\"/>\n",

@@ -12,17 +12,19 @@ use super::path_data::path_data;
 use super::xml::{escape, num};
 use crate::model::FontInfo;
 use crate::names::file_stems;
-use crate::outline::{FontOutlines, GlyphOutline};
+use crate::outline::{OutlinedFont, OutlinedGlyph};
 
 /// One file of the glyph set: its stem (`crate::names` rule) and its text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlyphSvg {
+    /// File stem, unique in the set (case-insensitively).
     pub stem: String,
+    /// The SVG document.
     pub svg: String,
 }
 
 /// The horizontal extent of a glyph's viewBox, font units: `(x, width)`, whole units.
-pub fn horizontal_extent(info: &FontInfo, glyph: &GlyphOutline) -> (f64, f64) {
+pub fn horizontal_extent(info: &FontInfo, glyph: &OutlinedGlyph) -> (f64, f64) {
     let (mut x0, mut x1) = (0.0f64, glyph.advance.max(0.0));
     if !glyph.path.elements().is_empty() {
         let ink = glyph.path.bounding_box();
@@ -38,7 +40,7 @@ pub fn horizontal_extent(info: &FontInfo, glyph: &GlyphOutline) -> (f64, f64) {
 }
 
 /// One standalone SVG document for `glyph`.
-pub fn glyph_svg(info: &FontInfo, glyph: &GlyphOutline) -> String {
+pub fn glyph_svg(info: &FontInfo, glyph: &OutlinedGlyph) -> String {
     let (x, width) = horizontal_extent(info, glyph);
     let top = -info.ascender.ceil();
     let height = -info.descender.floor() - top;
@@ -59,16 +61,15 @@ pub fn glyph_svg(info: &FontInfo, glyph: &GlyphOutline) -> String {
     s
 }
 
-/// The whole glyph set, in the outlines' glyph order.
-pub fn glyph_set(info: &FontInfo, outlines: &FontOutlines) -> Vec<GlyphSvg> {
-    let stems = file_stems(outlines.glyphs.iter().map(|g| g.name.as_str()));
-    outlines
-        .glyphs
+/// The whole glyph set, in the font's glyph order.
+pub fn glyph_set(font: &OutlinedFont) -> Vec<GlyphSvg> {
+    let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));
+    font.glyphs
         .iter()
         .zip(stems)
         .map(|(glyph, stem)| GlyphSvg {
             stem,
-            svg: glyph_svg(info, glyph),
+            svg: glyph_svg(&font.info, glyph),
         })
         .collect()
 }

@@ -11,6 +11,7 @@ mod flatten;
 mod import_font;
 mod import_malformed;
 mod import_svg;
+mod ir;
 mod ocr;
 mod otf;
 mod otf_random;

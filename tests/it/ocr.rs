@@ -24,8 +24,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use xglyph::layout::Layout;
-use xglyph::model::Font;
-use xglyph::outline::{outline_font, FontOutlines};
+use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{encode_png, render_proof, ProofOptions};
 use xglyph::source::load_font;
 
@@ -197,20 +196,13 @@ struct Reading {
 }
 
 /// Renders `text` with the proof at `size` px per em into `png` and reads it back.
-fn read_back(
-    font: &Font,
-    outlines: &FontOutlines,
-    text: &str,
-    size: f64,
-    psm: u32,
-    png: &Path,
-) -> Reading {
+fn read_back(outlines: &OutlinedFont, text: &str, size: f64, psm: u32, png: &Path) -> Reading {
     let opts = ProofOptions {
         text: Some(text.to_owned()),
         sizes: vec![size],
         width_px: 10_000,
     };
-    let img = render_proof(font, outlines, &opts).expect("the proof renders");
+    let img = render_proof(outlines, &opts).expect("the proof renders");
     std::fs::write(png, encode_png(&img).expect("PNG encodes")).expect("PNG writes");
     // A block's line breaks count as spaces on both sides.
     let expected = normalize(text);
@@ -281,8 +273,9 @@ fn pangrams_read_back_through_tesseract() {
             panic!("{} does not load:\n{text}", set.font_dir.display());
         }
     };
+    let outlines = outline_font(&font, font.info.tolerance);
     // The text must be set in the font itself, not in .notdef boxes.
-    let layout = Layout::new(&font);
+    let layout = Layout::new(&outlines);
     let missing: BTreeSet<char> = set
         .blocks
         .iter()
@@ -295,7 +288,6 @@ fn pangrams_read_back_through_tesseract() {
         set.font_dir.display(),
         missing.iter().collect::<String>()
     );
-    let outlines = outline_font(&font, font.info.tolerance).expect("the font outlines");
 
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("ocr");
     std::fs::create_dir_all(&dir).expect("target tmp dir");
@@ -305,7 +297,7 @@ fn pangrams_read_back_through_tesseract() {
         .enumerate()
         .map(|(k, text)| {
             let png = dir.join(format!("{}px-psm{}-{k:02}.png", set.size, set.psm));
-            read_back(&font, &outlines, text, set.size, set.psm, &png)
+            read_back(&outlines, text, set.size, set.psm, &png)
         })
         .collect();
     println!(

@@ -11,16 +11,16 @@ use ttf_parser::{Face, GlyphId};
 use xglyph::import::font::glyph_outline;
 use xglyph::model::{Contour, Font, Glyph, KernPair};
 use xglyph::otf::{glyph_order, otf, specimen_html, specimen_text, ttf};
-use xglyph::outline::{outline_font, FontOutlines};
+use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::source::load_font;
 use xglyph::xspline::ControlPoint;
 
 /// Largest distance grid rounding can move a point of a Bézier curve (√2/2 units).
 const GRID: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
-fn mini() -> (Font, FontOutlines) {
+fn mini() -> (Font, OutlinedFont) {
     let (font, _) = load_font(Path::new("tests/fixtures/mini")).expect("mini loads");
-    let outlines = outline_font(&font, font.info.tolerance).expect("mini outlines");
+    let outlines = outline_font(&font, font.info.tolerance);
     (font, outlines)
 }
 
@@ -41,7 +41,7 @@ fn contour_count(p: &BezPath) -> usize {
 }
 
 /// Checks one built font against the model; returns the worst outline distance.
-fn check_font(bytes: &[u8], font: &Font, outlines: &FontOutlines, cff: bool) -> f64 {
+fn check_font(bytes: &[u8], font: &Font, outlines: &OutlinedFont, cff: bool) -> f64 {
     let face = Face::parse(bytes, 0).expect("font parses");
     assert_eq!(face.units_per_em(), 1000);
     assert_eq!(face.number_of_glyphs(), 8);
@@ -61,7 +61,7 @@ fn check_font(bytes: &[u8], font: &Font, outlines: &FontOutlines, cff: bool) -> 
             "space"
         ]
     );
-    let order = glyph_order(font, outlines).unwrap();
+    let order = glyph_order(outlines).unwrap();
     let mut worst: f64 = 0.0;
     for (gid, g) in order.iter().enumerate() {
         let gid = gid as u16;
@@ -199,37 +199,36 @@ fn check_font(bytes: &[u8], font: &Font, outlines: &FontOutlines, cff: bool) -> 
 #[test]
 fn ttf_reads_back_within_tolerance() {
     let (font, outlines) = mini();
-    let bytes = ttf(&font, &outlines).unwrap();
+    let bytes = ttf(&outlines).unwrap();
     let worst = check_font(&bytes, &font, &outlines, false);
     eprintln!("TTF worst: {worst:.4} units");
     // Quadratic conversion within the tolerance (0.5), then grid rounding.
     assert!(worst <= font.info.tolerance + GRID, "{worst}");
     // Straight-edged glyphs only move by rounding; the round ones use the budget.
     assert!(worst > 0.3, "{worst}");
-    assert_eq!(ttf(&font, &outlines).unwrap(), bytes, "deterministic");
+    assert_eq!(ttf(&outlines).unwrap(), bytes, "deterministic");
 }
 
 #[test]
 fn otf_reads_back_within_grid_rounding() {
     let (font, outlines) = mini();
-    let bytes = otf(&font, &outlines).unwrap();
+    let bytes = otf(&outlines).unwrap();
     let worst = check_font(&bytes, &font, &outlines, true);
     eprintln!("OTF worst: {worst:.4} units");
     // The cubics are exact; only grid rounding moves them.
     assert!(worst <= GRID, "{worst}");
     assert!(worst > 0.1, "{worst}");
-    assert_eq!(otf(&font, &outlines).unwrap(), bytes, "deterministic");
+    assert_eq!(otf(&outlines).unwrap(), bytes, "deterministic");
 }
 
 fn square(x0: f64, y0: f64, x1: f64, y1: f64) -> Contour {
-    Contour {
-        points: vec![
-            ControlPoint::new(x0, y0, 0.0),
-            ControlPoint::new(x1, y0, 0.0),
-            ControlPoint::new(x1, y1, 0.0),
-            ControlPoint::new(x0, y1, 0.0),
-        ],
-    }
+    Contour::new(vec![
+        ControlPoint::new(x0, y0, 0.0),
+        ControlPoint::new(x1, y0, 0.0),
+        ControlPoint::new(x1, y1, 0.0),
+        ControlPoint::new(x0, y1, 0.0),
+    ])
+    .expect("a valid contour")
 }
 
 fn glyph(name: &str, unicodes: &[char], advance: f64, contours: Vec<Contour>) -> Glyph {
@@ -253,11 +252,8 @@ fn synthetic_notdef_and_fallback_names() {
         vec![square(100.0, 0.0, 700.0, 600.0)],
     ));
     font.glyphs.push(glyph("9x", &[], 300.0, vec![]));
-    let outlines = outline_font(&font, font.info.tolerance).unwrap();
-    for bytes in [
-        ttf(&font, &outlines).unwrap(),
-        otf(&font, &outlines).unwrap(),
-    ] {
+    let outlines = outline_font(&font, font.info.tolerance);
+    for bytes in [ttf(&outlines).unwrap(), otf(&outlines).unwrap()] {
         let face = Face::parse(&bytes, 0).unwrap();
         assert_eq!(face.number_of_glyphs(), 10);
         assert_eq!(face.glyph_name(GlyphId(0)), Some(".notdef"));
@@ -283,19 +279,19 @@ fn unrepresentable_models_are_errors() {
         500.0,
         vec![square(0.0, 0.0, 40000.0, 100.0)],
     ));
-    let outlines = outline_font(&wide, 0.5).unwrap();
-    let err = ttf(&wide, &outlines).unwrap_err().to_string();
+    let outlines = outline_font(&wide, 0.5);
+    let err = ttf(&outlines).unwrap_err().to_string();
     assert_eq!(
         err,
         "x coordinate in glyph 'wide' is 40000, outside the OpenType range -32768..=32767"
     );
-    assert_eq!(otf(&wide, &outlines).unwrap_err().to_string(), err);
+    assert_eq!(otf(&outlines).unwrap_err().to_string(), err);
 
     let mut negative = font.clone();
     negative.glyphs[1].advance = -5.0;
-    let outlines = outline_font(&negative, 0.5).unwrap();
+    let outlines = outline_font(&negative, 0.5);
     assert_eq!(
-        ttf(&negative, &outlines).unwrap_err().to_string(),
+        ttf(&outlines).unwrap_err().to_string(),
         "advance of 'A' is -5, outside the OpenType range 0..=32767"
     );
 
@@ -305,25 +301,25 @@ fn unrepresentable_models_are_errors() {
         right: "o".into(),
         value: 1e6,
     });
-    let outlines = outline_font(&kern, 0.5).unwrap();
+    let outlines = outline_font(&kern, 0.5);
     assert_eq!(
-        otf(&kern, &outlines).unwrap_err().to_string(),
+        otf(&outlines).unwrap_err().to_string(),
         "kerning o o is 1000000, outside the OpenType range -32768..=32767"
     );
 
     let mut many = font.clone();
     many.glyphs
         .extend((0..65535).map(|i| glyph(&format!("g{i}"), &[], 100.0, vec![])));
-    let outlines = outline_font(&many, 0.5).unwrap();
+    let outlines = outline_font(&many, 0.5);
     assert_eq!(
-        ttf(&many, &outlines).unwrap_err().to_string(),
+        ttf(&outlines).unwrap_err().to_string(),
         "65543 glyphs: an OpenType font holds at most 65535"
     );
 }
 
 #[test]
 fn specimen_escapes_and_expects_the_advances() {
-    let (mut font, _) = mini();
+    let (_, mut font) = mini();
     assert_eq!(specimen_text(&font), "AVoó. AV Vo");
     let html = specimen_html(&font, "MiniTest-Regular.ttf");
     // A+V-60, V+o-40, ó, period, space, A+V-60, space, V+o-40.
@@ -349,10 +345,10 @@ fn names_styles_and_em_size_from_the_model() {
     font.info.designer = Some("Ada Designer".into());
     font.info.version = Some("2.5".into());
     font.info.units_per_em = 2048;
-    let outlines = outline_font(&font, font.info.tolerance).unwrap();
+    let outlines = outline_font(&font, font.info.tolerance);
     for (bytes, cff) in [
-        (ttf(&font, &outlines).unwrap(), false),
-        (otf(&font, &outlines).unwrap(), true),
+        (ttf(&outlines).unwrap(), false),
+        (otf(&outlines).unwrap(), true),
     ] {
         let face = Face::parse(&bytes, 0).unwrap();
         let names: Vec<(u16, String)> = face
@@ -403,8 +399,8 @@ fn names_styles_and_em_size_from_the_model() {
 fn bold_style_bits_and_overlap_flag() {
     let (mut font, _) = mini();
     font.info.style = "Bold".into();
-    let outlines = outline_font(&font, font.info.tolerance).unwrap();
-    let bytes = ttf(&font, &outlines).unwrap();
+    let outlines = outline_font(&font, font.info.tolerance);
+    let bytes = ttf(&outlines).unwrap();
     let face = Face::parse(&bytes, 0).unwrap();
     assert!(face.is_bold());
     assert!(!face.is_italic());
@@ -470,8 +466,8 @@ fn large_kerning_survives_packing() {
             });
         }
     }
-    let outlines = outline_font(&font, 0.5).unwrap();
-    let bytes = otf(&font, &outlines).unwrap();
+    let outlines = outline_font(&font, 0.5);
+    let bytes = otf(&outlines).unwrap();
     let face = Face::parse(&bytes, 0).unwrap();
     let gpos = face.tables().gpos.unwrap();
     let lookup = gpos.lookups.get(0).unwrap();
@@ -505,7 +501,7 @@ fn large_kerning_survives_packing() {
         .count();
     assert_eq!(pairs, 40_000);
     // The legacy table cannot hold them: left out of the TTF.
-    let ttf_bytes = ttf(&font, &outlines).unwrap();
+    let ttf_bytes = ttf(&outlines).unwrap();
     assert!(Face::parse(&ttf_bytes, 0).unwrap().tables().kern.is_none());
 }
 
@@ -513,12 +509,12 @@ fn large_kerning_survives_packing() {
 #[test]
 fn bundled_typeface_reads_back_within_bounds() {
     let (font, _) = load_font(Path::new("glyphs")).expect("glyphs/ loads");
-    let outlines = outline_font(&font, font.info.tolerance).unwrap();
-    let order = glyph_order(&font, &outlines).unwrap();
+    let outlines = outline_font(&font, font.info.tolerance);
+    let order = glyph_order(&outlines).unwrap();
     let mut worst = [0.0f64; 2];
     for (i, (bytes, bound)) in [
-        (ttf(&font, &outlines).unwrap(), font.info.tolerance + GRID),
-        (otf(&font, &outlines).unwrap(), GRID),
+        (ttf(&outlines).unwrap(), font.info.tolerance + GRID),
+        (otf(&outlines).unwrap(), GRID),
     ]
     .into_iter()
     .enumerate()

@@ -54,15 +54,15 @@ proptest! {
             name: "x".into(),
             unicodes: vec!['x'],
             advance: f64::from(advance),
-            contours: vec![Contour { points }],
+            contours: vec![Contour::new(points).expect("a valid contour")],
             components: Vec::new(),
         };
         let font = font_with(glyph, tolerance);
-        let outlines = outline_font(&font, tolerance).unwrap();
+        let outlines = outline_font(&font, tolerance);
         let exact = &outlines.glyphs[0].path;
         for (bytes, bound) in [
-            (ttf(&font, &outlines).unwrap(), tolerance + GRID),
-            (otf(&font, &outlines).unwrap(), GRID),
+            (ttf(&outlines).unwrap(), tolerance + GRID),
+            (otf(&outlines).unwrap(), GRID),
         ] {
             let face = Face::parse(&bytes, 0).unwrap();
             prop_assert_eq!(face.glyph_index('x'), Some(GlyphId(1)));

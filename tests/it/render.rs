@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use tiny_skia::Pixmap;
 use xglyph::layout::Layout;
 use xglyph::model::Font;
-use xglyph::outline::{outline_font, FontOutlines};
+use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{
     default_text, encode_png, render_proof, render_sheet, sheet_order, ProofOptions, RenderError,
     SheetOptions,
@@ -21,11 +21,11 @@ use xglyph::source::load_font;
 /// Largest per-channel difference that still counts as the same pixel.
 const CHANNEL_SLACK: u8 = 2;
 
-fn mini() -> (Font, FontOutlines) {
+fn mini() -> (Font, OutlinedFont) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
     let (font, warnings) = load_font(&dir).expect("mini loads");
     assert!(warnings.is_empty(), "{warnings:?}");
-    let outlines = outline_font(&font, font.info.tolerance).expect("mini outlines");
+    let outlines = outline_font(&font, font.info.tolerance);
     (font, outlines)
 }
 
@@ -96,63 +96,63 @@ fn check_reference(name: &str, actual: &Pixmap) {
 
 #[test]
 fn sheet_matches_reference() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let opts = SheetOptions {
         cell_px: 96,
         columns: 4,
         overlay: false,
     };
-    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    let img = render_sheet(&outlines, &opts).unwrap();
     assert_eq!((img.width(), img.height()), (384, 192));
     check_reference("sheet", &img);
 }
 
 #[test]
 fn overlay_sheet_matches_reference() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let opts = SheetOptions {
         cell_px: 128,
         columns: 4,
         overlay: true,
     };
-    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    let img = render_sheet(&outlines, &opts).unwrap();
     assert_eq!((img.width(), img.height()), (512, 256));
     check_reference("sheet-overlay", &img);
 }
 
 #[test]
 fn proof_matches_reference() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let opts = ProofOptions {
         text: None,
         sizes: vec![12.0, 20.0, 36.0],
         width_px: 200,
     };
-    let img = render_proof(&font, &outlines, &opts).unwrap();
+    let img = render_proof(&outlines, &opts).unwrap();
     check_reference("proof", &img);
 }
 
 #[test]
 fn proof_with_missing_characters_matches_reference() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let opts = ProofOptions {
         text: Some("AVo?.\nVo AV x".into()),
         sizes: vec![24.0],
         width_px: 200,
     };
-    let img = render_proof(&font, &outlines, &opts).unwrap();
+    let img = render_proof(&outlines, &opts).unwrap();
     check_reference("proof-fallback", &img);
 }
 
 #[test]
 fn the_comparison_catches_a_changed_pixel() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let opts = SheetOptions {
         cell_px: 96,
         columns: 4,
         overlay: false,
     };
-    let img = render_sheet(&font, &outlines, &opts).unwrap();
+    let img = render_sheet(&outlines, &opts).unwrap();
     let mut changed = img.clone();
     // Four pixels in the A's cell turned blue.
     for x in 240..244 {
@@ -166,7 +166,7 @@ fn the_comparison_catches_a_changed_pixel() {
 
 #[test]
 fn sheet_order_and_default_text() {
-    let (font, _) = mini();
+    let (_, font) = mini();
     let names: Vec<&str> = sheet_order(&font)
         .into_iter()
         .map(|i| font.glyphs[i].name.as_str())
@@ -206,9 +206,8 @@ fn a_tall_sheet_gets_more_columns() {
         })
         .collect();
     font.kerning.clear();
-    let outlines = outline_font(&font, 0.5).unwrap();
+    let outlines = outline_font(&font, 0.5);
     let err = render_sheet(
-        &font,
         &outlines,
         &SheetOptions {
             cell_px: 2048,
@@ -226,7 +225,6 @@ fn a_tall_sheet_gets_more_columns() {
         }
     );
     let img = render_sheet(
-        &font,
         &outlines,
         &SheetOptions {
             cell_px: 256,
@@ -241,10 +239,9 @@ fn a_tall_sheet_gets_more_columns() {
 
 #[test]
 fn bad_options_are_errors_not_panics() {
-    let (font, outlines) = mini();
+    let (_, outlines) = mini();
     let sheet = |cell_px, columns| {
         render_sheet(
-            &font,
             &outlines,
             &SheetOptions {
                 cell_px,
@@ -266,7 +263,6 @@ fn bad_options_are_errors_not_panics() {
     );
     let proof = |sizes: Vec<f64>, width_px| {
         render_proof(
-            &font,
             &outlines,
             &ProofOptions {
                 text: Some("A".into()),

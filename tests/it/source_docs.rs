@@ -58,7 +58,7 @@ fn complete_example_loads() {
     assert_eq!(font.info.tolerance, 0.5);
     assert_eq!(font.kern("o", "oacute"), -10.0);
     assert_eq!(
-        font.resolved_contours(font.glyph("oacute").expect("oacute"))
+        font.placed_contours(font.glyph("oacute").expect("oacute"))
             .len(),
         3
     );

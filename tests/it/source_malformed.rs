@@ -304,7 +304,7 @@ fn valid_font_loads() {
     assert_eq!(font.glyphs.len(), 2, "dot files are ignored");
     assert_eq!(font.glyphs[0].name, ".notdef");
     assert_eq!(font.glyphs[1].unicodes, vec!['o', 'O']);
-    assert_eq!(font.glyphs[1].contours[0].points.len(), 4);
+    assert_eq!(font.glyphs[1].contours[0].points().len(), 4);
     assert_eq!(font.kern("o", ".notdef"), -80.0);
 }
 

@@ -6,7 +6,7 @@ use std::path::Path;
 use kurbo::{Affine, BezPath, PathEl, Point};
 use tiny_skia::{Color, Pixmap, Transform};
 use xglyph::model::{Contour, Font, FontInfo, Glyph, KernPair};
-use xglyph::outline::{outline_font, FontOutlines};
+use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::draw::{fill_glyph, Placement};
 use xglyph::source::load_font;
 use xglyph::svg::glyph_set::horizontal_extent;
@@ -16,10 +16,10 @@ use xglyph::xspline::ControlPoint;
 /// Coordinates are written to 1/100 unit: a parsed number is within this of the original.
 const ROUNDING: f64 = 0.005 + 1e-9;
 
-fn mini() -> (Font, FontOutlines) {
+fn mini() -> (Font, OutlinedFont) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
     let (font, _) = load_font(&dir).expect("mini loads");
-    let outlines = outline_font(&font, font.info.tolerance).expect("mini outlines");
+    let outlines = outline_font(&font, font.info.tolerance);
     (font, outlines)
 }
 
@@ -82,7 +82,7 @@ fn max_point_difference(parsed: &BezPath, original: &BezPath) -> f64 {
 #[test]
 fn glyph_svgs_render_like_the_bezpaths() {
     let (font, outlines) = mini();
-    let set = glyph_set(&font.info, &outlines);
+    let set = glyph_set(&outlines);
     assert_eq!(set.len(), outlines.glyphs.len());
     // Pixels per font unit: a 1000-unit em becomes 250 px.
     let scale = 0.25;
@@ -145,10 +145,7 @@ fn glyph_svgs_render_like_the_bezpaths() {
 #[test]
 fn glyph_svg_paths_are_the_bezpaths_flipped() {
     let (font, outlines) = mini();
-    for (file, glyph) in glyph_set(&font.info, &outlines)
-        .iter()
-        .zip(&outlines.glyphs)
-    {
+    for (file, glyph) in glyph_set(&outlines).iter().zip(&outlines.glyphs) {
         let doc = roxmltree::Document::parse(&file.svg).unwrap();
         let root = doc.root_element();
         let title = root.children().find(|n| n.has_tag_name("title")).unwrap();
@@ -162,7 +159,7 @@ fn glyph_svg_paths_are_the_bezpaths_flipped() {
             None => assert!(glyph.path.elements().is_empty(), "{}", glyph.name),
         }
     }
-    let a = glyph_set(&font.info, &outlines)
+    let a = glyph_set(&outlines)
         .into_iter()
         .find(|f| f.stem == "A_")
         .unwrap();
@@ -188,8 +185,8 @@ fn num(node: roxmltree::Node<'_, '_>, name: &str) -> f64 {
 
 #[test]
 fn svg_font_parses_back() {
-    let (font, outlines) = mini();
-    let text = svg_font(&font, &outlines);
+    let (_, outlines) = mini();
+    let text = svg_font(&outlines);
     let doc = roxmltree::Document::parse(&text).unwrap();
     let font_el = doc.descendants().find(|n| n.has_tag_name("font")).unwrap();
     let face = font_el
@@ -268,13 +265,12 @@ fn triangle(name: &str, c: Option<char>) -> Glyph {
         name: name.into(),
         unicodes: c.into_iter().collect(),
         advance: 500.0,
-        contours: vec![Contour {
-            points: vec![
-                ControlPoint::new(50.0, 0.0, 0.0),
-                ControlPoint::new(450.0, 0.0, 0.0),
-                ControlPoint::new(250.0, 600.0, 0.0),
-            ],
-        }],
+        contours: vec![Contour::new(vec![
+            ControlPoint::new(50.0, 0.0, 0.0),
+            ControlPoint::new(450.0, 0.0, 0.0),
+            ControlPoint::new(250.0, 600.0, 0.0),
+        ])
+        .expect("a valid contour")],
         components: vec![],
     }
 }
@@ -309,8 +305,8 @@ fn hostile_names_make_valid_xml_and_round_trip() {
             value: -25.5,
         }],
     };
-    let outlines = outline_font(&font, 0.5).unwrap();
-    let text = svg_font(&font, &outlines);
+    let outlines = outline_font(&font, 0.5);
+    let text = svg_font(&outlines);
     let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     let glyph_names: Vec<&str> = doc
         .descendants()
@@ -350,7 +346,7 @@ fn hostile_names_make_valid_xml_and_round_trip() {
     assert_eq!(attr(font_el, "id"), "Fam_&_]]_'ily'-Bold_Italic_");
     assert_eq!(output_stem(&font.info), "Fam_&_]]_'ily'-Bold_Italic_");
 
-    let set = glyph_set(&font.info, &outlines);
+    let set = glyph_set(&outlines);
     let stems: Vec<&str> = set.iter().map(|f| f.stem.as_str()).collect();
     assert_eq!(stems, ["_", "&", "_q_", "___", "a'_&__b"]);
     for (file, name) in set.iter().zip(names) {
@@ -363,10 +359,10 @@ fn hostile_names_make_valid_xml_and_round_trip() {
 
 #[test]
 fn ascent_and_descent_sum_to_the_em() {
-    let (mut font, outlines) = mini();
-    font.info.ascender = 900.0;
-    font.info.descender = -300.0;
-    let doc_text = svg_font(&font, &outlines);
+    let (_, mut outlines) = mini();
+    outlines.info.ascender = 900.0;
+    outlines.info.descender = -300.0;
+    let doc_text = svg_font(&outlines);
     let doc = roxmltree::Document::parse(&doc_text).unwrap();
     let face = doc
         .descendants()

@@ -1,0 +1,211 @@
+//! The whole pipeline as library calls that return data: a font directory to the outlined
+//! font ([`load`]), the outlined font to every output file in memory ([`outputs`]), the
+//! files to disk ([`write_outputs`]), and the numbers a summary reports ([`Summary`]).
+//!
+//! Nothing here prints: warnings and errors come back as [`Diagnostic`]s for the caller
+//! (the command line prints them; a server would send them).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use crate::otf::{self, OtfError};
+use crate::outline::{outline_font, OutlinedFont};
+use crate::render::{
+    encode_png, render_proof, render_sheet, ProofOptions, RenderError, SheetOptions,
+};
+use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
+use crate::svg::{glyph_set, output_stem, svg_font};
+use crate::write::{OutputSet, WriteError};
+
+/// A font directory loaded and outlined, and the warnings of its sources.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// Every glyph fitted.
+    pub font: OutlinedFont,
+    /// Warnings of the sources (errors stop [`load`]).
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Why a pipeline step failed.
+#[derive(Debug)]
+pub enum PipelineError {
+    /// The `--tolerance` value is not usable.
+    Tolerance(String),
+    /// The sources have errors: every diagnostic (warnings included), in file order.
+    Sources {
+        /// The font directory.
+        dir: PathBuf,
+        /// Every problem found.
+        diagnostics: Vec<Diagnostic>,
+    },
+    /// The font directory holds `font.toml` but no glyph.
+    NoGlyphs(PathBuf),
+    /// A PNG output could not be rendered.
+    Render(RenderError),
+    /// The font does not fit into OpenType.
+    Otf(OtfError),
+    /// Writing the outputs failed; the output directory is as it was.
+    Write {
+        /// The output directory.
+        dir: PathBuf,
+        /// What went wrong.
+        error: WriteError,
+    },
+}
+
+impl fmt::Display for PipelineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PipelineError::Tolerance(msg) => write!(f, "{msg}"),
+            PipelineError::Sources { dir, diagnostics } => {
+                let errors = diagnostics
+                    .iter()
+                    .filter(|d| d.severity == Severity::Error)
+                    .count();
+                let noun = if errors == 1 { "error" } else { "errors" };
+                write!(
+                    f,
+                    "{errors} {noun} in {}; nothing was written",
+                    dir.display()
+                )
+            }
+            PipelineError::NoGlyphs(dir) => write!(
+                f,
+                "{} has no glyph files yet (only font.toml); add one TOML file per glyph",
+                dir.display()
+            ),
+            PipelineError::Render(e) => write!(f, "{e}"),
+            PipelineError::Otf(e) => write!(f, "{e}"),
+            PipelineError::Write { dir, error } => {
+                write!(f, "{error}; {} is unchanged", dir.display())
+            }
+        }
+    }
+}
+
+impl std::error::Error for PipelineError {}
+
+impl From<RenderError> for PipelineError {
+    fn from(e: RenderError) -> Self {
+        PipelineError::Render(e)
+    }
+}
+
+impl From<OtfError> for PipelineError {
+    fn from(e: OtfError) -> Self {
+        PipelineError::Otf(e)
+    }
+}
+
+/// Loads `font_dir` and fits every glyph, with `tolerance` overriding the font's own.
+pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, PipelineError> {
+    if let Some(t) = tolerance {
+        check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
+    }
+    let (font, warnings) = load_font(font_dir).map_err(|diagnostics| PipelineError::Sources {
+        dir: font_dir.to_path_buf(),
+        diagnostics,
+    })?;
+    if font.glyphs.is_empty() {
+        return Err(PipelineError::NoGlyphs(font_dir.to_path_buf()));
+    }
+    let tolerance = tolerance.unwrap_or(font.info.tolerance);
+    Ok(Loaded {
+        font: outline_font(&font, tolerance),
+        warnings,
+    })
+}
+
+/// Options for every output of a build.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BuildOptions {
+    /// The glyph sheet.
+    pub sheet: SheetOptions,
+    /// The text proof.
+    pub proof: ProofOptions,
+}
+
+/// One output file: its path relative to the output directory, and its bytes.
+pub type OutputFile = (PathBuf, Vec<u8>);
+
+/// Every output of a build, rendered in memory. This is the one list of build outputs;
+/// add a new output here.
+pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFile>, PipelineError> {
+    let mut files = svg_outputs(font);
+    files.push((
+        PathBuf::from("sheet.png"),
+        encode_png(&render_sheet(font, &opts.sheet)?)?,
+    ));
+    files.push((
+        PathBuf::from("proof.png"),
+        encode_png(&render_proof(font, &opts.proof)?)?,
+    ));
+    let stem = output_stem(&font.info);
+    files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(font)?));
+    files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(font)?));
+    files.push((
+        PathBuf::from("specimen.html"),
+        otf::specimen_html(font, &format!("{stem}.otf")).into_bytes(),
+    ));
+    Ok(files)
+}
+
+/// The SVG font and the SVG glyph set (`svg/<glyph>.svg`).
+pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
+    let mut files = vec![(
+        PathBuf::from(format!("{}.svg", output_stem(&font.info))),
+        svg_font(font).into_bytes(),
+    )];
+    for g in glyph_set(font) {
+        files.push((
+            Path::new("svg").join(format!("{}.svg", g.stem)),
+            g.svg.into_bytes(),
+        ));
+    }
+    files
+}
+
+/// Writes `files` (relative paths) under `out`, all or none ([`OutputSet`]).
+pub fn write_outputs(out: &Path, files: &[OutputFile]) -> Result<(), PipelineError> {
+    let mut set = OutputSet::new();
+    for (path, bytes) in files {
+        set.add(out.join(path), bytes.clone());
+    }
+    set.commit().map_err(|error| PipelineError::Write {
+        dir: out.to_path_buf(),
+        error,
+    })
+}
+
+/// The numbers a build reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// Glyphs in the font.
+    pub glyphs: usize,
+    /// Contours over all glyph outlines (components counted where placed).
+    pub contours: usize,
+    /// Segments (lines and cubics) over all glyph outlines.
+    pub segments: usize,
+    /// The glyph with the largest measured error, and that error (font units).
+    pub worst: Option<(String, f64)>,
+    /// The tolerance the outlines were fitted to.
+    pub tolerance: f64,
+}
+
+impl Summary {
+    /// The counts of `font`.
+    pub fn new(font: &OutlinedFont) -> Self {
+        let worst = font
+            .glyphs
+            .iter()
+            .max_by(|a, b| a.max_error.total_cmp(&b.max_error))
+            .map(|g| (g.name.clone(), g.max_error));
+        Summary {
+            glyphs: font.glyphs.len(),
+            contours: font.glyphs.iter().map(|g| g.contours.len()).sum(),
+            segments: font.glyphs.iter().map(|g| g.segments).sum(),
+            worst,
+            tolerance: font.tolerance,
+        }
+    }
+}
