@@ -2,7 +2,7 @@
 //! with its version, and the errors of the sources as they are now.
 //!
 //! This is the only module of the server that knows the font model and the outliner
-//! (`Font`, `XSpline`, `fit_contour`): everything else sees names, JSON and file versions.
+//! (`Font`, `fit_contour`, `OutlinedGlyph`): everything else sees names, JSON and file versions.
 //!
 //! A reload loads the whole folder again (the checks across files need it) but fits only
 //! the contours that changed: each glyph's own contours are fitted once and kept, and a
