@@ -42,7 +42,13 @@ export class Editor {
   /** Fetches the glyph again unless an edit is on its way (its answer is newer). */
   async refresh() {
     if (!this.name || this.drag || this.pending) return;
-    try { this.set(await getGlyph(this.name)); } catch (e) { this.app.toast(String(e)); }
+    // Queued behind edits, so an older answer never replaces a newer edit's.
+    const name = this.name;
+    this.queue = this.queue.then(async () => {
+      const g = await getGlyph(name);
+      if (name === this.name && !this.drag) this.set(g);
+    }).catch((e) => this.app.toast(String(e)));
+    return this.queue;
   }
 
   set(g) {
