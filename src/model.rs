@@ -186,7 +186,13 @@ impl Font {
 
     /// Glyphs by name, for many look-ups (the list itself is searched linearly).
     pub fn index(&self) -> GlyphIndex<'_> {
-        GlyphIndex(self.glyphs.iter().rev().map(|g| (g.name.as_str(), g)).collect())
+        GlyphIndex(
+            self.glyphs
+                .iter()
+                .rev()
+                .map(|g| (g.name.as_str(), g))
+                .collect(),
+        )
     }
 
     /// Kerning value between two glyph names (0 when there is no pair).
