@@ -17,6 +17,7 @@
 
 #![warn(missing_docs)]
 
+pub mod cache;
 #[doc(hidden)]
 pub mod cli;
 #[doc(hidden)]
@@ -44,7 +45,10 @@ pub mod write;
 pub mod xspline;
 
 pub use model::{Component, Contour, Font, FontInfo, Glyph, KernPair};
-pub use outline::{outline_font, outline_glyph, OutlinedFont, OutlinedGlyph, PlacedContour};
+pub use outline::{
+    outline_font, outline_font_with, outline_glyph, OutlineOptions, OutlinedFont, OutlinedGlyph,
+    PlacedContour, Progress,
+};
 pub use pipeline::{BuildOptions, Loaded, PipelineError, Summary};
 pub use source::{load_font, Diagnostic, Severity};
 pub use xspline::{ControlPoint, XSpline, XSplineError};

@@ -11,16 +11,26 @@
 //! model's order (the loader sorts by [`crate::model::glyph_order`]). A font without
 //! `.notdef` gets the box of [`notdef_box`] wherever a missing glyph is drawn or stored.
 //!
+//! [`outline_font`] fits the glyphs in parallel (rayon, one task per glyph); the result does
+//! not depend on the thread count, since each glyph is fitted on its own and the glyphs are
+//! collected in order. [`outline_font_with`] can also take fits from a [`FitCache`] (a
+//! rebuild refits only the contours that changed) and count finished glyphs for a progress
+//! display.
+//!
 //! Each glyph is outlined on its own by [`outline_glyph`], a pure function of the model, the
 //! glyph and the tolerance: glyphs can be fitted in any order or in parallel, cached, or
 //! refitted one at a time. Outlines at another design-space position (masters) are the
 //! same type: outline the model instantiated there.
 
 use std::borrow::Cow;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
 
-use crate::fit::fit_contour;
+use rayon::prelude::*;
+
+use crate::cache::FitCache;
+use crate::fit::{fit_contour, ContourFit};
 use crate::model::{Component, Font, FontInfo, Glyph, KernPair};
 use crate::orient::orient_contours;
 use crate::xspline::{ControlPoint, XSpline};
@@ -126,23 +136,66 @@ impl OutlinedFont {
     }
 }
 
-/// Fits every glyph of `font` within `tolerance` font units ([`outline_glyph`] each).
+/// How [`outline_font_with`] fits: with a cache, and counting finished glyphs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct OutlineOptions<'a> {
+    /// Fits to reuse (keyed by the contour's points and the tolerance); new fits are added.
+    pub cache: Option<&'a FitCache>,
+    /// Glyphs to fit and glyphs fitted so far, updated as glyphs finish (from any thread).
+    pub progress: Option<&'a Progress>,
+}
+
+/// A progress count another thread can read while [`outline_font_with`] runs.
+#[derive(Debug, Default)]
+pub struct Progress {
+    /// Glyphs to fit (set when fitting starts).
+    pub total: AtomicUsize,
+    /// Glyphs fitted so far.
+    pub done: AtomicUsize,
+}
+
+/// Fits every glyph of `font` within `tolerance` font units ([`outline_glyph`] each, in
+/// parallel).
 pub fn outline_font(font: &Font, tolerance: f64) -> OutlinedFont {
+    outline_font_with(font, tolerance, OutlineOptions::default())
+}
+
+/// [`outline_font`] with a fit cache and a progress counter.
+pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) -> OutlinedFont {
     let notdef = font.glyphs.iter().filter(|g| g.name == ".notdef");
     let rest = font.glyphs.iter().filter(|g| g.name != ".notdef");
+    let order: Vec<&Glyph> = notdef.chain(rest).collect();
+    if let Some(progress) = opts.progress {
+        progress.total.store(order.len(), Ordering::Relaxed);
+    }
     OutlinedFont {
         info: font.info.clone(),
         kerning: font.kerning.clone(),
         tolerance,
-        glyphs: notdef
-            .chain(rest)
-            .map(|glyph| outline_glyph(font, glyph, tolerance))
+        glyphs: order
+            .par_iter()
+            .map(|glyph| {
+                let outlined = outline_glyph_with(font, glyph, tolerance, opts.cache);
+                if let Some(progress) = opts.progress {
+                    progress.done.fetch_add(1, Ordering::Relaxed);
+                }
+                outlined
+            })
             .collect(),
     }
 }
 
 /// Fits one glyph of `font` (its contours and its components') within `tolerance`.
 pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyph {
+    outline_glyph_with(font, glyph, tolerance, None)
+}
+
+fn outline_glyph_with(
+    font: &Font,
+    glyph: &Glyph,
+    tolerance: f64,
+    cache: Option<&FitCache>,
+) -> OutlinedGlyph {
     let mut contours = Vec::new();
     let mut fitted = Vec::new();
     let mut max_error: f64 = 0.0;
@@ -151,7 +204,7 @@ pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyp
             spline: contour.spline().clone(),
             offset: Vec2::new(offset.0, offset.1),
         };
-        let (path, error) = fit_placed(&placed, tolerance);
+        let (path, error) = fit_placed(&placed, tolerance, cache);
         max_error = max_error.max(error);
         fitted.push(path);
         contours.push(placed);
@@ -183,14 +236,20 @@ pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyp
 /// as if it had been drawn there. Moving can break the curve's rules only by rounding
 /// (two points a few ulps apart landing on one value, or a sum overflowing); then the
 /// contour is fitted where it was drawn and the fitted path moved instead.
-fn fit_placed(placed: &PlacedContour, tolerance: f64) -> (BezPath, f64) {
+fn fit_placed(placed: &PlacedContour, tolerance: f64, cache: Option<&FitCache>) -> (BezPath, f64) {
+    let fit = |spline: &XSpline| -> ContourFit {
+        match cache {
+            Some(cache) => cache.fit(spline, tolerance),
+            None => fit_contour(spline, tolerance),
+        }
+    };
     match XSpline::new(placed.points().collect()) {
         Ok(moved) => {
-            let fit = fit_contour(&moved, tolerance);
+            let fit = fit(&moved);
             (fit.path, fit.max_error)
         }
         Err(_) => {
-            let fit = fit_contour(&placed.spline, tolerance);
+            let fit = fit(&placed.spline);
             (Affine::translate(placed.offset) * fit.path, fit.max_error)
         }
     }

@@ -9,9 +9,9 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::otf::{self, OtfError};
-use crate::outline::{outline_font, OutlinedFont};
+use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::render::{
-    encode_png, render_proof, render_sheet, ProofOptions, RenderError, SheetOptions,
+    encode_png, render_proof, sheet_png_files, ProofOptions, RenderError, SheetOptions,
 };
 use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
@@ -101,6 +101,15 @@ impl From<OtfError> for PipelineError {
 
 /// Loads `font_dir` and fits every glyph, with `tolerance` overriding the font's own.
 pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, PipelineError> {
+    load_with(font_dir, tolerance, OutlineOptions::default())
+}
+
+/// [`load`] with a fit cache and a progress count ([`OutlineOptions`]).
+pub fn load_with(
+    font_dir: &Path,
+    tolerance: Option<f64>,
+    opts: OutlineOptions<'_>,
+) -> Result<Loaded, PipelineError> {
     if let Some(t) = tolerance {
         check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
     }
@@ -113,7 +122,7 @@ pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, PipelineE
     }
     let tolerance = tolerance.unwrap_or(font.info.tolerance);
     Ok(Loaded {
-        font: outline_font(&font, tolerance),
+        font: outline_font_with(&font, tolerance, opts),
         warnings,
     })
 }
@@ -134,10 +143,9 @@ pub type OutputFile = (PathBuf, Vec<u8>);
 /// add a new output here.
 pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFile>, PipelineError> {
     let mut files = svg_outputs(font);
-    files.push((
-        PathBuf::from("sheet.png"),
-        encode_png(&render_sheet(font, &opts.sheet)?)?,
-    ));
+    for (name, png) in sheet_png_files(font, &opts.sheet, "sheet")? {
+        files.push((PathBuf::from(name), png));
+    }
     files.push((
         PathBuf::from("proof.png"),
         encode_png(&render_proof(font, &opts.proof)?)?,

@@ -4,21 +4,27 @@
 //! Nothing is written unless every output rendered: a source error or a render error
 //! leaves OUT untouched (not even created).
 
+use std::io::IsTerminal;
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use super::{CommandError, FontArgs};
+use crate::cache::{FitCache, LoadOutcome, CACHE_FILE};
+use crate::outline::{OutlineOptions, Progress};
 use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Summary};
 use crate::render::ProofOptions;
 use crate::source::Diagnostic;
-use crate::terminal::{err, out};
+use crate::terminal::{err, errln, out, outln};
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
 Writes into OUT:
   <Family>-<Style>.svg   SVG 1.1 font (FontForge, svg2ttf)
   svg/<glyph>.svg        one standalone SVG per glyph
-  sheet.png              glyph sheet with metric guides
+  sheet.png              glyph sheet with metric guides (sheet-1.png, sheet-2.png, ...
+                         when the font has more than 512 glyphs)
   proof.png              text proof at several sizes
   <Family>-<Style>.ttf   TrueType font (quadratic outlines within the tolerance)
   <Family>-<Style>.otf   OpenType CFF font (the cubics)
@@ -43,7 +49,23 @@ pub fn print_diagnostic(d: &Diagnostic) {
 
 /// [`pipeline::load`], printing the warnings, or every diagnostic of a failed load.
 pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandError> {
-    match pipeline::load(font_dir, tolerance) {
+    load_cached(font_dir, tolerance, None)
+}
+
+/// [`load`] with fits from `cache`; shows the fitting progress on stderr when it is a
+/// terminal and fitting takes more than a second.
+pub fn load_cached(
+    font_dir: &Path,
+    tolerance: Option<f64>,
+    cache: Option<&FitCache>,
+) -> Result<Loaded, CommandError> {
+    let progress = Progress::default();
+    let opts = OutlineOptions {
+        cache,
+        progress: Some(&progress),
+    };
+    let loaded = show_progress(&progress, || pipeline::load_with(font_dir, tolerance, opts));
+    match loaded {
         Ok(loaded) => {
             loaded.warnings.iter().for_each(print_diagnostic);
             Ok(loaded)
@@ -55,6 +77,39 @@ pub fn load(font_dir: &Path, tolerance: Option<f64>) -> Result<Loaded, CommandEr
             Err(err.into())
         }
     }
+}
+
+/// Runs `work`, meanwhile printing `fitting glyphs: done/total` on stderr every 200 ms when
+/// stderr is a terminal (after the first second, so quick runs print nothing); the line is
+/// cleared at the end.
+fn show_progress<T>(progress: &Progress, work: impl FnOnce() -> T) -> T {
+    if !std::io::stderr().is_terminal() {
+        return work();
+    }
+    let finished = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        let printer = scope.spawn(|| {
+            let start = Instant::now();
+            let mut shown = false;
+            while !finished.load(Ordering::Relaxed) {
+                std::thread::park_timeout(Duration::from_millis(200));
+                let total = progress.total.load(Ordering::Relaxed);
+                if total > 0 && start.elapsed() > Duration::from_secs(1) {
+                    let done = progress.done.load(Ordering::Relaxed);
+                    eprint!("\rfitting glyphs: {done}/{total}");
+                    shown = true;
+                }
+            }
+            if shown {
+                // Back to the line start and clear it.
+                eprint!("\r\x1b[K");
+            }
+        });
+        let result = work();
+        finished.store(true, Ordering::Relaxed);
+        printer.thread().unpark();
+        result
+    })
 }
 
 /// The summary printed after a build.
@@ -70,6 +125,20 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
         .filter(|(p, _)| p.parent() == Some(Path::new("")))
         .map(|(p, _)| p.display().to_string())
         .collect();
+    // Sheet pages as one item: `sheet-1.png … sheet-41.png (41 pages)`.
+    let pages = top.iter().filter(|n| n.starts_with("sheet-")).count();
+    let top: Vec<String> = if pages > 3 {
+        let mut listed: Vec<String> = top
+            .iter()
+            .filter(|n| !n.starts_with("sheet-"))
+            .cloned()
+            .collect();
+        let item = format!("sheet-1.png … sheet-{pages}.png ({pages} pages)");
+        listed.insert(1.min(listed.len()), item);
+        listed
+    } else {
+        top
+    };
     let in_svg = files.iter().filter(|(p, _)| p.starts_with("svg")).count();
     format!(
         "built {family}: {} glyphs, {} contours, {} segments\n\
@@ -87,7 +156,15 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
 
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
-    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
+    let cache_path = args.font.out.join(CACHE_FILE);
+    let (cache, outcome) = FitCache::load(&cache_path);
+    if let LoadOutcome::Ignored(reason) = &outcome {
+        errln!(
+            "note: ignoring the fit cache {}: {reason}; every contour is refitted",
+            cache_path.display()
+        );
+    }
+    let loaded = load_cached(&args.font.font_dir, args.font.tolerance, Some(&cache))?;
     let opts = BuildOptions {
         proof: ProofOptions {
             text: args.text.map(|t| t.replace("\\n", "\n")),
@@ -103,5 +180,21 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         "{}",
         summary(&Summary::new(&loaded.font), &family, &args.font.out, &files)
     );
+    if cache.hits() > 0 {
+        outln!(
+            "refitted {} contours; {} fits from the cache {}",
+            cache.misses(),
+            cache.hits(),
+            cache_path.display()
+        );
+    }
+    // The outputs are written: a cache that cannot be written only costs the next build time.
+    if let Err(e) = cache.save(&cache_path) {
+        errln!(
+            "warning: cannot write the fit cache {}: {}",
+            cache_path.display(),
+            crate::write::reason(&e)
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -7,7 +7,7 @@ use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::pipeline::write_outputs;
 use crate::render::{
-    encode_png, render_proof, render_sheet, ProofOptions, RenderError, SheetOptions, MAX_AREA,
+    encode_png, render_proof, sheet_png_files, ProofOptions, RenderError, SheetOptions, MAX_AREA,
     MAX_SIDE,
 };
 use crate::terminal::outln;
@@ -21,7 +21,8 @@ pub enum Only {
 
 #[derive(Debug, clap::Args)]
 #[command(after_help = "\
-Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png.
+Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png. A sheet of
+more than one page (512 glyphs at the default cell and columns) is sheet-1.png, sheet-2.png, ...
 
 Sheet guides: grey ascender/descender, blue cap height, green x-height, dark baseline,
 red advance box. Overlay: grey glyph with its exported outline as a dark line, the
@@ -71,13 +72,15 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
             columns: args.columns,
             overlay: args.overlay,
         };
-        let name = if args.overlay {
-            "sheet-overlay.png"
+        let stem = if args.overlay {
+            "sheet-overlay"
         } else {
-            "sheet.png"
+            "sheet"
         };
-        let sheet = render_sheet(font, &opts).map_err(|e| sheet_flags(e, &opts))?;
-        files.push((PathBuf::from(name), encode_png(&sheet)?));
+        let pages = sheet_png_files(font, &opts, stem).map_err(|e| sheet_flags(e, &opts))?;
+        for (name, png) in pages {
+            files.push((PathBuf::from(name), png));
+        }
     }
     if args.only != Some(Only::Sheet) {
         let opts = ProofOptions {

@@ -5,6 +5,7 @@
 //! background), glyphs are anti-aliased and filled with the nonzero rule.
 
 pub mod draw;
+pub mod labels;
 mod overlay;
 pub mod proof;
 pub mod sheet;
@@ -14,7 +15,10 @@ use std::fmt;
 use tiny_skia::Pixmap;
 
 pub use proof::{default_text, render_proof, ProofOptions};
-pub use sheet::{render_sheet, sheet_order, SheetOptions};
+pub use sheet::{
+    page_file_names, render_sheet, render_sheet_page, sheet_order, sheet_pages, sheet_png_files,
+    SheetOptions,
+};
 
 /// Largest image side we allocate, in pixels.
 pub const MAX_SIDE: u32 = 30_000;

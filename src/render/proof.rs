@@ -42,6 +42,10 @@ const CANDIDATES: &[&str] = &[
     "0123456789 (1,234.56)",
     "AVATAR Tower LT Yo Wave Type P.A.W. \"F,\"",
     "Où est la forêt? Ça va, très bien! Äpfel, Öl, Übermut, Ñandú",
+    // The Thousand Character Classic's first lines (simplified, then traditional), for
+    // fonts of the CJK Unified Ideographs block; no punctuation, which such fonts may lack.
+    "天地玄黄宇宙洪荒日月盈昃辰宿列张寒来暑往秋收冬藏",
+    "天地玄黃宇宙洪荒日月盈昃辰宿列張寒來暑往秋收冬藏",
 ];
 
 /// A text for the font: the candidate lines it covers; if it covers none, every character

@@ -5,14 +5,18 @@
 //! compare by size: the em (ascender to descender, stretched to the highest and lowest ink
 //! of the font, e.g. accents on capitals) fills the glyph area, narrowed if the widest
 //! advance would not fit. Ink beyond the cell sideways is clipped. The label (glyph name and
-//! `U+XXXX`) is set in the font's own glyphs (`.notdef` or a box for characters it lacks),
-//! shrunk to fit the cell width.
+//! `U+XXXX`) is set in the font's own glyphs when it has them all, else in the built-in
+//! [`labels`](super::labels) face; it is shrunk to fit the cell width.
+//!
+//! A large font is cut into pages ([`sheet_pages`]) of at most [`PAGE_ROWS`] rows, each
+//! page within the image limits, so thousands of glyphs give `sheet-1.png`, `sheet-2.png`, …
+//! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
 use kurbo::Point;
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
-use super::{overlay, white_pixmap, RenderError, MAX_SIDE};
+use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
 
@@ -78,8 +82,62 @@ pub fn label(name: &str, unicodes: &[char]) -> String {
     }
 }
 
-/// Renders the sheet for every glyph of `font`.
-pub fn render_sheet(font: &OutlinedFont, opts: &SheetOptions) -> Result<Pixmap, RenderError> {
+/// Rows of cells on one sheet page at most (512 glyphs a page at the default 8 columns).
+pub const PAGE_ROWS: u64 = 64;
+
+/// The sheet order cut into pages: each page `columns` cells wide (fewer when the font has
+/// fewer glyphs) and at most [`PAGE_ROWS`] rows tall (fewer when taller or larger than the
+/// image limits). One page when the font fits on it. Columns wider than an image can be are
+/// not narrowed: rendering the page then fails with [`RenderError::Size`], which names them.
+pub fn sheet_pages(
+    font: &OutlinedFont,
+    opts: &SheetOptions,
+) -> Result<Vec<Vec<usize>>, RenderError> {
+    check_options(opts)?;
+    let order = sheet_order(font);
+    if order.is_empty() {
+        return Err(RenderError::NoGlyphs);
+    }
+    let cell = u64::from(opts.cell_px);
+    let max_cells = u64::from(MAX_SIDE) / cell;
+    let columns = u64::from(opts.columns);
+    let rows = PAGE_ROWS
+        .min(max_cells)
+        .min(MAX_AREA / (columns * cell * cell))
+        .max(1);
+    let per_page = (columns * rows) as usize;
+    Ok(order.chunks(per_page).map(<[usize]>::to_vec).collect())
+}
+
+/// File names of `pages` sheet pages: `{stem}.png` for one, else `{stem}-1.png`, ….
+pub fn page_file_names(stem: &str, pages: usize) -> Vec<String> {
+    match pages {
+        1 => vec![format!("{stem}.png")],
+        n => (1..=n).map(|k| format!("{stem}-{k}.png")).collect(),
+    }
+}
+
+/// Every sheet page as PNG bytes, named by [`page_file_names`] from `stem` (`"sheet"`).
+/// Pages are rendered in parallel (rayon); the bytes do not depend on the thread count.
+pub fn sheet_png_files(
+    font: &OutlinedFont,
+    opts: &SheetOptions,
+    stem: &str,
+) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
+    use rayon::prelude::*;
+    let pages = sheet_pages(font, opts)?;
+    let names = page_file_names(stem, pages.len());
+    names
+        .into_par_iter()
+        .zip(pages.par_iter())
+        .map(|(name, order)| {
+            let png = super::encode_png(&render_sheet_page(font, opts, order)?)?;
+            Ok((name, png))
+        })
+        .collect()
+}
+
+fn check_options(opts: &SheetOptions) -> Result<(), RenderError> {
     if !(32..=2048).contains(&opts.cell_px) {
         return Err(RenderError::Option(format!(
             "cell size {} px is out of range 32..=2048",
@@ -89,7 +147,28 @@ pub fn render_sheet(font: &OutlinedFont, opts: &SheetOptions) -> Result<Pixmap, 
     if opts.columns == 0 {
         return Err(RenderError::Option("columns must be at least 1".into()));
     }
+    Ok(())
+}
+
+/// Renders the sheet for every glyph of `font` as one image. A font too large for one
+/// image fails with [`RenderError::Size`]: use [`sheet_pages`] and [`render_sheet_page`].
+pub fn render_sheet(font: &OutlinedFont, opts: &SheetOptions) -> Result<Pixmap, RenderError> {
+    check_options(opts)?;
     let order = sheet_order(font);
+    if order.is_empty() {
+        return Err(RenderError::NoGlyphs);
+    }
+    render_sheet_page(font, opts, &order)
+}
+
+/// Renders the cells of the glyphs `order` (indices into `font.glyphs`, one page of
+/// [`sheet_pages`]) as one image.
+pub fn render_sheet_page(
+    font: &OutlinedFont,
+    opts: &SheetOptions,
+    order: &[usize],
+) -> Result<Pixmap, RenderError> {
+    check_options(opts)?;
     if order.is_empty() {
         return Err(RenderError::NoGlyphs);
     }
@@ -231,7 +310,20 @@ fn draw_label(
     index: usize,
 ) {
     let glyph = &font.glyphs[index];
-    let line = layout.line(&label(&glyph.name, &glyph.unicodes));
+    let text = label(&glyph.name, &glyph.unicodes);
+    if !text.chars().all(|c| layout.covers(c)) {
+        let room = geo.cell - 2.0 * geo.pad;
+        labels::draw_line(
+            img,
+            &text,
+            (geo.pad, geo.pad),
+            geo.label_em,
+            room,
+            rgb(LABEL),
+        );
+        return;
+    }
+    let line = layout.line(&text);
     let em = font.info.ascender - font.info.descender;
     let mut scale = geo.label_em / em;
     let room = geo.cell - 2.0 * geo.pad;

@@ -5,6 +5,7 @@
 mod common;
 
 mod build;
+mod cache;
 mod fit;
 mod fit_count;
 mod flatten;
@@ -18,6 +19,7 @@ mod ocr;
 mod otf;
 mod otf_random;
 mod render;
+mod scale;
 mod serve;
 mod source_docs;
 mod source_emit;
