@@ -308,6 +308,11 @@ fn fit_stretch(
             }
             None => shortest_fit(spline, a, h, d0, t0, t1, goal),
         };
+        let (h, cubic, err) = if h < rest && rest - h < SLIVER * rest {
+            whole_rest(spline, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
+        } else {
+            (h, cubic, err)
+        };
         path.curve_to(cubic.p1, cubic.p2, cubic.p3);
         max_error = max_error.max(err);
         // A span cut short by the stretch's end says nothing about the next one.
@@ -318,6 +323,27 @@ fn fit_stretch(
         d0 = direction(spline, a, t0, t1);
     }
     max_error
+}
+
+/// A span that ends within this fraction of the stretch's end would leave a sliver: a
+/// cubic a millionth of a unit long, which rounds to a zero-length segment in every output.
+const SLIVER: f64 = 0.05;
+
+/// The cubic for the whole rest `[a, t1]` of a stretch, if it passes the measure.
+fn whole_rest(
+    spline: &XSpline,
+    a: f64,
+    t1: f64,
+    d0: Vec2,
+    t0: f64,
+    goal: f64,
+) -> Option<(f64, CubicBez, f64)> {
+    let (cubic, sampled) = fit_span(spline, a, t1, d0, t0, t1, goal);
+    if sampled > goal {
+        return None;
+    }
+    let err = measure(spline, a, t1, &cubic);
+    (err <= goal).then_some((t1 - a, cubic, err))
 }
 
 /// Last resort for degenerate geometry: halve the span until it fits or is tiny.

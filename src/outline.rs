@@ -30,8 +30,8 @@ use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
 use rayon::prelude::*;
 
 use crate::cache::FitCache;
-use crate::fit::{fit_contour, ContourFit};
-use crate::model::{Component, Font, FontInfo, Glyph, KernPair};
+use crate::fit::fit_contour;
+use crate::model::{Component, Font, FontInfo, Glyph, GlyphIndex, KernPair};
 use crate::orient::orient_contours;
 use crate::xspline::{ControlPoint, XSpline};
 
@@ -168,6 +168,7 @@ pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) 
     if let Some(progress) = opts.progress {
         progress.total.store(order.len(), Ordering::Relaxed);
     }
+    let index = font.index();
     OutlinedFont {
         info: font.info.clone(),
         kerning: font.kerning.clone(),
@@ -175,7 +176,7 @@ pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) 
         glyphs: order
             .par_iter()
             .map(|glyph| {
-                let outlined = outline_glyph_with(font, glyph, tolerance, opts.cache);
+                let outlined = outline_glyph_with(font, &index, glyph, tolerance, opts.cache);
                 if let Some(progress) = opts.progress {
                     progress.done.fetch_add(1, Ordering::Relaxed);
                 }
@@ -187,19 +188,20 @@ pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) 
 
 /// Fits one glyph of `font` (its contours and its components') within `tolerance`.
 pub fn outline_glyph(font: &Font, glyph: &Glyph, tolerance: f64) -> OutlinedGlyph {
-    outline_glyph_with(font, glyph, tolerance, None)
+    outline_glyph_with(font, &font.index(), glyph, tolerance, None)
 }
 
-fn outline_glyph_with(
-    font: &Font,
-    glyph: &Glyph,
+fn outline_glyph_with<'a>(
+    font: &'a Font,
+    index: &GlyphIndex<'a>,
+    glyph: &'a Glyph,
     tolerance: f64,
     cache: Option<&FitCache>,
 ) -> OutlinedGlyph {
     let mut contours = Vec::new();
     let mut fitted = Vec::new();
     let mut max_error: f64 = 0.0;
-    for (contour, offset) in font.placed_contours(glyph) {
+    for (contour, offset) in font.placed_contours_in(index, glyph) {
         let placed = PlacedContour {
             spline: contour.spline().clone(),
             offset: Vec2::new(offset.0, offset.1),
@@ -232,27 +234,23 @@ fn outline_glyph_with(
     }
 }
 
-/// Fits a contour where it is placed: the moved control points, so that a component fits
-/// as if it had been drawn there. Moving can break the curve's rules only by rounding
-/// (two points a few ulps apart landing on one value, or a sum overflowing); then the
-/// contour is fitted where it was drawn and the fitted path moved instead.
+/// Fits a contour where it was drawn and moves the fitted path to where it is placed.
+///
+/// Fitting commutes with translation (up to rounding far below the tolerance's margin), so
+/// a component is the same outline as its base glyph, moved: one fit serves every glyph that
+/// places the contour (and the cache and the studio share it), and moving can never make two
+/// points coincide by rounding.
 fn fit_placed(placed: &PlacedContour, tolerance: f64, cache: Option<&FitCache>) -> (BezPath, f64) {
-    let fit = |spline: &XSpline| -> ContourFit {
-        match cache {
-            Some(cache) => cache.fit(spline, tolerance),
-            None => fit_contour(spline, tolerance),
-        }
+    let fit = match cache {
+        Some(cache) => cache.fit(&placed.spline, tolerance),
+        None => fit_contour(&placed.spline, tolerance),
     };
-    match XSpline::new(placed.points().collect()) {
-        Ok(moved) => {
-            let fit = fit(&moved);
-            (fit.path, fit.max_error)
-        }
-        Err(_) => {
-            let fit = fit(&placed.spline);
-            (Affine::translate(placed.offset) * fit.path, fit.max_error)
-        }
-    }
+    let path = if placed.offset == Vec2::ZERO {
+        fit.path
+    } else {
+        Affine::translate(placed.offset) * fit.path
+    };
+    (path, fit.max_error)
 }
 
 /// The missing glyph of a font that has no `.notdef`: a hollow box half an em wide

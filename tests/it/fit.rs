@@ -3,7 +3,7 @@
 use crate::common::curves;
 
 use curves::{hausdorff, seed, spline};
-use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point, Shape};
+use kurbo::{BezPath, ParamCurve, ParamCurveArclen, PathEl, PathSeg, Point, Shape};
 use proptest::prelude::*;
 use xglyph::fit::{fit_contour, stretches, Stretch};
 use xglyph::orient::orient_contours;
@@ -75,6 +75,48 @@ fn corner_with_interpolating_neighbour_has_no_hook() {
     };
     let dir = (first.p1 - first.p0).normalize();
     assert!((dir - xs.segment(0).start_direction()).hypot() < 1e-12);
+}
+
+/// A span search that stops just short of a stretch's end must not leave a sliver: the
+/// tilde (found in the bundled typeface) ended in a cubic 1e-4 units long, written as
+/// `C204 814 204 814 204 814` in every output. Every segment of every bundled glyph is
+/// now longer than a hundredth of a unit.
+#[test]
+fn no_sliver_segments() {
+    let tilde = spline(&[
+        (-154., 659., 0.),
+        (-119., 697., -1.),
+        (-71., 726., -1.),
+        (-15., 712., -1.),
+        (23., 675., -1.),
+        (50., 648., -1.),
+        (59., 643., -1.),
+        (76., 657., -1.),
+        (106., 690., 0.),
+        (154., 645., 0.),
+        (119., 607., -1.),
+        (71., 578., -1.),
+        (15., 592., -1.),
+        (-23., 629., -1.),
+        (-50., 656., -1.),
+        (-59., 661., -1.),
+        (-76., 647., -1.),
+        (-106., 614., 0.),
+    ]);
+    let shortest = |path: &BezPath| {
+        path.segments()
+            .map(|seg| seg.arclen(1e-6))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let fit = fit_contour(&tilde, 0.5);
+    assert!(shortest(&fit.path) > 1.0, "{:?}", fit.path);
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    let (font, _) = xglyph::source::load_font(&dir).unwrap();
+    let outlines = xglyph::outline_font(&font, font.info.tolerance);
+    for glyph in &outlines.glyphs {
+        let len = shortest(&glyph.path);
+        assert!(len > 0.01, "{}: a segment {len} units long", glyph.name);
+    }
 }
 
 #[test]
