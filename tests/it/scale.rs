@@ -348,9 +348,19 @@ fn a_build_from_the_cache_writes_the_same_bytes() {
     build(&cold);
     let cache = cold.join(xglyph::cache::CACHE_FILE);
     let (_, outcome) = xglyph::cache::FitCache::load(&cache);
+    // One entry per contour as drawn: composites place their bases' fits.
+    let (font, _) = xglyph::source::load_font(&glyphs).unwrap();
+    let drawn: std::collections::BTreeSet<String> = font
+        .glyphs
+        .iter()
+        .flat_map(|g| &g.contours)
+        .map(|c| format!("{:?}", c.spline().points()))
+        .collect();
+    assert!(drawn.len() > 130, "{}", drawn.len());
     assert!(
-        matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n > 150),
-        "{outcome:?}"
+        matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n == drawn.len()),
+        "{outcome:?}, {} contours drawn",
+        drawn.len()
     );
     let expected = output_files(&cold);
     // Warm: every contour from the cache.
