@@ -15,6 +15,7 @@ mod ir;
 mod ocr;
 mod otf;
 mod otf_random;
+mod production;
 mod render;
 mod source_docs;
 mod source_emit;
