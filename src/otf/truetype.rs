@@ -77,10 +77,11 @@ pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfErro
 /// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).
 /// Removes, around the closed contour, points that make zero-length segments on the grid
 /// without changing its shape: an on-curve point equal to the on-curve point before it,
-/// and an off-curve point between two on-curve points that equals one of them (the
-/// quadratic is then the straight line between them). Other repeated points are kept:
-/// dropping an off-curve point next to another off-curve one would move the implied
-/// on-curve point between them.
+/// an off-curve point between two on-curve points that equals one of them (the quadratic
+/// is then the straight line between them), and an off-curve point equal to both its
+/// neighbours (every segment it touches, implied on-curve points included, is that one
+/// point). Other repeated points are kept: dropping an off-curve point next to a
+/// different off-curve one would move the implied on-curve point between them.
 fn drop_degenerate(points: &mut Vec<CurvePoint>) {
     let same = |a: &CurvePoint, b: &CurvePoint| (a.x, a.y) == (b.x, b.y);
     let mut i = 0;
@@ -90,7 +91,8 @@ fn drop_degenerate(points: &mut Vec<CurvePoint>) {
         let redundant = if point.on_curve {
             prev.on_curve && same(&prev, &point)
         } else {
-            prev.on_curve && next.on_curve && (same(&prev, &point) || same(&point, &next))
+            (prev.on_curve && next.on_curve && (same(&prev, &point) || same(&point, &next)))
+                || (same(&prev, &point) && same(&point, &next))
         };
         if redundant {
             points.remove(i);
@@ -161,5 +163,19 @@ mod tests {
         ];
         drop_degenerate(&mut kept);
         assert_eq!(kept.len(), 4);
+        // A run of off-curve points collapsed onto its on-curve ends (seen in 'P').
+        let mut run = vec![
+            pt(162, 270, true),
+            pt(162, 270, false),
+            pt(162, 270, false),
+            pt(162, 270, true),
+            pt(162, 0, true),
+            pt(280, 270, false),
+        ];
+        drop_degenerate(&mut run);
+        assert_eq!(
+            run,
+            [pt(162, 270, true), pt(162, 0, true), pt(280, 270, false)]
+        );
     }
 }
