@@ -1,5 +1,10 @@
-//! File names for glyphs: safe on case-insensitive file systems and on Windows.
+//! Glyph names, and file names for glyphs.
 //!
+//! Glyph names follow the OpenType `post` rule ([`glyph_name_problem`]); the loader refuses
+//! any other name, so every output (the `post` table, the CFF charset, the SVG font's
+//! kerning lists, file names) can carry each name unchanged.
+//!
+//! File names are safe on case-insensitive file systems and on Windows.
 //! The rule is the UFO 3 "user name to file name" convention: every uppercase letter is
 //! followed by `_` (so `A` -> `A_` and `a` -> `a`, which never collide when case is folded),
 //! characters illegal in file names are replaced by `_`, a leading `.` becomes `_`, and
@@ -15,6 +20,76 @@ const RESERVED: &[&str] = &[
     "con", "prn", "aux", "clock$", "nul", "com1", "com2", "com3", "com4", "com5", "com6", "com7",
     "com8", "com9", "lpt1", "lpt2", "lpt3", "lpt4", "lpt5", "lpt6", "lpt7", "lpt8", "lpt9",
 ];
+
+/// Longest glyph name: the OpenType `post` specification's limit.
+pub const MAX_GLYPH_NAME: usize = 63;
+
+/// Why a glyph name breaks the OpenType `post` rule: 1 to 63 characters from
+/// `A-Z a-z 0-9 . _`, not starting with a digit or a period (`.notdef` and `.null`
+/// excepted). `None` for a valid name.
+pub fn glyph_name_problem(name: &str) -> Option<String> {
+    if name == ".notdef" || name == ".null" {
+        return None;
+    }
+    let rule = "glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)";
+    let chars = name.chars().count();
+    if let Some(bad) = name
+        .chars()
+        .find(|&c| !(c.is_ascii_alphanumeric() || c == '.' || c == '_'))
+    {
+        Some(format!("contains {}; {rule}", describe(bad)))
+    } else if chars > MAX_GLYPH_NAME {
+        Some(format!("has {chars} characters; {rule}"))
+    } else if name.starts_with(|c: char| c.is_ascii_digit()) {
+        Some(format!(
+            "starts with a digit; {rule}, not starting with a digit"
+        ))
+    } else if name.starts_with('.') {
+        Some("starts with `.`; only `.notdef` and `.null` may (the OpenType `post` rule)".into())
+    } else if name.is_empty() {
+        Some(format!("is empty; {rule}"))
+    } else {
+        None
+    }
+}
+
+/// Whether `name` follows the OpenType `post` rule (see [`glyph_name_problem`]).
+pub fn is_valid_glyph_name(name: &str) -> bool {
+    glyph_name_problem(name).is_none()
+}
+
+/// A glyph name that follows the rule, made from any text (an SVG file's stem): every
+/// other character becomes `_`, a leading digit or `.` gets a `_` in front, and the result
+/// is cut to [`MAX_GLYPH_NAME`] characters. `arrow-left` -> `arrow_left`, `1st` -> `_1st`.
+pub fn glyph_name_from(text: &str) -> String {
+    if is_valid_glyph_name(text) {
+        return text.to_string();
+    }
+    let mut name: String = text
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if name.is_empty() || name.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        name.insert(0, '_');
+    }
+    name.truncate(MAX_GLYPH_NAME);
+    name
+}
+
+/// A character for a message: `` `,` ``, or its code point when it does not print.
+fn describe(c: char) -> String {
+    if c.is_control() || c.is_whitespace() {
+        format!("U+{:04X}", u32::from(c))
+    } else {
+        format!("`{c}`")
+    }
+}
 
 /// The file stem (no extension) for one glyph name.
 ///
@@ -73,6 +148,51 @@ mod tests {
         assert_eq!(file_stem("aux.alt"), "_aux.alt");
         assert_eq!(file_stem("Aux"), "A_ux");
         assert_eq!(file_stem("<&\">"), "_&__");
+    }
+
+    #[test]
+    fn post_rule() {
+        for ok in [
+            ".notdef", ".null", "A", "a.sc", "uni00E9", "f_f_i", "x2", "_part",
+        ] {
+            assert_eq!(glyph_name_problem(ok), None, "{ok}");
+        }
+        let rule =
+            "glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)";
+        let long = "a".repeat(64);
+        for (bad, why) in [
+            ("a,b", format!("contains `,`; {rule}")),
+            ("a b", format!("contains U+0020; {rule}")),
+            ("a\u{1b}", format!("contains U+001B; {rule}")),
+            ("é", format!("contains `é`; {rule}")),
+            (long.as_str(), format!("has 64 characters; {rule}")),
+            (
+                "1a",
+                format!("starts with a digit; {rule}, not starting with a digit"),
+            ),
+            (
+                ".hidden",
+                "starts with `.`; only `.notdef` and `.null` may (the OpenType `post` rule)"
+                    .to_string(),
+            ),
+            ("", format!("is empty; {rule}")),
+        ] {
+            assert_eq!(glyph_name_problem(bad), Some(why), "{bad}");
+            assert!(!is_valid_glyph_name(bad));
+        }
+        assert!(is_valid_glyph_name(&"a".repeat(63)));
+        for (text, name) in [
+            ("arrow-left", "arrow_left"),
+            ("1st", "_1st"),
+            (".hidden", "_.hidden"),
+            ("é b", "__b"),
+            ("", "_"),
+            ("a.sc", "a.sc"),
+        ] {
+            assert_eq!(glyph_name_from(text), name);
+            assert!(is_valid_glyph_name(&glyph_name_from(text)));
+        }
+        assert_eq!(glyph_name_from(&"-".repeat(100)), "_".repeat(63));
     }
 
     #[test]

@@ -58,10 +58,12 @@ impl fmt::Display for PipelineError {
         match self {
             PipelineError::Tolerance(msg) => write!(f, "{msg}"),
             PipelineError::Sources { dir, diagnostics } => {
-                let errors = diagnostics
+                // `count`: an "… and N more" line stands for N problems.
+                let errors: usize = diagnostics
                     .iter()
                     .filter(|d| d.severity == Severity::Error)
-                    .count();
+                    .map(|d| d.count)
+                    .sum();
                 let noun = if errors == 1 { "error" } else { "errors" };
                 write!(
                     f,

@@ -1,7 +1,8 @@
 //! `xglyph check`: load and validate a font directory, printing every diagnostic.
 //!
 //! Exit code 1 when there is at least one error, 0 otherwise (warnings included), in both
-//! output formats.
+//! output formats. A file lists at most [`crate::source::MAX_PER_FILE`] problems, then
+//! "… and N more"; the counts in the summary include the ones left out.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,11 +38,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
         Ok((_, warnings)) => warnings,
         Err(diags) => diags,
     };
-    let errors = diags
-        .iter()
-        .filter(|d| d.severity == Severity::Error)
-        .count();
-    let warnings = diags.len() - errors;
+    let (errors, warnings) = counts(&diags);
     match args.format {
         Format::Text => {
             for d in &diags {
@@ -58,22 +55,27 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
     })
 }
 
-/// One diagnostic as text: its line, then the source line with a caret under the column.
+/// `(errors, warnings)`, counting what the "… and N more" lines stand for.
+pub fn counts(diags: &[Diagnostic]) -> (usize, usize) {
+    diags.iter().fold((0, 0), |(e, w), d| match d.severity {
+        Severity::Error => (e + d.count, w),
+        Severity::Warning => (e, w + d.count),
+    })
+}
+
+/// One diagnostic as text: its line, then the source line (as it was loaded) with a caret
+/// under the column.
 pub fn text(d: &Diagnostic) -> String {
     let mut out = format!("{d}\n");
-    if !d.has_position() {
-        return out;
-    }
-    let source = std::fs::read(&d.path).unwrap_or_default();
-    let source = String::from_utf8_lossy(&source);
-    if let Some(line) = source.lines().nth(d.line - 1) {
+    if let Some(snippet) = &d.snippet {
         // Tabs stay tabs so that the caret lines up with the character above it.
-        let indent: String = line
+        let indent: String = snippet
+            .text
             .chars()
-            .take(d.col - 1)
+            .take(snippet.caret - 1)
             .map(|c| if c == '\t' { '\t' } else { ' ' })
             .collect();
-        out.push_str(&format!("  | {line}\n  | {indent}^\n"));
+        out.push_str(&format!("  | {}\n  | {indent}^\n", snippet.text));
     }
     out
 }

@@ -145,6 +145,7 @@ pub fn read_font(
                 format!("glyph `{name}` has non-finite coordinates"),
             ));
         }
+        check_limits(path, &name, f64::from(advance), &outline)?;
         glyphs.push(SourceGlyph {
             name,
             unicodes,
@@ -157,6 +158,42 @@ pub fn read_font(
         glyphs,
         missing,
     })
+}
+
+/// Refuses a glyph that the sources could not hold ([`crate::source::limits`]): an
+/// advance above 32767 or a point beyond ±16384 font units (legal in a TrueType font, but
+/// only a damaged or extreme one has them).
+fn check_limits(
+    path: &Path,
+    name: &str,
+    advance: f64,
+    outline: &kurbo::BezPath,
+) -> Result<(), ImportError> {
+    use crate::source::limits::{MAX_ADVANCE, MAX_COORDINATE};
+    use kurbo::Shape;
+    if advance > MAX_ADVANCE {
+        return Err(ImportError::at(
+            path,
+            format!(
+                "glyph `{name}` has advance {advance}, more than the {MAX_ADVANCE} font units \
+                 xglyph sources hold; the font may be damaged"
+            ),
+        ));
+    }
+    let b = outline.bounding_box();
+    let far = [b.x0, b.x1, b.y0, b.y1]
+        .into_iter()
+        .find(|v| v.abs() > MAX_COORDINATE);
+    if let (false, Some(v)) = (outline.is_empty(), far) {
+        return Err(ImportError::at(
+            path,
+            format!(
+                "glyph `{name}` reaches {v}, outside the -{MAX_COORDINATE}..{MAX_COORDINATE} \
+                 font units xglyph sources hold; the font may be damaged"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Every character of the font's Unicode cmap subtables, in order.
@@ -176,7 +213,8 @@ fn mapped_chars(face: &Face) -> Vec<char> {
     set.into_iter().collect()
 }
 
-/// The post-table name, or `uniXXXX` from the first code point; unique within the import.
+/// The post-table name when it follows the glyph-name rule ([`crate::names`]), else
+/// `uniXXXX` from the first code point; unique within the import.
 fn glyph_name(
     face: &Face,
     gid: GlyphId,
@@ -185,7 +223,7 @@ fn glyph_name(
 ) -> String {
     let stored = face
         .glyph_name(gid)
-        .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_graphic()))
+        .filter(|n| crate::names::is_valid_glyph_name(n))
         .map(str::to_string);
     let base = stored.unwrap_or_else(|| format!("uni{:04X}", u32::from(first)));
     let mut name = base.clone();

@@ -156,20 +156,24 @@ pub fn import_svgs(
     let mut taken: std::collections::BTreeSet<char> = opts.codepoints.values().copied().collect();
     let mut glyphs = Vec::new();
     let mut names = std::collections::BTreeSet::new();
+    let mut stems = std::collections::BTreeSet::new();
     for (path, data) in files {
-        let name = path
+        let stem = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .filter(|s| !s.is_empty())
             .ok_or_else(|| ImportError::at(path, "cannot take a glyph name from this file name"))?;
+        // The glyph-name rule of the sources: `arrow-left.svg` becomes `arrow_left`.
+        let name = crate::names::glyph_name_from(&stem);
         if !names.insert(name.clone()) {
             return Err(ImportError::at(
                 path,
                 format!("two drawings would both become glyph `{name}`; rename one file"),
             ));
         }
+        stems.insert(stem.clone());
         let drawing = svg::read_svg(path, data, em_box)?;
-        let cp = match opts.codepoints.get(&name) {
+        let cp = match opts.codepoints.get(&stem) {
             Some(&c) => c,
             None => loop {
                 let c = char::from_u32(next_cp).ok_or_else(|| {
@@ -189,7 +193,7 @@ pub fn import_svgs(
         });
     }
     for name in opts.codepoints.keys() {
-        if !names.contains(name) {
+        if !stems.contains(name) {
             return Err(ImportError::plain(format!(
                 "the code point map names `{name}`, but no drawing has that file name"
             )));

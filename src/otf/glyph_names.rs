@@ -2,7 +2,9 @@
 //!
 //! The OpenType `post` specification restricts names to 1–63 characters from
 //! `A–Z a–z 0–9 . _`, not starting with a digit or a period (`.notdef` and `.null` excepted).
-//! A model name that breaks the rule is replaced by `uniXXXX` / `uXXXXX` from its first
+//! The loader refuses names that break the rule ([`crate::names::glyph_name_problem`]), so
+//! for loaded fonts the names pass unchanged. For a model built another way, a name that
+//! breaks the rule is replaced by `uniXXXX` / `uXXXXX` from its first
 //! code point, else `glyphN` (N = glyph id); a replacement that collides with another name
 //! gets a `.altN` suffix.
 
@@ -10,24 +12,8 @@ use std::collections::BTreeSet;
 
 use super::OtGlyph;
 
-/// Longest name the `post` specification allows.
-const MAX_NAME_LEN: usize = 63;
-
-/// Whether `name` may be written as a PostScript glyph name unchanged.
-pub fn is_valid_glyph_name(name: &str) -> bool {
-    if name == ".notdef" || name == ".null" {
-        return true;
-    }
-    let Some(first) = name.chars().next() else {
-        return false;
-    };
-    name.len() <= MAX_NAME_LEN
-        && !first.is_ascii_digit()
-        && first != '.'
-        && name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
-}
+/// The rule lives with the other naming rules; the loader refuses names that break it.
+pub use crate::names::is_valid_glyph_name;
 
 /// The PostScript name of each glyph, unique, in glyph order.
 pub(crate) fn ps_names(glyphs: &[OtGlyph]) -> Vec<String> {

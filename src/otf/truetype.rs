@@ -1,7 +1,7 @@
 //! TrueType glyphs: quadratic contours on the integer grid, then `glyf`/`loca`.
 
 use read_fonts::tables::glyf::CurvePoint;
-use write_fonts::tables::glyf::{Bbox, GlyfLocaBuilder, Glyph, SimpleGlyph};
+use write_fonts::tables::glyf::{Bbox, Contour, GlyfLocaBuilder, Glyph, SimpleGlyph};
 
 use super::quadratic::truetype_contours;
 use super::{grid, OtGlyph, OtfError};
@@ -60,6 +60,19 @@ pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfErro
             }
             if contours.is_empty() {
                 return Ok(TtGlyph { glyph: None });
+            }
+            // The source checks bound control points and contours; fitting can add points.
+            let points: usize = contours.iter().map(|c: &Contour| c.len()).sum();
+            if points > usize::from(u16::MAX) || contours.len() >= i16::MAX as usize {
+                return Err(OtfError::OutOfRange {
+                    what: format!(
+                        "glyph '{}' as TrueType ({} contours): its point count",
+                        g.model_name,
+                        contours.len()
+                    ),
+                    value: points as f64,
+                    range: "0..=65535 points, at most 32766 contours",
+                });
             }
             // Resolved components may overlap each other: set OVERLAP_SIMPLE so rasterizers
             // that need the hint (macOS) fill the overlap without dropouts.

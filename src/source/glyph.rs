@@ -9,8 +9,9 @@ use std::path::Path;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use super::diagnostic::{Ctx, Diagnostic, Severity};
+use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
 use super::geometry::{no_area, NoArea};
+use super::limits;
 use super::value::{
     check_keys, first_offset, get, integer, number, parse, require, string, tables, type_name,
 };
@@ -38,17 +39,11 @@ pub fn load_glyph_text(
     path: &Path,
     text: &str,
 ) -> Result<(Glyph, Vec<Diagnostic>), Vec<Diagnostic>> {
-    let mut out = Vec::new();
-    let glyph = load_glyph(&mut Ctx {
-        path,
-        text,
-        out: &mut out,
-    });
+    let mut out = Diagnostics::default();
+    let glyph = load_glyph(&mut Ctx::new(path, text, &mut out));
     match glyph {
-        Some(loaded) if loaded.complete && !out.iter().any(|d| d.severity == Severity::Error) => {
-            Ok((loaded.glyph, out))
-        }
-        _ => Err(out),
+        Some(loaded) if loaded.complete && !out.has_errors() => Ok((loaded.glyph, out.into_vec())),
+        _ => Err(out.into_vec()),
     }
 }
 
@@ -113,15 +108,7 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     }
 
     let advance = require(ctx, t, "advance", "advance = 500", at, &suggested)
-        .and_then(|v| Some((number(ctx, v, "advance")?, v.span().start)))
-        .and_then(|(a, off)| {
-            if a < 0.0 {
-                ctx.err(off, format!("`advance` must not be negative, found {a}"));
-                None
-            } else {
-                Some(a)
-            }
-        });
+        .and_then(|v| limits::advance(ctx, v));
 
     let mut contours = Vec::new();
     if let Some(v) = get(t, "contour") {
@@ -239,8 +226,8 @@ fn load_contour(
                 continue;
             }
         };
-        let x = number(ctx, &items[0], "x");
-        let y = number(ctx, &items[1], "y");
+        let x = limits::coordinate(ctx, &items[0], "x");
+        let y = limits::coordinate(ctx, &items[1], "y");
         let s = number(ctx, &items[2], "s");
         if let Some(s) = s {
             if !(-1.0..=1.0).contains(&s) {
@@ -307,7 +294,8 @@ fn load_component(
         None => Some((0.0, 0.0)),
         Some(o) => match o.get_ref() {
             DeValue::Array(xy) if xy.len() == 2 => {
-                match (number(ctx, &xy[0], "x"), number(ctx, &xy[1], "y")) {
+                let x = limits::coordinate(ctx, &xy[0], "x");
+                match (x, limits::coordinate(ctx, &xy[1], "y")) {
                     (Some(x), Some(y)) => Some((x, y)),
                     _ => None,
                 }

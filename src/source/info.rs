@@ -2,7 +2,8 @@
 
 use std::path::Path;
 
-use super::diagnostic::{Ctx, Diagnostic, Severity};
+use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
+use super::limits;
 use super::value::{check_keys, first_offset, get, integer, number, parse, require, string};
 use crate::model::FontInfo;
 
@@ -33,6 +34,10 @@ pub const DEFAULT_TOLERANCE: f64 = 0.5;
 /// ([`crate::xspline::XSpline::min_tolerance`]).
 pub const MIN_TOLERANCE: f64 = 1e-4;
 
+/// Largest `tolerance` accepted in `font.toml`, in font units: far coarser than any
+/// outline needs (a whole em in most fonts).
+pub const MAX_TOLERANCE: f64 = 1000.0;
+
 /// Checks a `--tolerance` given on the command line: finite and at least [`MIN_TOLERANCE`].
 pub fn check_tolerance_flag(t: f64) -> Result<f64, String> {
     if t.is_finite() && t >= MIN_TOLERANCE {
@@ -50,15 +55,10 @@ pub fn load_info_text(
     path: &Path,
     text: &str,
 ) -> Result<(FontInfo, Vec<Diagnostic>), Vec<Diagnostic>> {
-    let mut out = Vec::new();
-    let info = load_info(&mut Ctx {
-        path,
-        text,
-        out: &mut out,
-    });
-    match info {
-        Some(info) if !out.iter().any(|d| d.severity == Severity::Error) => Ok((info, out)),
-        _ => Err(out),
+    let mut out = Diagnostics::default();
+    match load_info(&mut Ctx::new(path, text, &mut out)) {
+        Some(info) if !out.has_errors() => Ok((info, out.into_vec())),
+        _ => Err(out.into_vec()),
     }
 }
 
@@ -77,7 +77,7 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
             ctx.err(off, "`family` must not be empty");
             None
         }
-        other => other.map(|(f, _)| f),
+        other => other,
     };
 
     let upm = require(
@@ -99,7 +99,7 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
 
     let metric = |ctx: &mut Ctx<'_>, key: &str, example: &str| {
         require(ctx, t, key, example, at, &suggested)
-            .and_then(|v| Some((number(ctx, v, key)?, v.span().start)))
+            .and_then(|v| Some((limits::metric(ctx, v, key)?, v.span().start)))
     };
     let ascender = metric(ctx, "ascender", "ascender = 800");
     let descender = metric(ctx, "descender", "descender = -200");
@@ -121,6 +121,16 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
     let tolerance = match get(t, "tolerance") {
         None => Some(DEFAULT_TOLERANCE),
         Some(v) => match number(ctx, v, "tolerance") {
+            Some(x) if x > MAX_TOLERANCE => {
+                ctx.err(
+                    v.span().start,
+                    format!(
+                        "`tolerance` must be at most {MAX_TOLERANCE} font units, found {x} \
+                         (at that distance the outlines need not resemble the glyphs)"
+                    ),
+                );
+                None
+            }
             Some(x) if x >= MIN_TOLERANCE => Some(x),
             Some(x) if x > 0.0 => {
                 ctx.err(
@@ -145,7 +155,9 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
 
     let optional = |ctx: &mut Ctx<'_>, key: &str| match get(t, key) {
         None => Some(None),
-        Some(v) => string(ctx, v, key).map(Some),
+        Some(v) => string(ctx, v, key)
+            .filter(|s| limits::text(ctx, s, v.span().start, key))
+            .map(Some),
     };
     let style = optional(ctx, "style");
     let copyright = optional(ctx, "copyright");
@@ -171,8 +183,11 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
         },
     };
 
+    if let (Some((f, off)), Some(style)) = (&family, &style) {
+        ok &= limits::family_style(ctx, f, style.as_deref().unwrap_or("Regular"), *off);
+    }
     let (
-        Some(family),
+        Some((family, _)),
         Some(units_per_em),
         Some((ascender, _)),
         Some((descender, _)),

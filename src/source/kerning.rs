@@ -3,8 +3,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use super::diagnostic::{Ctx, Diagnostic, Severity};
-use super::value::{check_keys, get, number, parse, require, string, tables};
+use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
+use super::limits;
+use super::value::{check_keys, get, parse, require, string, tables};
 use crate::model::KernPair;
 
 /// Loads one `kerning.toml` from memory (`path` only labels diagnostics), with `names`
@@ -14,18 +15,10 @@ pub fn load_kerning_text(
     text: &str,
     names: &BTreeSet<String>,
 ) -> Result<Vec<KernPair>, Vec<Diagnostic>> {
-    let mut out = Vec::new();
-    let pairs = load_kerning(
-        &mut Ctx {
-            path,
-            text,
-            out: &mut out,
-        },
-        names,
-    );
-    match pairs {
-        Some(pairs) if !out.iter().any(|d| d.severity == Severity::Error) => Ok(pairs),
-        _ => Err(out),
+    let mut out = Diagnostics::default();
+    match load_kerning(&mut Ctx::new(path, text, &mut out), names) {
+        Some(pairs) if !out.has_errors() => Ok(pairs),
+        _ => Err(out.into_vec()),
     }
 }
 
@@ -56,14 +49,14 @@ pub(super) fn load_kerning(ctx: &mut Ctx<'_>, names: &BTreeSet<String>) -> Optio
         let left = side(ctx, "left", "left = \"A\"");
         let right = side(ctx, "right", "right = \"V\"");
         let value = require(ctx, pt, "value", "value = -60", header, &suggested)
-            .and_then(|v| number(ctx, v, "value"));
+            .and_then(|v| limits::kern_value(ctx, v));
         let (Some(left), Some(right), Some(value)) = (left, right, value) else {
             ok = false;
             continue;
         };
         let key = (left.clone(), right.clone());
         if let Some(first) = seen.get(&key) {
-            let (line, _) = super::diagnostic::line_col(text, *first);
+            let (line, _) = ctx.line_col(*first);
             ctx.err(
                 header,
                 format!("duplicate kerning pair `{left}` `{right}` (first written at line {line})"),

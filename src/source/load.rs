@@ -1,15 +1,21 @@
 //! A font directory -> the typed model: reads every file, runs the per-file loaders, then
 //! the checks across files. Every problem of every file is collected in one run.
+//!
+//! Only regular files (or links to them) are read: a FIFO, socket, device, folder or
+//! dangling link named `*.toml` is reported and skipped, so loading never blocks.
 
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::fs::FileType;
 use std::path::{Path, PathBuf};
 
-use super::diagnostic::{Ctx, Diagnostic, Severity};
+use super::components::{check_components, ComponentGraph};
+use super::diagnostic::{Ctx, Diagnostic, Diagnostics, Severity};
 use super::emit;
 use super::geometry::{distance_outside, glyph_box, FAR_EMS};
 use super::glyph::{load_glyph, GlyphSpans};
 use super::info::load_info;
 use super::kerning::load_kerning;
+use super::limits;
 use crate::model::{glyph_order, Font, FontInfo, Glyph};
 
 /// What a source file holds.
@@ -53,46 +59,52 @@ pub fn load_font(dir: &Path) -> Result<(Font, Vec<Diagnostic>), Vec<Diagnostic>>
 }
 
 /// A loaded glyph with its file and where its parts were written.
-struct GlyphFile {
+pub(super) struct GlyphFile {
     /// Possibly incomplete when `complete` is false (see [`load_glyph`]).
-    glyph: Glyph,
-    complete: bool,
-    spans: GlyphSpans,
-    path: PathBuf,
-    text: String,
+    pub glyph: Glyph,
+    pub complete: bool,
+    pub spans: GlyphSpans,
+    pub path: PathBuf,
+    pub text: String,
 }
 
 /// [`load_font`], also returning the text of every source file (for `fmt`).
 ///
-/// Diagnostics come in file order (`font.toml`, glyph files by name, `kerning.toml`),
-/// and by position within a file.
+/// Diagnostics come in file order (`font.toml`, glyph files and skipped `*.toml` by name,
+/// `kerning.toml`), and by position within a file; at most
+/// [`super::diagnostic::MAX_PER_FILE`] per file, then one "… and N more" line.
 pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
-    let mut out = Vec::new();
+    let mut out = Diagnostics::default();
     let font_path = dir.join("font.toml");
     let kern_path = dir.join("kerning.toml");
-    let glyph_paths = match glyph_files(dir) {
+    let (glyph_paths, candidates) = match glyph_files(dir, &mut out) {
         Ok(paths) => paths,
         Err(d) => return Err(vec![d]),
     };
 
-    let info_text = if font_path.is_file() {
-        read(&font_path, &mut out)
-    } else {
-        out.push(Diagnostic::whole(
-            &font_path,
-            Severity::Error,
-            "missing `font.toml`: a font directory needs one with at least `family`, \
-             `units_per_em`, `ascender`, `descender`, `x_height` and `cap_height`",
-        ));
-        None
+    let info_text = match regular_file(&font_path) {
+        Ok(true) => read(&font_path, &mut out),
+        Ok(false) => {
+            out.push(Diagnostic::whole(
+                &font_path,
+                Severity::Error,
+                "missing `font.toml`: a font directory needs one with at least `family`, \
+                 `units_per_em`, `ascender`, `descender`, `x_height` and `cap_height`",
+            ));
+            None
+        }
+        Err(what) => {
+            out.push(Diagnostic::whole(
+                &font_path,
+                Severity::Error,
+                format!("`font.toml` is {what}, not a regular file"),
+            ));
+            None
+        }
     };
-    let info = info_text.as_deref().and_then(|text| {
-        load_info(&mut Ctx {
-            path: &font_path,
-            text,
-            out: &mut out,
-        })
-    });
+    let info = info_text
+        .as_deref()
+        .and_then(|text| load_info(&mut Ctx::new(&font_path, text, &mut out)));
 
     if glyph_paths.is_empty() {
         out.push(Diagnostic::whole(
@@ -108,11 +120,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             glyph_failed = true;
             continue;
         };
-        let loaded = load_glyph(&mut Ctx {
-            path,
-            text: &text,
-            out: &mut out,
-        });
+        let loaded = load_glyph(&mut Ctx::new(path, &text, &mut out));
         match loaded {
             Some(loaded) => {
                 glyph_failed |= !loaded.complete;
@@ -129,41 +137,44 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     }
 
     check_unique(&glyphs, &mut out);
-    check_components(&glyphs, &mut out);
+    let graph = ComponentGraph::new(&glyphs);
+    check_components(&glyphs, &graph, &mut out);
+    limits::check_font(dir, &glyphs, &graph, &mut out);
     if let Some(info) = &info {
         check_far_points(&glyphs, info, &mut out);
     }
 
     let names: BTreeSet<String> = glyphs.iter().map(|g| g.glyph.name.clone()).collect();
     let mut kern_text = None;
-    let kerning = if kern_path.exists() {
-        kern_text = read(&kern_path, &mut out);
-        kern_text.as_deref().and_then(|text| {
-            load_kerning(
-                &mut Ctx {
-                    path: &kern_path,
-                    text,
-                    out: &mut out,
-                },
-                &names,
-            )
-        })
-    } else {
-        Some(Vec::new())
+    let kerning = match regular_file(&kern_path) {
+        Ok(true) => {
+            kern_text = read(&kern_path, &mut out);
+            kern_text
+                .as_deref()
+                .and_then(|text| load_kerning(&mut Ctx::new(&kern_path, text, &mut out), &names))
+        }
+        Ok(false) => Some(Vec::new()),
+        Err(what) => {
+            out.push(Diagnostic::whole(
+                &kern_path,
+                Severity::Warning,
+                format!("`kerning.toml` is {what}, not a regular file; skipped (no kerning)"),
+            ));
+            Some(Vec::new())
+        }
     };
 
-    let mut order = vec![dir.to_path_buf(), font_path.clone()];
-    order.extend(glyph_paths.iter().cloned());
-    order.push(kern_path.clone());
-    out.sort_by_key(|d| {
-        let rank = order
-            .iter()
-            .position(|p| *p == d.path)
-            .unwrap_or(order.len());
-        (rank, d.line, d.col)
-    });
+    let mut rank: HashMap<PathBuf, usize> = HashMap::new();
+    let order = [dir.to_path_buf(), font_path.clone()]
+        .into_iter()
+        .chain(candidates)
+        .chain([kern_path.clone()]);
+    for (i, path) in order.enumerate() {
+        rank.entry(path).or_insert(i);
+    }
+    let has_errors = out.has_errors();
+    let out = out.into_sorted(|p| rank.get(p).copied().unwrap_or(rank.len()));
 
-    let has_errors = out.iter().any(|d| d.severity == Severity::Error);
     let (Some(info), Some(info_text), Some(kerning), false, false) =
         (info, info_text, kerning, glyph_failed, has_errors)
     else {
@@ -204,8 +215,13 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
 }
 
 /// The glyph files of `dir`, sorted: every `*.toml` except `font.toml`, `kerning.toml`
-/// and names starting with `.` (editor and temporary files).
-fn glyph_files(dir: &Path) -> Result<Vec<PathBuf>, Diagnostic> {
+/// and names starting with `.` (editor and temporary files). A `*.toml` that is not a
+/// regular file (or a link to one) gets a warning and is skipped. Also returns every
+/// candidate, skipped ones included, sorted (the order of their diagnostics).
+fn glyph_files(
+    dir: &Path,
+    out: &mut Diagnostics,
+) -> Result<(Vec<PathBuf>, Vec<PathBuf>), Diagnostic> {
     let entries = std::fs::read_dir(dir).map_err(|e| {
         let why = if e.kind() == std::io::ErrorKind::NotFound {
             "font directory not found".to_string()
@@ -216,7 +232,7 @@ fn glyph_files(dir: &Path) -> Result<Vec<PathBuf>, Diagnostic> {
     })?;
     let mut paths: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_file() && p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .filter(|p| {
             let name = p.file_name().map(|f| f.to_string_lossy().into_owned());
             let name = name.as_deref().unwrap_or(".");
@@ -224,11 +240,67 @@ fn glyph_files(dir: &Path) -> Result<Vec<PathBuf>, Diagnostic> {
         })
         .collect();
     paths.sort();
-    Ok(paths)
+    let candidates = paths.clone();
+    paths.retain(|p| match regular_file(p) {
+        Ok(found) => found,
+        Err(what) => {
+            out.push(Diagnostic::whole(
+                p,
+                Severity::Warning,
+                format!("{what}, not a regular file; skipped"),
+            ));
+            false
+        }
+    });
+    Ok((paths, candidates))
+}
+
+/// Whether `path` is a regular file (following links): `Ok(true)`; absent: `Ok(false)`;
+/// anything else: `Err` with what it is ("a FIFO", "a dangling symbolic link", ...).
+///
+/// Checked before opening, because opening a FIFO blocks until a writer appears. (A file
+/// swapped for a FIFO between this check and the read could still block; that needs a
+/// writer racing the loader on purpose.)
+fn regular_file(path: &Path) -> Result<bool, String> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(true),
+        Ok(m) => Err(describe(m.file_type()).to_string()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            match std::fs::symlink_metadata(path) {
+                Ok(m) if m.file_type().is_symlink() => {
+                    Err("a dangling symbolic link (its target does not exist)".to_string())
+                }
+                _ => Ok(false),
+            }
+        }
+        Err(e) => Err(format!("unreadable ({e})")),
+    }
+}
+
+/// What a file type is, for messages.
+fn describe(t: FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    if t.is_dir() {
+        "a folder"
+    } else {
+        "not a file"
+    }
 }
 
 /// The text of a source file; a file that is not UTF-8 is reported at its first bad byte.
-fn read(path: &Path, out: &mut Vec<Diagnostic>) -> Option<String> {
+fn read(path: &Path, out: &mut Diagnostics) -> Option<String> {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => {
@@ -246,12 +318,7 @@ fn read(path: &Path, out: &mut Vec<Diagnostic>) -> Option<String> {
             let good = e.utf8_error().valid_up_to();
             let bytes = e.as_bytes();
             let valid = std::str::from_utf8(&bytes[..good]).unwrap_or_default();
-            Ctx {
-                path,
-                text: valid,
-                out,
-            }
-            .err(
+            Ctx::new(path, valid, out).err(
                 good,
                 format!(
                     "file is not valid UTF-8 (byte 0x{:02X}); save it as UTF-8",
@@ -264,15 +331,11 @@ fn read(path: &Path, out: &mut Vec<Diagnostic>) -> Option<String> {
 }
 
 /// Duplicate glyph names and code points (the later file is reported).
-fn check_unique(glyphs: &[GlyphFile], out: &mut Vec<Diagnostic>) {
+fn check_unique(glyphs: &[GlyphFile], out: &mut Diagnostics) {
     let mut names: BTreeMap<&str, &Path> = BTreeMap::new();
     let mut code_points: BTreeMap<char, &str> = BTreeMap::new();
     for g in glyphs {
-        let mut ctx = Ctx {
-            path: &g.path,
-            text: &g.text,
-            out,
-        };
+        let mut ctx = Ctx::new(&g.path, &g.text, out);
         let name = g.glyph.name.as_str();
         if let Some(prev) = names.get(name) {
             ctx.err(
@@ -298,67 +361,15 @@ fn check_unique(glyphs: &[GlyphFile], out: &mut Vec<Diagnostic>) {
     }
 }
 
-/// Components whose base does not exist, and cycles of components.
-fn check_components(glyphs: &[GlyphFile], out: &mut Vec<Diagnostic>) {
-    let graph: BTreeMap<&str, Vec<&str>> = glyphs
-        .iter()
-        .map(|g| {
-            let bases = g.glyph.components.iter().map(|c| c.base.as_str());
-            (g.glyph.name.as_str(), bases.collect())
-        })
-        .collect();
-    for g in glyphs {
-        let mut ctx = Ctx {
-            path: &g.path,
-            text: &g.text,
-            out,
-        };
-        for (c, off) in g.glyph.components.iter().zip(&g.spans.bases) {
-            if !graph.contains_key(c.base.as_str()) {
-                ctx.err(*off, format!("component base `{}` does not exist", c.base));
-            } else if reaches(&graph, &c.base, &g.glyph.name) {
-                ctx.err(
-                    *off,
-                    format!(
-                        "component cycle: `{}` uses `{}`, which leads back to it",
-                        g.glyph.name, c.base
-                    ),
-                );
-            }
-        }
-    }
-}
-
-/// Whether `target` is reachable from `from` along component edges.
-fn reaches(graph: &BTreeMap<&str, Vec<&str>>, from: &str, target: &str) -> bool {
-    let mut stack = vec![from];
-    let mut seen = HashSet::new();
-    while let Some(n) = stack.pop() {
-        if n == target {
-            return true;
-        }
-        if seen.insert(n) {
-            if let Some(next) = graph.get(n) {
-                stack.extend(next.iter().copied());
-            }
-        }
-    }
-    false
-}
-
 /// Warns about control points more than [`FAR_EMS`] ems outside the glyph box (`x` from
 /// 0 to the advance, `y` from descender to ascender): usually a typo such as `5000` for
 /// `500`. One warning per contour, at its first such point. Component offsets are not
 /// checked, nor glyphs with errors of their own.
-fn check_far_points(glyphs: &[GlyphFile], info: &FontInfo, out: &mut Vec<Diagnostic>) {
+fn check_far_points(glyphs: &[GlyphFile], info: &FontInfo, out: &mut Diagnostics) {
     let limit = FAR_EMS * f64::from(info.units_per_em);
     for g in glyphs.iter().filter(|g| g.complete) {
         let bounds = glyph_box(g.glyph.advance, info.descender, info.ascender);
-        let mut ctx = Ctx {
-            path: &g.path,
-            text: &g.text,
-            out,
-        };
+        let mut ctx = Ctx::new(&g.path, &g.text, out);
         for (contour, offs) in g.glyph.contours.iter().zip(&g.spans.points) {
             let points = contour.points();
             let far: Vec<usize> = (0..points.len())

@@ -3,9 +3,12 @@
 //!
 //! The format is documented in `docs/format.md`. One file per job: [`load`] reads a
 //! directory and runs the checks across files; `info`, `glyph` and `kerning` read one file
-//! each; `value` reads typed TOML values; `geometry` holds the point checks; [`format`]
-//! plans the rewrite that `xglyph fmt` performs.
+//! each; `value` reads typed TOML values; `geometry` holds the point checks; [`limits`]
+//! holds the limits of the outputs; `components` resolves the component graph (bases,
+//! cycles, an order for sizes computed once per glyph); [`format`] plans the rewrite that
+//! `xglyph fmt` performs.
 
+mod components;
 #[allow(missing_docs)] // Documented by its owner's change.
 mod diagnostic;
 pub mod emit;
@@ -14,10 +17,11 @@ mod geometry;
 mod glyph;
 mod info;
 mod kerning;
+pub mod limits;
 mod load;
 mod value;
 
-pub use diagnostic::{line_col, Diagnostic, Severity};
+pub use diagnostic::{line_col, Diagnostic, Severity, Snippet, MAX_PER_FILE};
 pub use geometry::{FAR_EMS, FLAT_RELATIVE};
 pub use glyph::load_glyph_text;
 pub use info::{check_tolerance_flag, load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};

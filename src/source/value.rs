@@ -122,9 +122,14 @@ pub(super) fn number(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, what: &str) ->
     let x = match v.get_ref() {
         DeValue::Integer(i) => {
             let digits = i.as_str().replace('_', "");
-            i64::from_str_radix(&digits, i.radix())
-                .ok()
-                .map(|n| n as f64)
+            let Ok(n) = i64::from_str_radix(&digits, i.radix()) else {
+                ctx.err(
+                    v.span().start,
+                    format!("`{what}` = {digits} does not fit a TOML integer (64-bit)"),
+                );
+                return None;
+            };
+            Some(n as f64)
         }
         DeValue::Float(f) => {
             let s = f.as_str().replace('_', "");

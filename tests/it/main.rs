@@ -12,6 +12,7 @@ mod import_font;
 mod import_malformed;
 mod import_svg;
 mod ir;
+mod limits;
 mod ocr;
 mod otf;
 mod otf_random;

@@ -10,14 +10,33 @@ use xglyph::source::{emit, load_font, load_glyph_text, load_info_text};
 /// Every malformed case with its expected diagnostics, paths relative to the case folder
 /// (`.` for the folder itself).
 const CASES: &[(&str, &[&str])] = &[
+    (
+        "advance_range",
+        &[
+            "a.toml:1:11: error: `advance` = 70000 is more than 32767 font units, the largest advance TrueType's `hmtx` table holds",
+            "b.toml:1:11: error: `advance` = 1e19 is more than 32767 font units, the largest advance TrueType's `hmtx` table holds",
+        ],
+    ),
     ("asc_desc", &["font.toml:3:12: error: `ascender` must be greater than `descender`"]),
     ("bad_toml", &["a.toml:1:11: error: invalid TOML: extra `=`, expected nothing"]),
     ("coincident", &["a.toml:4:11: error: point 0 coincides with point 2 before it"]),
+    (
+        "component_doubling",
+        &[
+            "b15.toml:5:8: error: with component `b14` (16384 contours, 49152 points), glyph `b15` has at least 32768 contours; a TrueType glyph holds at most 32766",
+        ],
+    ),
     (
         "contour_type",
         &[
             "a.toml:2:12: error: `contour` entries must be tables, found integer",
             "a.toml:2:15: error: `contour` entries must be tables, found integer",
+        ],
+    ),
+    (
+        "coord_range",
+        &[
+            "a.toml:3:23: error: `x` = 40000 is outside -16384..16384 font units: TrueType stores 16-bit coordinates, and curves may bulge past their points",
         ],
     ),
     (
@@ -49,6 +68,12 @@ const CASES: &[(&str, &[&str])] = &[
     ),
     ("empty_name", &["a.toml:1:8: error: `name` must not be empty; remove it to use the file name"]),
     (
+        "family_length",
+        &[
+            "font.toml:1:10: error: `family` and `style` are 250 bytes together; at most 240, so that the output file name `<family>-<style>.ttf` fits the 255-byte limit of file systems",
+        ],
+    ),
+    (
         "far_point",
         &["a.toml:6:3: warning: point [5000, 0] is 4500 units outside the glyph box x 0..500, y -200..800 (more than 2 em); 1 more point of this contour too"],
     ),
@@ -70,6 +95,15 @@ const CASES: &[(&str, &[&str])] = &[
         ],
     ),
     (
+        "glyph_name_rule",
+        &[
+            "a.toml:1:8: error: glyph name `a,b` contains `,`; glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)",
+            "c.toml:1:8: error: glyph name `1st` starts with a digit; glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule), not starting with a digit",
+            "d.toml:1:8: error: glyph name `xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx` has 64 characters; glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule)",
+            "my-glyph.toml: error: glyph name `my-glyph` (from the file name) contains `-`; glyph names are 1 to 63 characters from A-Z a-z 0-9 . _ (the OpenType `post` rule); add a `name` line that follows it",
+        ],
+    ),
+    (
         "glyph_several",
         &[
             "g.toml:2:12: error: code point U+0041 is already mapped to `a`",
@@ -82,6 +116,12 @@ const CASES: &[(&str, &[&str])] = &[
             "g.toml:14:1: error: unknown key `offst`; did you mean `offset`?",
         ],
     ),
+    (
+        "huge_integer",
+        &[
+            "a.toml:1:11: error: `advance` = 100000000000000000000 does not fit a TOML integer (64-bit)",
+        ],
+    ),
     ("kern_dup", &["kerning.toml:11:1: error: duplicate kerning pair `a` `b` (first written at line 1)"]),
     (
         "kern_missing",
@@ -90,8 +130,23 @@ const CASES: &[(&str, &[&str])] = &[
             "kerning.toml:3:1: error: unknown key `rigth`; did you mean `right`?",
         ],
     ),
+    (
+        "kern_range",
+        &[
+            "kerning.toml:4:9: error: `value` = 40000 is outside -32768..32767 font units (kerning is 16-bit in the `kern` and `GPOS` tables)",
+            "kerning.toml:9:9: error: `value` = -1e308 is outside -32768..32767 font units (kerning is 16-bit in the `kern` and `GPOS` tables)",
+        ],
+    ),
     ("kern_unknown", &["kerning.toml:3:9: error: unknown glyph `V`"]),
     ("kern_value", &["kerning.toml:4:9: error: `value` must be a number, found string"]),
+    (
+        "metric_range",
+        &[
+            "font.toml:3:12: error: `ascender` = 40000 is outside -32768..32767 font units (a 16-bit field of the `hhea` and `OS/2` tables)",
+            "font.toml:6:14: error: `cap_height` = 1e19 is outside -32768..32767 font units (a 16-bit field of the `hhea` and `OS/2` tables)",
+            "font.toml:7:13: error: `tolerance` must be at most 1000 font units, found 5000 (at that distance the outlines need not resemble the glyphs)",
+        ],
+    ),
     (
         "missing_advance",
         &["a.toml:3:1: error: missing required key `advance`; add a line such as `advance = 500`"],
@@ -117,8 +172,23 @@ const CASES: &[(&str, &[&str])] = &[
     ("not_utf8", &["a.toml:1:12: error: file is not valid UTF-8 (byte 0xE9); save it as UTF-8"]),
     ("offset_len", &["a.toml:8:10: error: `offset` must be [x, y], found 3 values"]),
     (
+        "offset_range",
+        &[
+            "b.toml:4:11: error: `x` = 1e308 is outside -16384..16384 font units: TrueType stores 16-bit coordinates, and curves may bulge past their points",
+            "b.toml:4:18: error: `y` = 1e308 is outside -16384..16384 font units: TrueType stores 16-bit coordinates, and curves may bulge past their points",
+            "c.toml:3:8: error: component `a` at offset [16300, 0] reaches x = 16400, outside -16384..16384 font units: TrueType stores 16-bit coordinates",
+        ],
+    ),
+    (
         "out_and_back",
         &["a.toml:4:10: error: contour encloses no area: it runs out and back along itself"],
+    ),
+    (
+        "overflow_triangle",
+        &[
+            "a.toml:3:23: error: `x` = 1e308 is outside -16384..16384 font units: TrueType stores 16-bit coordinates, and curves may bulge past their points",
+            "a.toml:3:41: error: `y` = 1e308 is outside -16384..16384 font units: TrueType stores 16-bit coordinates, and curves may bulge past their points",
+        ],
     ),
     ("point_four", &["a.toml:4:35: error: a point must be [x, y, s], found 4 values"]),
     ("point_string", &["a.toml:4:23: error: `x` must be a number, found string"]),
@@ -128,6 +198,10 @@ const CASES: &[(&str, &[&str])] = &[
     (
         "surrogate",
         &["a.toml:1:11: error: invalid code point 0xD800: surrogates 0xD800..0xDFFF are not characters"],
+    ),
+    (
+        "text_length",
+        &["font.toml:7:13: error: `copyright` is 6000 UTF-16 code units long; at most 5000 fit the font's `name` table"],
     ),
     ("tolerance", &["font.toml:7:13: error: `tolerance` must be positive (font units), found -0.5"]),
     (

@@ -82,8 +82,9 @@ fn file_names_and_source_lines_are_escaped_in_check_fmt_svg_and_render() {
         ]
     );
 
-    // The same file, valid: fmt lists it by its name.
-    fs::write(&bad, "advance   = 100\n").unwrap();
+    // The same file, valid: fmt lists it by its name. (It needs a `name` line: a glyph
+    // name taken from this file name would break the glyph-name rule.)
+    fs::write(&bad, "name = \"bad\"\nadvance   = 100\n").unwrap();
     let result = run(&[Path::new("fmt"), &font]);
     assert_eq!(result.status.code(), Some(0));
     assert_clean(&result);
