@@ -246,3 +246,52 @@ fn build_writes_the_woff2_and_the_specimen_loads_it() {
         "{html}"
     );
 }
+
+#[test]
+fn font_toml_licence_and_vendor_errors_name_the_place() {
+    let base = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
+                x_height = 500\ncap_height = 700\n";
+    let cases = [
+        (
+            "vendor = \"TOOLONG\"\n".to_string(),
+            "font.toml:7:10: error: `vendor` must be 1 to 4 printable ASCII characters (an OS/2 \
+             vendor ID such as \"XGLY\"), found \"TOOLONG\"",
+        ),
+        (
+            "vendor = \"é\"\n".to_string(),
+            "font.toml:7:10: error: `vendor` must be 1 to 4 printable ASCII characters (an OS/2 \
+             vendor ID such as \"XGLY\"), found \"é\"",
+        ),
+        (
+            format!("license = \"{}\"\n", "x".repeat(6000)),
+            "font.toml:7:11: error: `license` is 6000 UTF-16 code units long; at most 5000 fit \
+             the font's `name` table",
+        ),
+        (
+            "license_url = 14\n".to_string(),
+            "font.toml:7:15: error: `license_url` must be a string, found integer",
+        ),
+    ];
+    for (extra, want) in cases {
+        let text = format!("{base}{extra}");
+        let errors =
+            xglyph::source::load_info_text(Path::new("font.toml"), &text).expect_err("an error");
+        let shown: Vec<String> = errors.iter().map(ToString::to_string).collect();
+        assert_eq!(shown, [want], "{extra}");
+    }
+    // Valid ones load and round-trip through `fmt`'s writer.
+    let text = format!("{base}license = \"OFL\"\nlicense_url = \"https://x\"\nvendor = \"AB\"\n");
+    let (info, _) = xglyph::source::load_info_text(Path::new("font.toml"), &text).expect("ok");
+    assert_eq!(
+        (
+            info.license.as_deref(),
+            info.license_url.as_deref(),
+            info.vendor.as_deref()
+        ),
+        (Some("OFL"), Some("https://x"), Some("AB"))
+    );
+    let emitted = xglyph::source::emit::font_toml(&info);
+    assert!(emitted.ends_with("license = \"OFL\"\nlicense_url = \"https://x\"\nvendor = \"AB\"\n"));
+    let (again, _) = xglyph::source::load_info_text(Path::new("font.toml"), &emitted).expect("ok");
+    assert_eq!(again, info);
+}
