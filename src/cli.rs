@@ -28,6 +28,8 @@ pub enum Command {
     Svg(commands::svg::SvgArgs),
     /// Turn existing outlines (TTF/OTF fonts, SVG drawings) into X-spline sources.
     Import(commands::import::ImportArgs),
+    /// Edit the font in the browser, with live preview of every saved change.
+    Serve(commands::serve::ServeArgs),
 }
 
 /// Parses the command line, runs the command, prints errors; the process exit code.
@@ -40,6 +42,7 @@ pub fn run() -> ExitCode {
         Command::Render(args) => commands::render::run(args),
         Command::Svg(args) => commands::svg::run(args),
         Command::Import(args) => commands::import::run(args),
+        Command::Serve(args) => commands::serve::run(args),
     };
     match result {
         Ok(code) => code,

@@ -35,6 +35,7 @@ pub mod otf;
 pub mod outline;
 pub mod pipeline;
 pub mod render;
+pub mod serve;
 pub mod source;
 pub mod svg;
 pub mod terminal;

@@ -5,6 +5,7 @@
 //! can only be built from curves that evaluate. Coordinates are font units, y up.
 
 use std::cmp::Ordering;
+use std::collections::HashMap;
 
 use crate::xspline::{ControlPoint, XSpline, XSplineError};
 
@@ -110,6 +111,18 @@ impl From<XSpline> for Contour {
     }
 }
 
+/// A font's glyphs by name ([`Font::index`]); the first glyph wins if names repeat, as
+/// with [`Font::glyph`].
+#[derive(Clone, Debug, Default)]
+pub struct GlyphIndex<'a>(HashMap<&'a str, &'a Glyph>);
+
+impl<'a> GlyphIndex<'a> {
+    /// The glyph with this name.
+    pub fn get(&self, name: &str) -> Option<&'a Glyph> {
+        self.0.get(name).copied()
+    }
+}
+
 /// Another glyph's outline placed into this one, translated by `offset`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Component {
@@ -144,31 +157,54 @@ impl Font {
     /// Every contour of `glyph` with the offset that places it: its own contours at
     /// `(0, 0)`, then each component's contours (recursively) at the summed offsets.
     ///
-    /// The model is validated, so bases exist and there are no cycles; a missing base
-    /// is skipped and recursion is bounded by the glyph count as a safety net.
+    /// Builds a [`GlyphIndex`] when the glyph has components; to place many glyphs, build
+    /// one index and call [`Font::placed_contours_in`].
     pub fn placed_contours<'a>(&'a self, glyph: &'a Glyph) -> Vec<(&'a Contour, (f64, f64))> {
+        if glyph.components.is_empty() {
+            return glyph.contours.iter().map(|c| (c, (0.0, 0.0))).collect();
+        }
+        self.placed_contours_in(&self.index(), glyph)
+    }
+
+    /// [`Font::placed_contours`] with base glyphs looked up in `index`.
+    ///
+    /// The model is validated, so bases exist and there are no cycles; a missing base
+    /// is skipped and recursion is bounded by the glyph count as a safety net. The work is
+    /// linear in the placed contours (a 4,000-deep chain of components resolves in
+    /// 4,000 look-ups, not 4,000 scans of the glyph list).
+    pub fn placed_contours_in<'a>(
+        &'a self,
+        index: &GlyphIndex<'a>,
+        glyph: &'a Glyph,
+    ) -> Vec<(&'a Contour, (f64, f64))> {
         let mut out = Vec::new();
-        self.collect_contours(glyph, (0.0, 0.0), self.glyphs.len(), &mut out);
+        // An explicit stack rather than recursion: chains can be thousands deep.
+        let mut stack = vec![(glyph, (0.0, 0.0), self.glyphs.len())];
+        while let Some((glyph, offset, depth)) = stack.pop() {
+            out.extend(glyph.contours.iter().map(|c| (c, offset)));
+            if depth == 0 {
+                continue;
+            }
+            // Reversed so that components come out in source order.
+            for comp in glyph.components.iter().rev() {
+                if let Some(base) = index.get(&comp.base) {
+                    let off = (offset.0 + comp.offset.0, offset.1 + comp.offset.1);
+                    stack.push((base, off, depth - 1));
+                }
+            }
+        }
         out
     }
 
-    fn collect_contours<'a>(
-        &'a self,
-        glyph: &'a Glyph,
-        offset: (f64, f64),
-        depth: usize,
-        out: &mut Vec<(&'a Contour, (f64, f64))>,
-    ) {
-        out.extend(glyph.contours.iter().map(|c| (c, offset)));
-        if depth == 0 {
-            return;
-        }
-        for comp in &glyph.components {
-            if let Some(base) = self.glyph(&comp.base) {
-                let off = (offset.0 + comp.offset.0, offset.1 + comp.offset.1);
-                self.collect_contours(base, off, depth - 1, out);
-            }
-        }
+    /// Glyphs by name, for many look-ups (the list itself is searched linearly).
+    pub fn index(&self) -> GlyphIndex<'_> {
+        GlyphIndex(
+            self.glyphs
+                .iter()
+                .rev()
+                .map(|g| (g.name.as_str(), g))
+                .collect(),
+        )
     }
 
     /// Kerning value between two glyph names (0 when there is no pair).

@@ -8,7 +8,8 @@
 //! The rule is the UFO 3 "user name to file name" convention: every uppercase letter is
 //! followed by `_` (so `A` -> `A_` and `a` -> `a`, which never collide when case is folded),
 //! characters illegal in file names are replaced by `_`, a leading `.` becomes `_`, and
-//! reserved device names (`con`, `nul`, `com1`, ...) get a `_` prefix. Glyph sources and the
+//! reserved device names (`con`, `nul`, `com1`, ...) and the font directory's own file
+//! stems (`font`, `kerning`) get a `_` prefix. Glyph sources and the
 //! SVG glyph set use the same stems. Written here rather than taken from a crate: no
 //! maintained Rust crate implements the UFO rule.
 
@@ -20,6 +21,10 @@ const RESERVED: &[&str] = &[
     "con", "prn", "aux", "clock$", "nul", "com1", "com2", "com3", "com4", "com5", "com6", "com7",
     "com8", "com9", "lpt1", "lpt2", "lpt3", "lpt4", "lpt5", "lpt6", "lpt7", "lpt8", "lpt9",
 ];
+
+/// Stems of a font directory's own files (`font.toml`, `kerning.toml`), which a glyph file
+/// must never take (compared case-insensitively).
+const FONT_FILE_STEMS: &[&str] = &["font", "kerning"];
 
 /// Longest glyph name: the OpenType `post` specification's limit.
 pub const MAX_GLYPH_NAME: usize = 63;
@@ -108,7 +113,9 @@ pub fn file_stem(name: &str) -> String {
         }
     }
     let head = stem.split('.').next().unwrap_or("");
-    if RESERVED.contains(&head.to_lowercase().as_str()) {
+    if RESERVED.contains(&head.to_lowercase().as_str())
+        || FONT_FILE_STEMS.contains(&stem.to_lowercase().as_str())
+    {
         stem.insert(0, '_');
     }
     stem
@@ -148,6 +155,11 @@ mod tests {
         assert_eq!(file_stem("aux.alt"), "_aux.alt");
         assert_eq!(file_stem("Aux"), "A_ux");
         assert_eq!(file_stem("<&\">"), "_&__");
+        // A glyph file never takes the name of font.toml or kerning.toml.
+        assert_eq!(file_stem("font"), "_font");
+        assert_eq!(file_stem("kerning"), "_kerning");
+        assert_eq!(file_stem("font.alt"), "font.alt");
+        assert_eq!(file_stems(["font", "_font"]), ["_font", "_font.1"]);
     }
 
     #[test]

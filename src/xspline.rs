@@ -178,6 +178,84 @@ impl XSpline {
     }
 }
 
+impl XSpline {
+    /// The blending basis at global parameter `T` (wrapped into `[0, n)`): which control
+    /// points the curve point blends and with what normalised weights.
+    pub fn basis(&self, big_t: f64) -> Basis {
+        Basis::closed(self.points.len(), |k| self.points[k].s, big_t)
+    }
+}
+
+/// The X-spline as a linear map of its control points at one parameter: the curve point
+/// is `Σ weight[i] · P[index[i]]` and its derivative (with respect to `T`) is
+/// `Σ deriv[i] · P[index[i]]`. For fixed shapes and `T` the curve is linear in the
+/// positions, which is what least-squares fitting of control points needs.
+///
+/// Two topologies share the blending functions of [`Segment`]: a closed contour (indices
+/// taken cyclically) and an open chain `P_0 .. P_{n-1}` with `n - 1` segments, whose
+/// windows repeat the end points at both ends (`P_{-1} = P_0`, `P_n = P_{n-1}`). An open
+/// chain whose end points are sharp (`s = 0`) is exactly that stretch of any closed
+/// contour containing it, since a sharp end's outer weight is zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Basis {
+    /// Indices of the window `Q0..Q3` into the control points.
+    pub index: [usize; 4],
+    /// Normalised weights (they sum to 1).
+    pub weight: [f64; 4],
+    /// Derivatives of the normalised weights with respect to `T`.
+    pub deriv: [f64; 4],
+}
+
+impl Basis {
+    /// The basis of a closed contour of `count ≥ 3` points with shapes `shape(k)`, at `T`
+    /// (any real; wrapped into `[0, count)`).
+    pub fn closed(count: usize, shape: impl Fn(usize) -> f64, big_t: f64) -> Self {
+        let wrapped = big_t.rem_euclid(count as f64);
+        let j = (wrapped.floor() as usize).min(count - 1);
+        let index = [(j + count - 1) % count, j, (j + 1) % count, (j + 2) % count];
+        Basis::of_window(index, shape(j), shape((j + 1) % count), wrapped - j as f64)
+    }
+
+    /// The basis of an open chain of `count ≥ 2` points with shapes `shape(k)`, at `T`
+    /// (clamped to `[0, count - 1]`).
+    pub fn open(count: usize, shape: impl Fn(usize) -> f64, big_t: f64) -> Self {
+        let segments = count - 1;
+        let clamped = big_t.clamp(0.0, segments as f64);
+        let j = (clamped.floor() as usize).min(segments - 1);
+        let index = [j.saturating_sub(1), j, j + 1, (j + 2).min(count - 1)];
+        Basis::of_window(index, shape(j), shape(j + 1), clamped - j as f64)
+    }
+
+    /// Normalised weights and their derivatives (quotient rule) of one window.
+    fn of_window(index: [usize; 4], s1: f64, s2: f64, t: f64) -> Self {
+        let raw = weights_with_deriv(t, s1, s2);
+        let total: f64 = raw.iter().map(|a| a.0).sum();
+        let dtotal: f64 = raw.iter().map(|a| a.1).sum();
+        let mut weight = [0.0; 4];
+        let mut deriv = [0.0; 4];
+        for i in 0..4 {
+            weight[i] = raw[i].0 / total;
+            deriv[i] = (raw[i].1 - weight[i] * dtotal) / total;
+        }
+        Basis {
+            index,
+            weight,
+            deriv,
+        }
+    }
+
+    /// The curve point and derivative for control point positions `points`.
+    pub fn eval_deriv(&self, points: &[Point]) -> (Point, Vec2) {
+        let (mut p, mut d) = (Vec2::ZERO, Vec2::ZERO);
+        for i in 0..4 {
+            let q = points[self.index[i]].to_vec2();
+            p += self.weight[i] * q;
+            d += self.deriv[i] * q;
+        }
+        (p.to_point(), d)
+    }
+}
+
 /// One segment of a closed X-spline: the four-point window and the two shapes it reads.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {

@@ -1,21 +1,26 @@
 //! `xglyph import`: a font file or SVG drawings -> a font directory of X-spline sources.
 //!
-//! Everything is fitted and rendered in memory first; files are written atomically only
-//! when all succeeded, and never into a non-empty directory without `--force`.
+//! Everything is fitted in memory first (glyphs in parallel); the files are then written
+//! into a new temporary folder next to the output, which is renamed into place only when
+//! every file was written, so a failure (a full disk) leaves nothing behind. Never into a
+//! non-empty directory without `--force` (then the files are moved in one by one).
+//! Progress goes to stderr when it is a terminal.
 
 use std::collections::BTreeMap;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use super::CommandError;
-use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions};
+use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions, Progress};
 use crate::source::emit::font_sources;
 use crate::terminal::{out, outln};
-use crate::write::write_all_atomic;
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// One font (.ttf, .otf) or one or more SVG drawings (.svg, one glyph each).
+    /// One font (.ttf, .otf, or a collection .ttc, .otc) or one or more SVG drawings
+    /// (.svg, one glyph each).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
     /// Output font directory (must be empty or absent unless --force).
@@ -24,6 +29,9 @@ pub struct ImportArgs {
     /// Fonts: characters to import, e.g. `A-Z,a-z,0-9` (default: every mapped character).
     #[arg(long)]
     pub glyphs: Option<String>,
+    /// Collections: which font to import, from 0 (default 0).
+    #[arg(long)]
+    pub face: Option<u32>,
     /// Largest distance (font units) from the original after import and build
     /// (default: 1/1000 em).
     #[arg(long)]
@@ -57,11 +65,11 @@ fn kind(path: &Path) -> Result<Kind, ImportError> {
         .map(|e| e.to_string_lossy().to_lowercase())
         .unwrap_or_default();
     match ext.as_str() {
-        "ttf" | "otf" => Ok(Kind::Font),
+        "ttf" | "otf" | "ttc" | "otc" => Ok(Kind::Font),
         "svg" => Ok(Kind::Svg),
         _ => Err(ImportError::at(
             path,
-            "unknown input type; expected a .ttf, .otf or .svg file",
+            "unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file",
         )),
     }
 }
@@ -72,24 +80,75 @@ fn read(path: &Path) -> Result<Vec<u8>, ImportError> {
 
 pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
     check_output_dir(&args.output, args.force)?;
-    let imported = import_inputs(&args)?;
-    let files: Vec<(PathBuf, Vec<u8>)> = font_sources(&imported.font)
-        .into_iter()
-        .map(|(name, text)| (args.output.join(name), text.into_bytes()))
-        .collect();
-    write_all_atomic(&files).map_err(|e| {
-        ImportError::at(
-            &args.output,
-            format!("cannot write the font directory: {e}"),
-        )
-    })?;
+    let progress = std::io::stderr().is_terminal().then(terminal_progress);
+    let imported = import_inputs(&args, Progress(progress))?;
+    let files = font_sources(&imported.font);
+    let written = write_font_dir(&args.output, &files)?;
     out!("{}", imported.report.render());
-    outln!("wrote {} files to {}", files.len(), args.output.display());
+    outln!("wrote {written} files to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }
 
+/// A `\r12/345 glyphs` counter on stderr, redrawn about 200 times in all, ended by a
+/// newline when the last glyph is fitted.
+fn terminal_progress() -> Arc<dyn Fn(usize, usize) + Send + Sync> {
+    Arc::new(|done, total| {
+        let step = (total / 200).max(1);
+        if done % step == 0 || done == total {
+            let end = if done == total { "\n" } else { "" };
+            eprint!("\r{done}/{total} glyphs{end}");
+        }
+    })
+}
+
+/// Writes `files` (name, text) into `dir` through a temporary folder next to it; the
+/// number of files written. On failure nothing new is left behind.
+fn write_font_dir(dir: &Path, files: &[(String, String)]) -> Result<usize, ImportError> {
+    let fail = |what: &str, path: &Path, e: std::io::Error| {
+        ImportError::at(path, format!("cannot {what}: {e}"))
+    };
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent).map_err(|e| fail("create the folder", &parent, e))?;
+    // Created exclusively with an unpredictable name; removed on drop unless renamed away.
+    let stem = dir
+        .file_name()
+        .map_or_else(|| "font".into(), |n| n.to_string_lossy().into_owned());
+    let temp = tempfile::Builder::new()
+        .prefix(&format!(".{stem}.import-"))
+        .tempdir_in(&parent)
+        .map_err(|e| fail("create a folder in", &parent, e))?;
+    for (name, text) in files {
+        let path = temp.path().join(name);
+        std::fs::write(&path, text).map_err(|e| {
+            let path = dir.join(name);
+            fail("write", &path, e)
+        })?;
+    }
+    // An absent or empty output folder is replaced whole (rename(2) replaces an empty
+    // directory); a non-empty one (--force) gets the files moved in one by one.
+    let empty = std::fs::read_dir(dir).map_or(true, |mut d| d.next().is_none());
+    if empty {
+        if dir.is_dir() {
+            std::fs::remove_dir(dir).map_err(|e| fail("replace", dir, e))?;
+        }
+        std::fs::rename(temp.path(), dir).map_err(|e| fail("create", dir, e))?;
+    } else {
+        for (name, _) in files {
+            let to = dir.join(name);
+            std::fs::rename(temp.path().join(name), &to).map_err(|e| fail("write", &to, e))?;
+        }
+    }
+    Ok(files.len())
+}
+
 /// Reads and fits the inputs per the arguments (no file is written).
-pub fn import_inputs(args: &ImportArgs) -> Result<import::Imported, ImportError> {
+pub fn import_inputs(
+    args: &ImportArgs,
+    progress: Progress,
+) -> Result<import::Imported, ImportError> {
     let kinds = args
         .inputs
         .iter()
@@ -100,6 +159,8 @@ pub fn import_inputs(args: &ImportArgs) -> Result<import::Imported, ImportError>
         tolerance: args.tolerance,
         family: args.family.clone(),
         units_per_em: args.units_per_em,
+        face: args.face.unwrap_or(0),
+        progress,
         ..ImportOptions::default()
     };
     if fonts > 0 {
@@ -126,6 +187,11 @@ pub fn import_inputs(args: &ImportArgs) -> Result<import::Imported, ImportError>
     if args.glyphs.is_some() {
         return Err(ImportError::plain(
             "--glyphs applies to fonts; SVG drawings become one glyph per file",
+        ));
+    }
+    if args.face.is_some() {
+        return Err(ImportError::plain(
+            "--face applies to font collections, not to SVG drawings",
         ));
     }
     if let Some(map) = &args.codepoints {

@@ -9,6 +9,7 @@ pub mod check;
 pub mod fmt;
 pub mod import;
 pub mod render;
+pub mod serve;
 pub mod svg;
 
 /// The error type of command glue: library errors already carry file and place.

@@ -2,8 +2,9 @@
 //!
 //! Quadratic (`glyf`) and cubic (`CFF`) outlines both arrive as kurbo paths in font units
 //! (y up). Composite glyphs arrive flattened (ttf-parser resolves them), so they import as
-//! plain contours. Limits: only the first face of a collection; variable fonts at their
-//! default instance; metrics from hhea/OS/2 as ttf-parser reports them.
+//! plain contours. Limits: one font of a collection at a time; variable fonts at their
+//! default instance; metrics from hhea/OS/2 as ttf-parser reports them. A collection
+//! (.ttc, .otc) gives one of its fonts, by index.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -87,13 +88,31 @@ fn one_char(s: &str, list: &str) -> Result<char, ImportError> {
     }
 }
 
-/// Reads `chars` (or every mapped character when `None`) from the font bytes `data`.
+/// Reads `chars` (or every mapped character when `None`) from the font bytes `data`; font
+/// `index` of a collection (0 for a single font).
 pub fn read_font(
     path: &Path,
     data: &[u8],
+    index: u32,
     chars: Option<&[char]>,
 ) -> Result<SourceFont, ImportError> {
-    let face = Face::parse(data, 0).map_err(|e| {
+    if let Some(count) = ttf_parser::fonts_in_collection(data) {
+        if index >= count {
+            return Err(ImportError::at(
+                path,
+                format!(
+                    "--face {index}: this collection has {count} fonts (--face 0 to {})",
+                    count.saturating_sub(1)
+                ),
+            ));
+        }
+    } else if index > 0 {
+        return Err(ImportError::at(
+            path,
+            format!("--face {index}: this is a single font, not a collection"),
+        ));
+    }
+    let face = Face::parse(data, index).map_err(|e| {
         ImportError::at(path, format!("not a readable TrueType/OpenType font ({e})"))
     })?;
     let info = read_info(&face);

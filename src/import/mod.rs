@@ -7,6 +7,9 @@
 //!   -> a model::Font (emitted by source::emit) and a report.rs summary
 //! ```
 //!
+//! Glyphs are fitted in parallel on rayon's pool, each on its own, so the output does not
+//! depend on the thread count; [`Progress`] reports the count as they finish.
+//!
 //! Tolerance budget: with an import tolerance `T` (default 1/1000 em), the fitter aims at
 //! [`FIT_SHARE`]` · T`, coordinates are then rounded to a decimal grid of at most `T / 10`
 //! (a hundred times finer if the coarse grid would break the bound) and the rounded
@@ -24,8 +27,11 @@ pub mod svg;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 
 use kurbo::BezPath;
+use rayon::prelude::*;
 
 use crate::model::{Contour, Font, FontInfo, Glyph};
 use crate::source::check_tolerance_flag;
@@ -82,9 +88,29 @@ pub struct SourceGlyph {
     pub path: BezPath,
 }
 
+/// A callback told `(fitted, total)` glyph counts as fitting proceeds, from any thread,
+/// in no particular order of glyphs (the counts only grow). The library never prints;
+/// the command shows these on a terminal.
+#[derive(Clone, Default)]
+pub struct Progress(pub Option<Arc<dyn Fn(usize, usize) + Send + Sync>>);
+
+impl fmt::Debug for Progress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(if self.0.is_some() {
+            "Progress(..)"
+        } else {
+            "Progress(None)"
+        })
+    }
+}
+
 /// Settings shared by both importers.
 #[derive(Clone, Debug, Default)]
 pub struct ImportOptions {
+    /// Fonts: which font of a collection (.ttc, .otc); 0 for a single font.
+    pub face: u32,
+    /// Told the glyph counts while fitting.
+    pub progress: Progress,
     /// Characters to import from a font (`None`: every mapped character).
     pub glyphs: Option<Vec<char>>,
     /// Import tolerance `T` in font units (`None`: 1/1000 of the em).
@@ -112,7 +138,7 @@ pub fn import_font(
     data: &[u8],
     opts: &ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let source = font::read_font(path, data, opts.glyphs.as_deref())?;
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
     if source.glyphs.is_empty() {
         return Err(ImportError::at(
             path,
@@ -125,7 +151,7 @@ pub fn import_font(
         tolerance: BUILD_SHARE * tolerance,
         ..source.info
     };
-    let mut imported = import_glyphs(&source.glyphs, info, tolerance);
+    let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress);
     for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
@@ -218,22 +244,37 @@ pub fn import_svgs(
         license_url: None,
         vendor: None,
     };
-    Ok(import_glyphs(&glyphs, info, tolerance))
+    Ok(import_glyphs(&glyphs, info, tolerance, &opts.progress))
 }
 
 fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
     check_tolerance_flag(tolerance.unwrap_or(f64::from(upm) / 1000.0)).map_err(ImportError::plain)
 }
 
-/// Fits every glyph; glyphs sorted by name in the model, the report in the same order.
-fn import_glyphs(sources: &[SourceGlyph], info: FontInfo, tolerance: f64) -> Imported {
+/// Fits every glyph, in parallel on rayon's pool (each glyph alone, so the result does
+/// not depend on the thread count); glyphs sorted by name in the model, the report in
+/// the same order.
+fn import_glyphs(
+    sources: &[SourceGlyph],
+    info: FontInfo,
+    tolerance: f64,
+    progress: &Progress,
+) -> Imported {
     let grid = grid_for(tolerance);
-    let mut pairs: Vec<(Glyph, GlyphReport)> = sources
-        .iter()
-        .map(|g| import_glyph(g, tolerance, grid))
+    let done = AtomicUsize::new(0);
+    let mut fitted: Vec<FittedGlyph> = sources
+        .par_iter()
+        .map(|g| {
+            let fitted = import_glyph(g, tolerance, grid);
+            if let Some(tell) = &progress.0 {
+                tell(done.fetch_add(1, Ordering::Relaxed) + 1, sources.len());
+            }
+            fitted
+        })
         .collect();
-    pairs.sort_by(|a, b| crate::model::glyph_order(&a.0.name, &b.0.name));
-    let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) = pairs.into_iter().unzip();
+    fitted.sort_by(|a, b| crate::model::glyph_order(&a.glyph.name, &b.glyph.name));
+    let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) =
+        fitted.into_iter().map(|f| (f.glyph, f.report)).unzip();
     Imported {
         font: Font {
             info,
@@ -264,8 +305,15 @@ fn round_to(x: f64, grid: f64) -> f64 {
     }
 }
 
+/// One imported glyph and its report row.
+#[derive(Clone, Debug)]
+pub struct FittedGlyph {
+    pub glyph: Glyph,
+    pub report: GlyphReport,
+}
+
 /// Fits one glyph: its X-spline contours and its report row.
-pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, GlyphReport) {
+pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGlyph {
     let mut contours = Vec::new();
     let mut row = GlyphReport {
         name: source.name.clone(),
@@ -277,17 +325,17 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, 
     for original in contour::contours(&source.path) {
         row.original_points += contour::stored_points(&original.segs);
         let cut = contour::cut(&original);
-        let Some(fitted) = fit::fit_contour(&cut, FIT_SHARE * tolerance) else {
+        let Some(fitted) = fit::fit_xspline(&cut, FIT_SHARE * tolerance) else {
             row.dropped_contours += 1;
             continue;
         };
         // Round to the grid; if that costs too much, to a grid a hundred times finer.
         let measured = [grid, grid / 100.0].iter().find_map(|&g| {
             let spline = rounded(&fitted.points, g)?;
-            let err = fit::contour_error(&spline, &original.segs);
-            (err <= IMPORT_SHARE * tolerance || g < grid).then_some((spline, err))
+            let error = fit::contour_error(&spline, &original.segs);
+            (error <= IMPORT_SHARE * tolerance || g < grid).then_some(Measured { spline, error })
         });
-        let Some((spline, err)) = measured else {
+        let Some(Measured { spline, error: err }) = measured else {
             row.dropped_contours += 1;
             continue;
         };
@@ -302,7 +350,13 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> (Glyph, 
         contours,
         components: Vec::new(),
     };
-    (glyph, row)
+    FittedGlyph { glyph, report: row }
+}
+
+/// A rounded contour and its independently measured error.
+struct Measured {
+    spline: XSpline,
+    error: f64,
 }
 
 /// Rounds positions to `grid`, drops a point that then coincides with the one before it

@@ -245,8 +245,9 @@ fn subpaths(path: &BezPath) -> Vec<BezPath> {
 }
 
 proptest! {
-    // A fixed seed keeps CI reproducible; XGLYPH_PROPTEST_SEED=<u64> replays another
-    // (scratch hunts with fresh seeds, 1600 cases each, are how `thin_spike_tips_are_not_missed`
+    // A fixed seed keeps CI reproducible; XGLYPH_PROPTEST_SEED=<u64> replays another.
+    // Seed hunts over thousands of fresh contours of this distribution, with the same
+    // checker: `cargo run --release --example hunt` (how `thin_spike_tips_are_not_missed`
     // was found).
     #![proptest_config(ProptestConfig {
         cases: 128,

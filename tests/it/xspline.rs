@@ -1,7 +1,7 @@
 //! The X-spline model against the golden vectors of docs/xspline.md (q = -s/2).
 
 use kurbo::Point;
-use xglyph::xspline::{weights_with_deriv, ControlPoint, XSpline, XSplineError};
+use xglyph::xspline::{weights_with_deriv, Basis, ControlPoint, XSpline, XSplineError};
 
 fn square(s: [f64; 4]) -> XSpline {
     let p = [(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)];
@@ -153,6 +153,80 @@ fn pentagon_golden_vectors() {
             );
         }
     }
+}
+
+#[test]
+fn basis_reproduces_the_pentagon_golden_vectors() {
+    // The pentagon's segment-1 golden points, through the closed and the open basis.
+    let p: Vec<Point> = [
+        (0.0, 0.0),
+        (100.0, 0.0),
+        (130.0, 70.0),
+        (60.0, 120.0),
+        (-20.0, 80.0),
+    ]
+    .iter()
+    .map(|&q| q.into())
+    .collect();
+    let s = [0.7, -0.6, 1.0, -1.0, 0.3];
+    let expected = [
+        (100.0, 0.0),
+        (108.323298929664, 11.243788226300),
+        (113.887434554974, 32.840314136126),
+        (115.558048039757, 51.935739922695),
+    ];
+    let xs = XSpline::new(
+        (0..5)
+            .map(|i| ControlPoint::new(p[i].x, p[i].y, s[i]))
+            .collect(),
+    )
+    .unwrap();
+    for (i, e) in expected.iter().enumerate() {
+        let big_t = 1.0 + i as f64 / 4.0;
+        let b = Basis::closed(5, |k| s[k], big_t);
+        assert_eq!(b, xs.basis(big_t));
+        assert_eq!(b.index, [0, 1, 2, 3]);
+        assert!((b.weight.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        let (q, d) = b.eval_deriv(&p);
+        assert!(
+            (q.x - e.0).abs() < 1e-9 && (q.y - e.1).abs() < 1e-9,
+            "{q:?} != {e:?}"
+        );
+        // The derivative is the exact one of XSpline::eval_deriv.
+        let (q2, d2) = xs.eval_deriv(big_t);
+        assert!(
+            (q - q2).hypot() < 1e-12 && (d - d2).hypot() < 1e-9,
+            "{d:?} != {d2:?}"
+        );
+        // Wrapping: T + 5 is the same point.
+        assert_eq!(Basis::closed(5, |k| s[k], big_t + 5.0).index, b.index);
+    }
+    // An open chain with sharp ends is that stretch of a closed contour: points 0..=2 of
+    // the square with shapes (0, 1, 0), against the closed triangle (0, 1, 0).
+    let chain = [p[0], p[1], p[2]];
+    let shapes = [0.0, 1.0, 0.0];
+    let closed = XSpline::new(
+        (0..3)
+            .map(|i| ControlPoint::new(p[i].x, p[i].y, shapes[i]))
+            .collect(),
+    )
+    .unwrap();
+    for k in 0..=20 {
+        let big_t = k as f64 * 0.1;
+        let b = Basis::open(3, |k| shapes[k], big_t);
+        assert!(b.index.iter().all(|&i| i < 3));
+        let (q, _) = b.eval_deriv(&chain);
+        assert!((q - closed.eval(big_t)).hypot() < 1e-9, "T = {big_t}");
+    }
+    // The open basis clamps: before the start is the start, past the end the end.
+    assert_eq!(
+        Basis::open(3, |k| shapes[k], -1.0).eval_deriv(&chain).0,
+        p[0]
+    );
+    assert_eq!(
+        Basis::open(3, |k| shapes[k], 7.0).eval_deriv(&chain).0,
+        p[2]
+    );
 }
 
 #[test]

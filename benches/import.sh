@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Import speed on CJK outlines: `xglyph import` of the 64 glyphs U+4E00–U+4E3F of
+# WenQuanYi Zen Hei (Debian fonts-wqy-zenhei; skipped with a notice when not installed).
+#
+#   benches/import.sh [REFERENCE_XGLYPH]
+#
+# Builds the release binary, then times it on one thread (CPU seconds per glyph) and on
+# every core (wall time). With a reference binary (e.g. a release build of an older
+# commit), times that one in the same run and prints the ratios; both outputs are also
+# compared for point counts and the largest error from their reports.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+FONT=/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc
+GLYPHS='一-丿'
+COUNT=64
+if [ ! -f "$FONT" ]; then
+    echo "skipped: $FONT is not installed (apt-get install fonts-wqy-zenhei)"
+    exit 0
+fi
+cargo build --release --quiet
+NEW=target/release/xglyph
+REF=${1:-}
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+# The reference may predate .ttc input: give both the collection's first font as .ttf.
+python3 - "$FONT" "$WORK/wqy.ttf" <<'PY' 2>/dev/null || cp "$FONT" "$WORK/wqy.ttc"
+import sys
+from fontTools.ttLib import TTCollection
+TTCollection(sys.argv[1]).fonts[0].save(sys.argv[2])
+PY
+INPUT=$WORK/wqy.ttf
+[ -f "$INPUT" ] || INPUT=$WORK/wqy.ttc
+
+# run BINARY THREADS LABEL: prints "cpu_seconds wall_seconds" and keeps the report.
+run() {
+    local out="$WORK/out-$3"
+    rm -rf "$out"
+    local t0 t1
+    t0=$(date +%s.%N)
+    local cpu
+    cpu=$( { TIMEFORMAT='%U %S'; time RAYON_NUM_THREADS=$2 "$1" import "$INPUT" --glyphs "$GLYPHS" -o "$out" >"$WORK/report-$3" 2>/dev/null; } 2>&1 )
+    t1=$(date +%s.%N)
+    echo "$cpu" | awk -v w="$(echo "$t1 - $t0" | bc)" '{ printf "%.3f %.3f\n", $1 + $2, w }'
+}
+
+read -r new_cpu _ < <(run "$NEW" 1 new1)
+read -r _ new_wall < <(run "$NEW" 0 new)
+echo "new:       $(echo "scale=2; 1000 * $new_cpu / $COUNT" | bc) ms CPU per glyph (1 thread), $new_wall s wall on $(nproc) cores"
+grep '^total' "$WORK/report-new"
+if [ -n "$REF" ]; then
+    read -r ref_cpu ref_wall < <(run "$REF" 1 ref)
+    echo "reference: $(echo "scale=2; 1000 * $ref_cpu / $COUNT" | bc) ms CPU per glyph, $ref_wall s wall"
+    grep '^total' "$WORK/report-ref"
+    echo "ratio (reference / new): $(echo "scale=1; $ref_cpu / $new_cpu" | bc)x CPU per glyph, $(echo "scale=1; $ref_wall / $new_wall" | bc)x wall"
+fi
+if cmp -s <(cd "$WORK/out-new1" && cat ./*.toml) <(cd "$WORK/out-new" && cat ./*.toml); then
+    echo "1 thread and $(nproc) threads: identical files"
+else
+    echo "1 thread and $(nproc) threads: FILES DIFFER"
+    exit 1
+fi

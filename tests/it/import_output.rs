@@ -1,0 +1,309 @@
+//! What `xglyph import` writes: file names that never take `font.toml` or `kerning.toml`,
+//! a temporary folder renamed into place (a full disk leaves nothing), progress only on a
+//! terminal, the same bytes whatever the thread count, and fonts from a collection.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const DEJAVU: &str = "tests/fixtures/import/DejaVuSans.ttf";
+const RING: &str = "tests/fixtures/import/ring.svg";
+/// Debian fonts-wqy-zenhei: a collection of three fonts (Zen Hei, Zen Hei Mono, Sharp).
+const WQY: &str = "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc";
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xglyph-import-out-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn xglyph_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args(args)
+        .envs(env.iter().copied())
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn xglyph(args: &[&str]) -> (i32, String, String) {
+    xglyph_env(args, &[])
+}
+
+/// File names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn glyph_files_never_take_reserved_names() {
+    let dir = temp_dir("reserved");
+    // SVG drawings named font.svg and kerning.svg become glyphs `font` and `kerning`.
+    for name in ["font.svg", "kerning.svg"] {
+        std::fs::copy(RING, dir.join(name)).unwrap();
+    }
+    let out = dir.join("icons");
+    let (code, stdout, err) = xglyph(&[
+        "import",
+        dir.join("font.svg").to_str().unwrap(),
+        dir.join("kerning.svg").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert!(
+        stdout.ends_with(&format!("wrote 3 files to {}\n", out.display())),
+        "{stdout}"
+    );
+    assert_eq!(listing(&out), ["_font.toml", "_kerning.toml", "font.toml"]);
+    let glyph = std::fs::read_to_string(out.join("_font.toml")).unwrap();
+    assert!(
+        glyph.starts_with("name = \"font\"\nunicode = 0xE000\n"),
+        "{glyph}"
+    );
+    assert!(std::fs::read_to_string(out.join("font.toml"))
+        .unwrap()
+        .starts_with("family = \"Imported Icons\"\n"));
+    let (code, stdout, _) = xglyph(&["check", out.to_str().unwrap()]);
+    assert_eq!((code, stdout.as_str()), (0, "0 errors, 0 warnings\n"));
+
+    // A font whose glyphs are named `font` and `kerning`: DejaVu Sans with two of its
+    // stored post-table names overwritten in place (`hbar` -> `font`, `amacron` ->
+    // `kerning`, same lengths).
+    let mut data = std::fs::read(DEJAVU).unwrap();
+    for (from, to) in [
+        (&b"\x04hbar"[..], &b"\x04font"[..]),
+        (b"\x07amacron", b"\x07kerning"),
+    ] {
+        let at = data
+            .windows(from.len())
+            .position(|w| w == from)
+            .expect("the name is stored once in DejaVu's post table");
+        data[at..at + to.len()].copy_from_slice(to);
+    }
+    let renamed = dir.join("renamed.ttf");
+    std::fs::write(&renamed, data).unwrap();
+    let out = dir.join("font");
+    let (code, stdout, err) = xglyph(&[
+        "import",
+        renamed.to_str().unwrap(),
+        "--glyphs",
+        "ħ,ā,a",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert!(
+        stdout.ends_with(&format!("wrote 4 files to {}\n", out.display())),
+        "{stdout}"
+    );
+    assert_eq!(
+        listing(&out),
+        ["_font.toml", "_kerning.toml", "a.toml", "font.toml"]
+    );
+    let glyph = std::fs::read_to_string(out.join("_kerning.toml")).unwrap();
+    assert!(
+        glyph.starts_with("name = \"kerning\"\nunicode = 0x0101\n"),
+        "{glyph}"
+    );
+    let (code, stdout, _) = xglyph(&["check", out.to_str().unwrap()]);
+    assert_eq!((code, stdout.as_str()), (0, "0 errors, 0 warnings\n"));
+}
+
+#[test]
+fn a_full_disk_leaves_nothing_and_the_rerun_works() {
+    let dir = temp_dir("full");
+    let mnt = dir.join("mnt");
+    std::fs::create_dir_all(&mnt).unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=40k", "tmpfs"])
+        .arg(&mnt)
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !mounted {
+        eprintln!("skipped: cannot mount a 40 KB tmpfs here (needs root)");
+        return;
+    }
+    struct Unmount<'a>(&'a Path);
+    impl Drop for Unmount<'_> {
+        fn drop(&mut self) {
+            let _ = Command::new("umount").arg(self.0).status();
+        }
+    }
+    let _guard = Unmount(&mnt);
+    // 63 files of at least one 4 KB page each do not fit in 40 KB.
+    let out = mnt.join("dejavu");
+    let (code, stdout, err) = xglyph(&[
+        "import",
+        DEJAVU,
+        "--glyphs",
+        "A-Z,a-z,0-9",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!((code, stdout.as_str()), (1, ""));
+    assert!(
+        err.starts_with(&format!("error: {}/", out.display()))
+            && err.ends_with(": No space left on device (os error 28)\n"),
+        "{err}"
+    );
+    assert!(err.contains(".toml: cannot write: "), "{err}");
+    assert!(listing(&mnt).is_empty(), "left behind: {:?}", listing(&mnt));
+    // The rerun into the same place with fewer glyphs works.
+    let (code, stdout, err) = xglyph(&[
+        "import",
+        DEJAVU,
+        "--glyphs",
+        "A-C",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert!(
+        stdout.ends_with(&format!("wrote 4 files to {}\n", out.display())),
+        "{stdout}"
+    );
+    assert_eq!(listing(&mnt), ["dejavu"]);
+    assert_eq!(
+        listing(&out),
+        ["A_.toml", "B_.toml", "C_.toml", "font.toml"]
+    );
+}
+
+#[test]
+fn progress_only_on_a_terminal() {
+    let dir = temp_dir("progress");
+    // Not a terminal (a pipe): nothing on stderr.
+    let (code, _, err) = xglyph(&[
+        "import",
+        DEJAVU,
+        "--glyphs",
+        "a-c",
+        "-o",
+        dir.join("piped").to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    // A terminal: util-linux `script` runs the command on a pseudo-terminal.
+    if Command::new("script").arg("--version").output().is_err() {
+        eprintln!("skipped the terminal half: `script` (util-linux) is not installed");
+        return;
+    }
+    let command = format!(
+        "{} import {DEJAVU} --glyphs a-c -o {} >/dev/null",
+        env!("CARGO_BIN_EXE_xglyph"),
+        dir.join("tty").display()
+    );
+    let out = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let seen = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(seen, "\r1/3 glyphs\r2/3 glyphs\r3/3 glyphs\r\n");
+}
+
+#[test]
+fn the_same_bytes_on_one_thread_and_on_four() {
+    let dir = temp_dir("threads");
+    let mut outputs = Vec::new();
+    for threads in ["1", "4"] {
+        let out = dir.join(format!("t{threads}"));
+        let (code, stdout, err) = xglyph_env(
+            &[
+                "import",
+                DEJAVU,
+                "--glyphs",
+                "a-z,&,@",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            &[("RAYON_NUM_THREADS", threads)],
+        );
+        assert_eq!((code, err.as_str()), (0, ""));
+        let files: Vec<(String, Vec<u8>)> = listing(&out)
+            .into_iter()
+            .map(|name| {
+                let bytes = std::fs::read(out.join(&name)).unwrap();
+                (name, bytes)
+            })
+            .collect();
+        assert_eq!(files.len(), 29);
+        outputs.push((stdout.replace(out.to_str().unwrap(), "OUT"), files));
+    }
+    assert!(
+        outputs[0] == outputs[1],
+        "the outputs differ between 1 and 4 threads"
+    );
+}
+
+#[test]
+fn fonts_from_a_collection() {
+    if !Path::new(WQY).exists() {
+        eprintln!("skipped: {WQY} is not installed (Debian fonts-wqy-zenhei)");
+        return;
+    }
+    let dir = temp_dir("ttc");
+    // The family is the font's first Unicode name record: the Chinese one here.
+    for (face, family) in [("0", "文泉驛正黑"), ("1", "文泉驛等寬正黑")] {
+        let out = dir.join(format!("face{face}"));
+        let (code, _, err) = xglyph(&[
+            "import",
+            WQY,
+            "--face",
+            face,
+            "--glyphs",
+            "一",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!((code, err.as_str()), (0, ""));
+        let info = std::fs::read_to_string(out.join("font.toml")).unwrap();
+        assert!(
+            info.starts_with(&format!("family = \"{family}\"\n")),
+            "{info}"
+        );
+        assert_eq!(listing(&out), ["font.toml", "uni4E_00.toml"]);
+    }
+    let (code, _, err) = xglyph(&[
+        "import",
+        WQY,
+        "--face",
+        "3",
+        "-o",
+        dir.join("none").to_str().unwrap(),
+    ]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            format!("error: {WQY}: --face 3: this collection has 3 fonts (--face 0 to 2)\n")
+                .as_str()
+        )
+    );
+    let (code, _, err) = xglyph(&[
+        "import",
+        DEJAVU,
+        "--face",
+        "1",
+        "-o",
+        dir.join("single").to_str().unwrap(),
+    ]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            format!("error: {DEJAVU}: --face 1: this is a single font, not a collection\n")
+                .as_str()
+        )
+    );
+    assert!(!dir.join("none").exists() && !dir.join("single").exists());
+}
