@@ -50,7 +50,19 @@ pub struct FontInfo {
     pub designer: Option<String>,
     /// Version text, e.g. `"1.002"`.
     pub version: Option<String>,
+    /// Licence description, e.g. `"This Font Software is licensed under the SIL Open Font
+    /// License, Version 1.1."` (OpenType name ID 13).
+    pub license: Option<String>,
+    /// Where the licence can be read (name ID 14).
+    pub license_url: Option<String>,
+    /// Four-character vendor ID for OS/2 `achVendID` (1 to 4 printable ASCII characters;
+    /// shorter ones are padded with spaces). `None` writes [`DEFAULT_VENDOR`].
+    pub vendor: Option<String>,
 }
+
+/// The vendor ID written when `font.toml` has no `vendor`: xglyph's own, not the
+/// placeholder `NONE` that font checkers flag.
+pub const DEFAULT_VENDOR: &str = "XGLY";
 
 /// One glyph: its own contours plus components placed from other glyphs.
 #[derive(Clone, Debug, PartialEq)]
@@ -249,6 +261,9 @@ pub(crate) fn test_info() -> FontInfo {
         copyright: None,
         designer: None,
         version: None,
+        license: None,
+        license_url: None,
+        vendor: None,
     }
 }
 

@@ -151,11 +151,15 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
         encode_png(&render_proof(font, &opts.proof)?)?,
     ));
     let stem = output_stem(&font.info);
-    files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(font)?));
+    let ttf = otf::ttf(font)?;
+    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
     files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(font)?));
+    files.push((PathBuf::from(format!("{stem}.woff2")), woff2));
+    let (woff2_name, otf_name) = (format!("{stem}.woff2"), format!("{stem}.otf"));
     files.push((
         PathBuf::from("specimen.html"),
-        otf::specimen_html(font, &format!("{stem}.otf")).into_bytes(),
+        otf::specimen_html_sources(font, &[&woff2_name, &otf_name]).into_bytes(),
     ));
     Ok(files)
 }

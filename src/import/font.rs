@@ -302,6 +302,9 @@ fn read_info(face: &Face) -> FontInfo {
         copyright: name(&[name_id::COPYRIGHT_NOTICE]),
         version: name(&[name_id::VERSION]),
         designer: name(&[name_id::DESIGNER]),
+        license: name(&[name_id::LICENSE]),
+        license_url: name(&[name_id::LICENSE_URL]),
+        vendor: None,
     }
 }
 

@@ -240,6 +240,9 @@ pub fn import_svgs(
         copyright: None,
         designer: None,
         version: None,
+        license: None,
+        license_url: None,
+        vendor: None,
     };
     Ok(import_glyphs(&glyphs, info, tolerance, &opts.progress))
 }

@@ -18,7 +18,8 @@ pub fn hmtx(advances: &[u16], boxes: &[Option<GridBox>]) -> Hmtx {
     Hmtx::new(metrics, Vec::new())
 }
 
-/// `hhea`: the model's ascender and descender, line gap 0, and the extremes of `hmtx`.
+/// `hhea`: the line box of [`Metrics`] (the same as OS/2 typo), line gap 0, and the
+/// extremes of `hmtx`.
 pub fn hhea(metrics: &Metrics, advances: &[u16], boxes: &[Option<GridBox>]) -> Hhea {
     let inked = || {
         advances
@@ -33,8 +34,8 @@ pub fn hhea(metrics: &Metrics, advances: &[u16], boxes: &[Option<GridBox>]) -> H
         .unwrap_or(0);
     let x_max_extent = inked().map(|(_, b)| b.2).max().unwrap_or(0);
     Hhea::new(
-        FWord::new(metrics.ascender),
-        FWord::new(metrics.descender),
+        FWord::new(metrics.line_ascender),
+        FWord::new(metrics.line_descender),
         FWord::new(0),
         UfWord::new(advances.iter().copied().max().unwrap_or(0)),
         FWord::new(min_lsb),

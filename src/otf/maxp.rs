@@ -1,8 +1,10 @@
-//! The `maxp` table: the glyph count, and for TrueType the outline maxima (no hinting, no
-//! composite glyphs, so every instruction and composite field is 0).
+//! The `maxp` table: the glyph count, and for TrueType the outline maxima (no glyph
+//! programs, no composite glyphs, so those fields are 0; the stack holds what the `prep`
+//! program of [`super::prep`] pushes).
 
 use write_fonts::tables::maxp::Maxp;
 
+use super::prep;
 use super::truetype::TtGlyph;
 
 /// `maxp` version 0.5, for CFF outlines.
@@ -26,7 +28,7 @@ pub fn truetype_maxp(glyphs: &[TtGlyph]) -> Maxp {
         max_storage: Some(0),
         max_function_defs: Some(0),
         max_instruction_defs: Some(0),
-        max_stack_elements: Some(0),
+        max_stack_elements: Some(prep::STACK_DEPTH),
         max_size_of_instructions: Some(0),
         max_component_elements: Some(0),
         max_component_depth: Some(0),
@@ -58,6 +60,7 @@ mod tests {
         assert_eq!(maxp.max_contours, Some(2));
         assert_eq!(maxp.max_zones, Some(2));
         assert_eq!(maxp.max_component_depth, Some(0));
+        assert_eq!(maxp.max_stack_elements, Some(1));
         let cff = cff_maxp(2);
         assert_eq!(cff.num_glyphs, 2);
         assert_eq!(cff.max_points, None);

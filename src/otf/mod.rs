@@ -14,6 +14,8 @@
 //! convex combination of its control points, so grid rounding moves any outline point by at
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
 //!
+//! The WOFF2 (`woff2.rs`) is the TTF compressed for the web.
+//!
 //! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
 //! `kern` table (`kern.rs`). Components are already resolved into the outlines; no
 //! composite glyphs.
@@ -21,6 +23,7 @@
 mod cff;
 mod charstring;
 mod cmap;
+mod gasp;
 mod glyph_names;
 mod grid;
 mod head;
@@ -30,10 +33,12 @@ mod maxp;
 mod naming;
 mod os2;
 mod post;
+mod prep;
 mod quadratic;
 mod specimen;
 mod tables;
 mod truetype;
+mod woff2;
 
 use std::collections::BTreeMap;
 
@@ -41,7 +46,7 @@ use kurbo::BezPath;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
-pub use specimen::{specimen_html, specimen_text};
+pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
 
 /// Something the model holds that an OpenType font cannot.
 #[derive(Debug)]
@@ -163,6 +168,17 @@ pub fn otf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
     let set = GlyphSet::new(font)?;
     let glyphs = grid::round_glyph_paths(&set.glyphs)?;
     tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
+}
+
+/// The font as WOFF2 for the web: the TTF of [`ttf`], Brotli-compressed (tables
+/// untransformed; see `woff2.rs`).
+pub fn woff2(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
+    woff2_from_ttf(&ttf(font)?)
+}
+
+/// [`woff2`] from the TTF bytes already built by [`ttf`] (saves building it twice).
+pub fn woff2_from_ttf(ttf: &[u8]) -> Result<Vec<u8>, OtfError> {
+    woff2::woff2(ttf)
 }
 
 /// One glyph as both fonts hold it (for external checks and reports).

@@ -7,9 +7,9 @@
 //! Regular or Italic (ID 2). Weight class is read from the style's words (Thin … Black).
 
 use write_fonts::tables::name::{Name, NameRecord};
-use write_fonts::types::NameId;
+use write_fonts::types::{NameId, Tag};
 
-use crate::model::FontInfo;
+use crate::model::{FontInfo, DEFAULT_VENDOR};
 
 /// Names and style facts derived from `font.toml`.
 pub struct Naming {
@@ -23,6 +23,10 @@ pub struct Naming {
     pub italic: bool,
     /// Style is one of Regular, Italic, Bold, Bold Italic.
     pub ribbi: bool,
+    /// OS/2 vendor ID, padded with spaces to four characters.
+    pub vendor: Tag,
+    /// The vendor ID as written in name ID 3 (without the padding).
+    pub vendor_text: String,
 }
 
 impl Naming {
@@ -37,7 +41,16 @@ impl Naming {
             style.as_str(),
             "Regular" | "Italic" | "Bold" | "Bold Italic"
         );
+        let vendor_text = info
+            .vendor
+            .as_deref()
+            .map(str::trim_end)
+            .filter(|v| !v.is_empty())
+            .unwrap_or(DEFAULT_VENDOR)
+            .to_owned();
         Naming {
+            vendor: vendor_tag(&vendor_text),
+            vendor_text,
             ps_name: ps_font_name(&family, &style),
             full_name: format!("{family} {style}"),
             family,
@@ -54,6 +67,17 @@ impl Naming {
     pub fn bold(&self) -> bool {
         self.ribbi && self.weight == 700
     }
+}
+
+/// A vendor ID as a tag: at most four bytes, padded with spaces. The loader accepts only
+/// 1 to 4 printable ASCII characters; anything else (a model built in code) is cut or
+/// replaced with `?` so the tag stays valid.
+fn vendor_tag(text: &str) -> Tag {
+    let mut bytes = [b' '; 4];
+    for (slot, b) in bytes.iter_mut().zip(text.bytes()) {
+        *slot = if (0x20..=0x7E).contains(&b) { b } else { b'?' };
+    }
+    Tag::new(&bytes)
 }
 
 /// `(font revision, name ID 5 text)`: `1.2` gives `(1.2, "Version 1.200")`; text that is
@@ -123,12 +147,21 @@ pub fn name_table(info: &FontInfo, naming: &Naming) -> Name {
         .next()
         .unwrap_or("1.000")
         .to_owned();
-    records.push((3, format!("{short_version};NONE;{}", naming.ps_name)));
+    records.push((
+        3,
+        format!("{short_version};{};{}", naming.vendor_text, naming.ps_name),
+    ));
     records.push((4, naming.full_name.clone()));
     records.push((5, naming.version_text.clone()));
     records.push((6, naming.ps_name.clone()));
     if let Some(d) = &info.designer {
         records.push((9, d.clone()));
+    }
+    if let Some(license) = &info.license {
+        records.push((13, license.clone()));
+    }
+    if let Some(url) = &info.license_url {
+        records.push((14, url.clone()));
     }
     if !naming.ribbi {
         records.push((16, naming.family.clone()));
@@ -158,6 +191,26 @@ mod tests {
             parse_version(Some("beta 3")),
             (1.0, "Version 1.000; beta 3".into())
         );
+    }
+
+    #[test]
+    fn vendor_ids_and_licence_names() {
+        let mut info = crate::model::test_info();
+        assert_eq!(Naming::new(&info).vendor, Tag::new(b"XGLY"));
+        info.vendor = Some("AB".into());
+        info.license = Some("OFL 1.1".into());
+        info.license_url = Some("https://openfontlicense.org".into());
+        let naming = Naming::new(&info);
+        assert_eq!(naming.vendor, Tag::new(b"AB  "));
+        let records: Vec<(u16, String)> = name_table(&info, &naming)
+            .name_record
+            .iter()
+            .map(|r| (r.name_id.to_u16(), r.string.to_string()))
+            .collect();
+        assert!(records.contains(&(3, "1.000;AB;Test-Regular".into())));
+        assert!(records.contains(&(13, "OFL 1.1".into())));
+        assert!(records.contains(&(14, "https://openfontlicense.org".into())));
+        assert_eq!(vendor_tag("é"), Tag::new(b"??  "));
     }
 
     #[test]

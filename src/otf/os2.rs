@@ -1,14 +1,15 @@
 //! The OS/2 table: metrics, weight and style bits, Unicode ranges.
 //!
-//! Typo ascender/descender are the model's, with USE_TYPO_METRICS and line gap 0; win
-//! ascent/descent cover the font's box as well, so Windows clips nothing. Sub/superscript
-//! and strikeout values are the usual fractions of the em.
+//! Typo and win ascender/descender are both the line box of [`Metrics`] (the model's,
+//! widened to the font's ink box), with USE_TYPO_METRICS and line gap 0: browsers, macOS
+//! and Windows then space lines alike and clip nothing. The vendor ID is `font.toml`'s
+//! `vendor`, default [`crate::model::DEFAULT_VENDOR`]. Sub/superscript and strikeout values
+//! are the usual fractions of the em.
 //!
 //! Limits: Unicode ranges cover the blocks in [`UNICODE_RANGES`] plus the
 //! supplementary-plane bit; the code page range marks Latin 1 only.
 
 use write_fonts::tables::os2::{Os2, SelectionFlags};
-use write_fonts::types::Tag;
 
 use super::naming::Naming;
 use super::tables::Metrics;
@@ -35,11 +36,11 @@ const UNICODE_RANGES: &[(u32, u32, u32)] = &[
 pub fn os2_table(naming: &Naming, metrics: &Metrics, set: &GlyphSet, has_kerning: bool) -> Os2 {
     let Metrics {
         upm,
-        ascender,
-        descender,
+        line_ascender,
+        line_descender,
         x_height,
         cap_height,
-        bbox,
+        ..
     } = *metrics;
     let em = f64::from(upm);
     let advances: Vec<u16> = set.glyphs.iter().map(|g| g.advance).collect();
@@ -99,7 +100,7 @@ pub fn os2_table(naming: &Naming, metrics: &Metrics, set: &GlyphSet, has_kerning
         ul_unicode_range_2: ranges[1],
         ul_unicode_range_3: ranges[2],
         ul_unicode_range_4: ranges[3],
-        ach_vend_id: Tag::new(b"NONE"),
+        ach_vend_id: naming.vendor,
         fs_selection: selection,
         us_first_char_index: code_points
             .iter()
@@ -109,11 +110,11 @@ pub fn os2_table(naming: &Naming, metrics: &Metrics, set: &GlyphSet, has_kerning
             .iter()
             .max()
             .map_or(0, |&c| c.min(0xFFFF) as u16),
-        s_typo_ascender: ascender,
-        s_typo_descender: descender,
+        s_typo_ascender: line_ascender,
+        s_typo_descender: line_descender,
         s_typo_line_gap: 0,
-        us_win_ascent: ascender.max(bbox.3).max(0) as u16,
-        us_win_descent: (-i32::from(descender.min(bbox.1))).max(0) as u16,
+        us_win_ascent: line_ascender.max(0) as u16,
+        us_win_descent: (-i32::from(line_descender)).max(0) as u16,
         ul_code_page_range_1: Some(u32::from(
             code_points.iter().any(|&c| (0x20..=0xFF).contains(&c)),
         )),

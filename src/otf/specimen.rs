@@ -112,6 +112,29 @@ fn text_width(font: &OutlinedFont, text: &str) -> f64 {
 
 /// The specimen page for the font file `font_file_name` (next to the page).
 pub fn specimen_html(font: &OutlinedFont, font_file_name: &str) -> String {
+    specimen_html_sources(font, &[font_file_name])
+}
+
+/// The CSS `src` list: each file (next to the page) with its `format()` hint from the
+/// extension; the browser uses the first it can read, e.g. the WOFF2 before the OTF.
+fn font_sources(files: &[&str]) -> String {
+    let source = |file: &&str| {
+        let ext = file.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+        let format = match ext.as_deref() {
+            Some("woff2") => " format(\"woff2\")",
+            Some("woff") => " format(\"woff\")",
+            Some("otf") => " format(\"opentype\")",
+            Some("ttf") => " format(\"truetype\")",
+            _ => "",
+        };
+        format!("url(\"{}\"){format}", escape_url(file))
+    };
+    files.iter().map(source).collect::<Vec<_>>().join(", ")
+}
+
+/// The specimen page loading the first usable of `font_files` (next to the page), e.g.
+/// `["Family-Style.woff2", "Family-Style.otf"]`.
+pub fn specimen_html_sources(font: &OutlinedFont, font_files: &[&str]) -> String {
     let info = &font.info;
     let title = escape_html(&format!("{} {}", info.family, info.style));
     let upm = info.units_per_em;
@@ -128,7 +151,7 @@ pub fn specimen_html(font: &OutlinedFont, font_file_name: &str) -> String {
 <meta charset="utf-8">
 <title>{title} — specimen</title>
 <style>
-@font-face {{ font-family: "{CSS_FAMILY}"; src: url("{url}"); }}
+@font-face {{ font-family: "{CSS_FAMILY}"; src: {sources}; }}
 body {{ font-family: sans-serif; margin: 2em; color: #111; }}
 .font {{ font-family: "{CSS_FAMILY}", monospace; font-kerning: normal; }}
 .charset {{ display: flex; flex-wrap: wrap; gap: 8px; }}
@@ -148,7 +171,7 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
 <h2>Character set</h2>
 <div class="charset">
 "#,
-        url = escape_url(font_file_name),
+        sources = font_sources(font_files),
         asc = info.ascender,
         desc = info.descender,
         xh = info.x_height,
@@ -227,5 +250,9 @@ mod tests {
         );
         assert_eq!(escape_url("Mini Test\").ttf"), "Mini%20Test%22%29.ttf");
         assert_eq!(escape_url("é.otf"), "%C3%A9.otf");
+        assert_eq!(
+            font_sources(&["A B.woff2", "A B.otf", "x"]),
+            r#"url("A%20B.woff2") format("woff2"), url("A%20B.otf") format("opentype"), url("x")"#
+        );
     }
 }

@@ -2,10 +2,13 @@
 //! with write-fonts' `FontBuilder`. One builder per table, each in its own module:
 //! [`super::head`], [`super::hmtx`] (hhea, hmtx), [`super::maxp`], [`super::cmap`],
 //! [`super::post`], [`super::os2`], [`super::naming`] (name), [`super::kern`] (GPOS, kern),
-//! [`super::truetype`] (glyf, loca) and [`super::cff`].
+//! [`super::truetype`] (glyf, loca), [`super::prep`] and [`super::gasp`] (TTF only) and
+//! [`super::cff`].
 //!
-//! Vertical metrics are the model's ascender and descender everywhere (hhea, OS/2 typo with
-//! USE_TYPO_METRICS, line gap 0; see [`super::os2`]); names come from [`super::naming`].
+//! Vertical metrics are one line box everywhere (hhea, OS/2 typo with USE_TYPO_METRICS and
+//! win, line gap 0; see [`super::os2`]): the model's ascender and descender, widened to the
+//! font's ink box when glyphs reach beyond them (accents on capitals), as FontBakery and the
+//! Google Fonts vertical-metrics guide expect. Names come from [`super::naming`].
 //! Glyph boxes: the control box of the points for `glyf` (what TrueType stores), the tight
 //! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
@@ -16,6 +19,7 @@ use write_fonts::{BuilderError, FontBuilder};
 use super::cff::{cff_table, CffInfo};
 use super::charstring::charstring;
 use super::cmap::cmap;
+use super::gasp::gasp;
 use super::grid::to_i16;
 use super::head::head;
 use super::hmtx::{hhea, hmtx};
@@ -24,6 +28,7 @@ use super::maxp::{cff_maxp, truetype_maxp};
 use super::naming::{name_table, Naming};
 use super::os2::os2_table;
 use super::post::post;
+use super::prep::SMART_DROPOUT_CONTROL;
 use super::truetype::{glyf_loca, TtGlyph};
 use super::{GlyphSet, OtfError};
 use crate::model::FontInfo;
@@ -41,8 +46,15 @@ pub enum Outlines {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Metrics {
     pub upm: u16,
+    /// `font.toml`'s ascender, on the grid.
     pub ascender: i16,
+    /// `font.toml`'s descender, on the grid.
     pub descender: i16,
+    /// The line box every table states (hhea, OS/2 typo and win): the ascender raised to
+    /// the top of the highest ink, so accented capitals are never clipped.
+    pub line_ascender: i16,
+    /// The descender lowered to the bottom of the lowest ink.
+    pub line_descender: i16,
     pub x_height: i16,
     pub cap_height: i16,
     pub bbox: GridBox,
@@ -60,10 +72,14 @@ impl Metrics {
             .copied()
             .reduce(|a, b| (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3)))
             .unwrap_or((0, 0, 0, 0));
+        let ascender = to_i16(info.ascender, || "ascender".into())?;
+        let descender = to_i16(info.descender, || "descender".into())?;
         Ok(Metrics {
             upm: info.units_per_em,
-            ascender: to_i16(info.ascender, || "ascender".into())?,
-            descender: to_i16(info.descender, || "descender".into())?,
+            ascender,
+            descender,
+            line_ascender: ascender.max(bbox.3),
+            line_descender: descender.min(bbox.1),
             x_height: to_i16(info.x_height, || "x_height".into())?,
             cap_height: to_i16(info.cap_height, || "cap_height".into())?,
             bbox,
@@ -151,6 +167,10 @@ pub fn build_font(
             builder
                 .add_table(&truetype_maxp(glyphs))
                 .map_err(table_err)?;
+            // Unhinted, but with smart dropout control and a gasp table, as fontmake and
+            // gftools ship unhinted TrueType.
+            builder.add_raw(Tag::new(b"prep"), SMART_DROPOUT_CONTROL.to_vec());
+            builder.add_table(&gasp()).map_err(table_err)?;
             format
         }
         Outlines::Cff(paths) => {
@@ -232,11 +252,17 @@ pub(crate) mod tests {
                 upm: 1000,
                 ascender: 800,
                 descender: -200,
+                line_ascender: 800,
+                line_descender: -200,
                 x_height: 500,
                 cap_height: 700,
                 bbox: (-20, -5, 400, 720),
             }
         );
+        // An accent above the ascender and a tail below the descender widen the line box.
+        let tall = Metrics::new(&font_info, &[Some((0, -230, 500, 935))]).expect("in range");
+        assert_eq!((tall.ascender, tall.descender), (800, -200));
+        assert_eq!((tall.line_ascender, tall.line_descender), (935, -230));
         assert_eq!(
             Metrics::new(&font_info, &[None]).expect("in range").bbox,
             (0, 0, 0, 0)

@@ -50,14 +50,7 @@ pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfErro
                     }
                     points.push(point);
                 }
-                while points.len() > 1 {
-                    let (first, last) = (points[0], points[points.len() - 1]);
-                    if first.on_curve && last.on_curve && (first.x, first.y) == (last.x, last.y) {
-                        points.pop();
-                    } else {
-                        break;
-                    }
-                }
+                drop_degenerate(&mut points);
                 let distinct = points
                     .iter()
                     .any(|p| (p.x, p.y) != (points[0].x, points[0].y));
@@ -95,6 +88,35 @@ pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfErro
 }
 
 /// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).
+/// Removes, around the closed contour, points that make zero-length segments on the grid
+/// without changing its shape: an on-curve point equal to the on-curve point before it,
+/// an off-curve point between two on-curve points that equals one of them (the quadratic
+/// is then the straight line between them), and an off-curve point equal to both its
+/// neighbours (every segment it touches, implied on-curve points included, is that one
+/// point). Other repeated points are kept: dropping an off-curve point next to a
+/// different off-curve one would move the implied on-curve point between them.
+fn drop_degenerate(points: &mut Vec<CurvePoint>) {
+    let same = |a: &CurvePoint, b: &CurvePoint| (a.x, a.y) == (b.x, b.y);
+    let mut i = 0;
+    while points.len() > 1 && i < points.len() {
+        let n = points.len();
+        let (prev, point, next) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
+        let redundant = if point.on_curve {
+            prev.on_curve && same(&prev, &point)
+        } else {
+            (prev.on_curve && next.on_curve && (same(&prev, &point) || same(&point, &next)))
+                || (same(&prev, &point) && same(&point, &next))
+        };
+        if redundant {
+            points.remove(i);
+            // The previous point may now be redundant against its new neighbour.
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
+    }
+}
+
 pub fn glyf_loca(
     glyphs: &[TtGlyph],
 ) -> Result<
@@ -115,4 +137,58 @@ pub fn glyf_loca(
     }
     let (glyf, loca, format) = builder.build();
     Ok((glyf, loca, format as i16))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zero_length_segments_are_dropped_shape_kept() {
+        let pt = |x, y, on| CurvePoint::new(x, y, on);
+        // On A, off A, on A (a quadratic collapsed onto A), on B, off C, off D, on A.
+        let mut points = vec![
+            pt(0, 0, true),
+            pt(0, 0, false),
+            pt(0, 0, true),
+            pt(100, 0, true),
+            pt(100, 100, false),
+            pt(0, 100, false),
+            pt(0, 0, true),
+        ];
+        drop_degenerate(&mut points);
+        assert_eq!(
+            points,
+            [
+                pt(100, 0, true),
+                pt(100, 100, false),
+                pt(0, 100, false),
+                pt(0, 0, true),
+            ]
+        );
+        // An off-curve point equal to its on-curve neighbour but followed by another
+        // off-curve point is kept: it places the implied on-curve point.
+        let mut kept = vec![
+            pt(0, 0, true),
+            pt(0, 0, false),
+            pt(50, 50, false),
+            pt(90, 0, true),
+        ];
+        drop_degenerate(&mut kept);
+        assert_eq!(kept.len(), 4);
+        // A run of off-curve points collapsed onto its on-curve ends (seen in 'P').
+        let mut run = vec![
+            pt(162, 270, true),
+            pt(162, 270, false),
+            pt(162, 270, false),
+            pt(162, 270, true),
+            pt(162, 0, true),
+            pt(280, 270, false),
+        ];
+        drop_degenerate(&mut run);
+        assert_eq!(
+            run,
+            [pt(162, 270, true), pt(162, 0, true), pt(280, 270, false)]
+        );
+    }
 }

@@ -40,6 +40,9 @@ pub fn font_toml(info: &FontInfo) -> String {
         ("copyright", &info.copyright),
         ("designer", &info.designer),
         ("version", &info.version),
+        ("license", &info.license),
+        ("license_url", &info.license_url),
+        ("vendor", &info.vendor),
     ] {
         if let Some(value) = value {
             let _ = writeln!(out, "{key} = {}", string(value));

@@ -20,6 +20,9 @@ const KEYS: &[&str] = &[
     "copyright",
     "designer",
     "version",
+    "license",
+    "license_url",
+    "vendor",
 ];
 
 /// Default `tolerance` in font units.
@@ -160,6 +163,25 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
     let copyright = optional(ctx, "copyright");
     let designer = optional(ctx, "designer");
     let version = optional(ctx, "version");
+    let license = optional(ctx, "license");
+    let license_url = optional(ctx, "license_url");
+    let vendor = match get(t, "vendor") {
+        None => Some(None),
+        Some(v) => match string(ctx, v, "vendor") {
+            Some(id) if is_vendor_id(&id) => Some(Some(id)),
+            Some(id) => {
+                ctx.err(
+                    v.span().start,
+                    format!(
+                        "`vendor` must be 1 to 4 printable ASCII characters (an OS/2 vendor \
+                         ID such as \"XGLY\"), found {id:?}"
+                    ),
+                );
+                None
+            }
+            None => None,
+        },
+    };
 
     if let (Some((f, off)), Some(style)) = (&family, &style) {
         ok &= limits::family_style(ctx, f, style.as_deref().unwrap_or("Regular"), *off);
@@ -176,9 +198,24 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
         Some(copyright),
         Some(designer),
         Some(version),
+        Some(license),
+        Some(license_url),
+        Some(vendor),
     ) = (
-        family, upm, ascender, descender, x_height, cap_height, tolerance, style, copyright,
-        designer, version,
+        family,
+        upm,
+        ascender,
+        descender,
+        x_height,
+        cap_height,
+        tolerance,
+        style,
+        copyright,
+        designer,
+        version,
+        license,
+        license_url,
+        vendor,
     )
     else {
         return None;
@@ -195,5 +232,14 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
         copyright,
         designer,
         version,
+        license,
+        license_url,
+        vendor,
     })
+}
+
+/// An OS/2 vendor ID: 1 to 4 printable ASCII characters (space included; the table pads
+/// shorter ones with spaces).
+fn is_vendor_id(id: &str) -> bool {
+    (1..=4).contains(&id.len()) && id.bytes().all(|b| (0x20..=0x7E).contains(&b))
 }

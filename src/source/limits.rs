@@ -62,8 +62,9 @@ pub const MAX_FONT_POINTS: u64 = 10_000_000;
 /// the 255-byte file-name limit.
 pub const MAX_FAMILY_STYLE_BYTES: usize = 240;
 
-/// Most UTF-16 code units of `copyright`, `designer` and `version` each (the `name` table
-/// stores UTF-16 behind 16-bit offsets; `version` is stored twice).
+/// Most UTF-16 code units of `copyright`, `designer`, `version`, `license` and
+/// `license_url` each (the `name` table stores UTF-16 behind 16-bit offsets; `version` is
+/// stored twice; all of them at this limit still end below offset 65535).
 pub const MAX_TEXT_UTF16: usize = 5000;
 
 /// A coordinate (`x`, `y`, or an offset's): a finite number within ±[`MAX_COORDINATE`].
@@ -148,12 +149,16 @@ fn shown(x: f64) -> String {
     }
 }
 
-/// Checks `copyright`, `designer` and `version`: at most [`MAX_TEXT_UTF16`] UTF-16 code
+/// Checks `copyright`, `designer`, `version`, `license` and `license_url`: at most [`MAX_TEXT_UTF16`] UTF-16 code
 /// units each. Returns whether it passed. (Control characters are not refused: the SVG
 /// font writes U+FFFD for what XML cannot hold, and the terminal output escapes them.)
 pub(super) fn text(ctx: &mut Ctx<'_>, value: &str, offset: usize, key: &str) -> bool {
     let units = value.encode_utf16().count();
-    if matches!(key, "copyright" | "designer" | "version") && units > MAX_TEXT_UTF16 {
+    if matches!(
+        key,
+        "copyright" | "designer" | "version" | "license" | "license_url"
+    ) && units > MAX_TEXT_UTF16
+    {
         ctx.err(
             offset,
             format!(

@@ -70,6 +70,7 @@ fn build_writes_every_output_and_a_summary() {
             "MiniTest-Regular.otf",
             "MiniTest-Regular.svg",
             "MiniTest-Regular.ttf",
+            "MiniTest-Regular.woff2",
             "proof.png",
             "sheet.png",
             "specimen.html",
@@ -88,7 +89,7 @@ fn build_writes_every_output_and_a_summary() {
     let expected = format!(
         "built Mini Test Regular: 8 glyphs, 12 contours, 71 segments\n\
          worst error against the X-splines: 0.426 font units (glyph `oacute`), tolerance 0.5\n\
-         wrote 14 files to {}: MiniTest-Regular.svg, sheet.png, proof.png, MiniTest-Regular.ttf, MiniTest-Regular.otf, specimen.html, svg/ (8 glyph SVGs)\n",
+         wrote 15 files to {}: MiniTest-Regular.svg, sheet.png, proof.png, MiniTest-Regular.ttf, MiniTest-Regular.otf, MiniTest-Regular.woff2, specimen.html, svg/ (8 glyph SVGs)\n",
         out.display()
     );
     assert_eq!(stdout, expected);
@@ -156,8 +157,8 @@ fn two_builds_are_byte_identical() {
     assert_eq!(build(&mini_dir(), &a).status.code(), Some(0));
     assert_eq!(build(&mini_dir(), &b).status.code(), Some(0));
     let (fa, fb) = (files(&a), files(&b));
-    // 14 outputs and the fit cache.
-    assert_eq!(fa.len(), 15);
+    // 15 outputs (WOFF2 included) and the fit cache.
+    assert_eq!(fa.len(), 16);
     assert_eq!(fa.keys().collect::<Vec<_>>(), fb.keys().collect::<Vec<_>>());
     for (name, bytes) in &fa {
         assert!(bytes == &fb[name], "{name} differs between builds");

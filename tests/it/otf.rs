@@ -360,7 +360,7 @@ fn names_styles_and_em_size_from_the_model() {
             (0, "© 2026 The Mini Authors"),
             (1, "Mini Test Light"),
             (2, "Italic"),
-            (3, "2.500;NONE;MiniTest-LightItalic"),
+            (3, "2.500;XGLY;MiniTest-LightItalic"),
             (4, "Mini Test Light Italic"),
             (5, "Version 2.500"),
             (6, "MiniTest-LightItalic"),

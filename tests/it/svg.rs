@@ -293,6 +293,9 @@ fn hostile_names_make_valid_xml_and_round_trip() {
             copyright: Some(copyright.into()),
             designer: Some("D & \"E\" <F>".into()),
             version: Some("1.0 ]]>".into()),
+            license: None,
+            license_url: None,
+            vendor: None,
         },
         glyphs: names
             .iter()
