@@ -1,16 +1,20 @@
 //! The checks shared by the importer targets.
 
 use xglyph::import::Imported;
-use xglyph::xspline::XSpline;
 
-/// Every contour is a valid X-spline, the report has one row per glyph, and the font
-/// directory the importer would write loads back with the same glyphs.
+/// Every control point is finite (the model's contours are validated X-splines by type),
+/// the report has one row per glyph, and the font directory the importer would write loads
+/// back with the same glyphs.
 pub fn check(imported: &Imported) {
     let font = &imported.font;
     assert_eq!(imported.report.rows.len(), font.glyphs.len());
     for glyph in &font.glyphs {
         for contour in &glyph.contours {
-            assert!(XSpline::new(contour.points.clone()).is_ok(), "{}", glyph.name);
+            assert!(
+                contour.points().iter().all(|p| p.pos.is_finite() && p.s.is_finite()),
+                "{}",
+                glyph.name
+            );
         }
     }
     let dir = std::env::temp_dir().join(format!("xglyph-fuzz-{}", std::process::id()));
