@@ -198,19 +198,23 @@ fn outline_glyph_with<'a>(
     tolerance: f64,
     cache: Option<&FitCache>,
 ) -> OutlinedGlyph {
-    let mut contours = Vec::new();
-    let mut fitted = Vec::new();
-    let mut max_error: f64 = 0.0;
-    for (contour, offset) in font.placed_contours_in(index, glyph) {
-        let placed = PlacedContour {
+    let contours: Vec<PlacedContour> = font
+        .placed_contours_in(index, glyph)
+        .into_iter()
+        .map(|(contour, offset)| PlacedContour {
             spline: contour.spline().clone(),
             offset: Vec2::new(offset.0, offset.1),
-        };
-        let (path, error) = fit_placed(&placed, tolerance, cache);
-        max_error = max_error.max(error);
-        fitted.push(path);
-        contours.push(placed);
-    }
+        })
+        .collect();
+    // The contours of one glyph are fitted in parallel too (a glyph of thousands of
+    // contours would otherwise run on one core); collected in order, so the result does not
+    // depend on the thread count.
+    let fits: Vec<(BezPath, f64)> = contours
+        .par_iter()
+        .map(|placed| fit_placed(placed, tolerance, cache))
+        .collect();
+    let max_error = fits.iter().map(|f| f.1).fold(0.0, f64::max);
+    let fitted = fits.into_iter().map(|f| f.0).collect();
     let path = orient_contours(fitted);
     let segments = path
         .elements()

@@ -206,6 +206,7 @@ impl Transaction {
             }
             self.stage(path, bytes)?;
         }
+        self.sync_staged()?;
         // On an error the staged files not yet renamed are dropped, which removes them.
         for (temp, path) in std::mem::take(&mut self.staged) {
             // Tests: an injected failure before the k-th rename (k = renames done so far).
@@ -217,6 +218,35 @@ impl Transaction {
             self.rename_into_place(temp, path)?;
         }
         sync_dirs(&self.committed);
+        Ok(())
+    }
+
+    /// Puts every staged file's data on disk before the first rename, so that no final name
+    /// can ever point at unwritten data. On Linux one `syncfs` per file system does it: a
+    /// build of 4,000 glyph SVGs spent 2 s in 4,000 `fsync`s, against 0.5 s of work. Elsewhere
+    /// each file is synced.
+    fn sync_staged(&self) -> Result<(), WriteError> {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::unix::fs::MetadataExt;
+            let mut synced = std::collections::HashSet::new();
+            for (temp, path) in &self.staged {
+                let meta = temp.as_file().metadata();
+                let device = meta
+                    .map(|m| m.dev())
+                    .map_err(|e| error(path, WriteErrorKind::Io(e)))?;
+                if synced.insert(device) {
+                    rustix::fs::syncfs(temp.as_file())
+                        .map_err(|e| error(path, WriteErrorKind::Io(e.into())))?;
+                }
+            }
+        }
+        #[cfg(not(target_os = "linux"))]
+        for (temp, path) in &self.staged {
+            temp.as_file()
+                .sync_all()
+                .map_err(|e| error(path, WriteErrorKind::Io(e)))?;
+        }
         Ok(())
     }
 
@@ -279,7 +309,6 @@ impl Transaction {
                 .map_err(io_err)?;
         }
         temp.as_file_mut().write_all(bytes).map_err(io_err)?;
-        temp.as_file().sync_all().map_err(io_err)?;
         self.staged.push((temp, path.to_path_buf()));
         Ok(())
     }
