@@ -151,7 +151,7 @@ pub fn import_font(
         tolerance: BUILD_SHARE * tolerance,
         ..source.info
     };
-    let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress);
+    let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress)?;
     for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
@@ -244,7 +244,7 @@ pub fn import_svgs(
         license_url: None,
         vendor: None,
     };
-    Ok(import_glyphs(&glyphs, info, tolerance, &opts.progress))
+    import_glyphs(&glyphs, info, tolerance, &opts.progress)
 }
 
 fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
@@ -259,7 +259,7 @@ fn import_glyphs(
     info: FontInfo,
     tolerance: f64,
     progress: &Progress,
-) -> Imported {
+) -> Result<Imported, ImportError> {
     let grid = grid_for(tolerance);
     let done = AtomicUsize::new(0);
     let mut fitted: Vec<FittedGlyph> = sources
@@ -273,9 +273,12 @@ fn import_glyphs(
         })
         .collect();
     fitted.sort_by(|a, b| crate::model::glyph_order(&a.glyph.name, &b.glyph.name));
+    for f in &fitted {
+        check_fitted_limits(&f.glyph)?;
+    }
     let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) =
         fitted.into_iter().map(|f| (f.glyph, f.report)).unzip();
-    Imported {
+    Ok(Imported {
         font: Font {
             info,
             glyphs,
@@ -286,6 +289,28 @@ fn import_glyphs(
             tolerance,
             notes: Vec::new(),
         },
+    })
+}
+
+/// Refuses a glyph whose fitted X-spline the sources could not hold
+/// ([`crate::source::limits`]): a smooth control point sits outside the curve it shapes, so
+/// an outline inside the limits can still need a point beyond them, and a drawing far
+/// outside its viewBox scales past them (found by the `import_svg` fuzz target).
+fn check_fitted_limits(glyph: &Glyph) -> Result<(), ImportError> {
+    use crate::source::limits::MAX_COORDINATE;
+    let far = glyph
+        .contours
+        .iter()
+        .flat_map(|c| c.points())
+        .flat_map(|p| [p.pos.x, p.pos.y])
+        .find(|v| v.abs() > MAX_COORDINATE);
+    match far {
+        Some(v) => Err(ImportError::plain(format!(
+            "glyph `{}` needs a control point at {v}, outside the -{MAX_COORDINATE}..{MAX_COORDINATE} \
+             font units xglyph sources hold; scale the drawing down",
+            glyph.name
+        ))),
+        None => Ok(()),
     }
 }
 

@@ -353,3 +353,25 @@ fn command_line_errors_write_nothing() {
     assert!(!dir.join("o3").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Found by the `import_svg` fuzz target: a path that runs far outside its viewBox scales
+/// to X-spline points beyond what the sources hold; the import is refused (before, it wrote
+/// sources that `check` then rejected).
+#[test]
+fn drawings_beyond_the_source_limits_are_refused() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 64 48">
+  <path d="M3220 13 0 0 1 12 32 C 12 22 32 2 32 2 Z"/></svg>"#;
+    let files = vec![(PathBuf::from("far.svg"), svg.as_bytes().to_vec())];
+    let err = import_svgs(&files, &ImportOptions::default()).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.starts_with("glyph `far` needs a control point at "),
+        "{text}"
+    );
+    assert!(
+        text.ends_with(
+            "outside the -16384..16384 font units xglyph sources hold; scale the drawing down"
+        ),
+        "{text}"
+    );
+}
