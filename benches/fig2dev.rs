@@ -23,17 +23,11 @@ const GLYPHS: usize = 2000;
 const POINTS: usize = 12;
 const RUNS: usize = 5;
 
-/// xorshift64*, so the font is the same on every machine.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+// xorshift64*, so the font is the same on every machine: the corpus's generator.
+#[path = "../tests/it/common/corpus.rs"]
+#[allow(dead_code)]
+mod corpus;
+use corpus::Rng;
 
 /// One random contour: `(x, y, s)` in font units (y up), 1000 per em.
 fn contour(rng: &mut Rng) -> Vec<(f64, f64, f64)> {

@@ -143,6 +143,31 @@ pub struct KernPair {
     pub value: f64,
 }
 
+impl FontInfo {
+    /// Metadata for `family` on an em of `units_per_em`, style Regular: ascender 0.8 em,
+    /// descender -0.2 em, x-height 0.5 em, cap height 0.7 em, tolerance 1/2000 em, and no
+    /// optional text. What the importers and tests start from.
+    pub fn with_em(family: impl Into<String>, units_per_em: u16) -> FontInfo {
+        let em = f64::from(units_per_em);
+        FontInfo {
+            family: family.into(),
+            style: "Regular".to_string(),
+            units_per_em,
+            ascender: 0.8 * em,
+            descender: -0.2 * em,
+            x_height: 0.5 * em,
+            cap_height: 0.7 * em,
+            tolerance: em / 2000.0,
+            copyright: None,
+            designer: None,
+            version: None,
+            license: None,
+            license_url: None,
+            vendor: None,
+        }
+    }
+}
+
 impl Font {
     /// The glyph with this name.
     pub fn glyph(&self, name: &str) -> Option<&Glyph> {
@@ -249,22 +274,7 @@ pub fn weight_class(style: &str) -> u16 {
 /// A 1000-unit em with typical metrics, for unit tests across the crate.
 #[cfg(test)]
 pub(crate) fn test_info() -> FontInfo {
-    FontInfo {
-        family: "Test".into(),
-        style: "Regular".into(),
-        units_per_em: 1000,
-        ascender: 800.0,
-        descender: -200.0,
-        x_height: 500.0,
-        cap_height: 700.0,
-        tolerance: 0.5,
-        copyright: None,
-        designer: None,
-        version: None,
-        license: None,
-        license_url: None,
-        vendor: None,
-    }
+    FontInfo::with_em("Test", 1000)
 }
 
 #[cfg(test)]

@@ -225,24 +225,12 @@ pub fn import_svgs(
             )));
         }
     }
+    let family = opts.family.clone();
     let info = FontInfo {
-        family: opts
-            .family
-            .clone()
-            .unwrap_or_else(|| "Imported Icons".to_string()),
-        style: "Regular".to_string(),
-        units_per_em: upm,
         ascender: em_box.ascender,
         descender: em_box.descender,
-        x_height: 0.5 * em,
-        cap_height: 0.7 * em,
         tolerance: BUILD_SHARE * tolerance,
-        copyright: None,
-        designer: None,
-        version: None,
-        license: None,
-        license_url: None,
-        vendor: None,
+        ..FontInfo::with_em(family.unwrap_or_else(|| "Imported Icons".to_string()), upm)
     };
     import_glyphs(&glyphs, info, tolerance, &opts.progress)
 }

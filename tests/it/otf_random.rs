@@ -17,20 +17,8 @@ const GRID: f64 = std::f64::consts::FRAC_1_SQRT_2;
 fn font_with(glyph: Glyph, tolerance: f64) -> Font {
     Font {
         info: FontInfo {
-            family: "Random".into(),
-            style: "Regular".into(),
-            units_per_em: 1000,
-            ascender: 800.0,
-            descender: -200.0,
-            x_height: 500.0,
-            cap_height: 700.0,
             tolerance,
-            copyright: None,
-            designer: None,
-            version: None,
-            license: None,
-            license_url: None,
-            vendor: None,
+            ..FontInfo::with_em("Random", 1000)
         },
         glyphs: vec![glyph],
         kerning: Vec::new(),

@@ -1,13 +1,15 @@
 //! A fixed corpus of closed X-splines for comparing fitters: glyph-like contours plus
-//! deterministic random ones (shared by `tests/it/fit_count.rs` and `benches/core.rs`).
+//! deterministic random ones (shared by `tests/it/fit_count.rs`, `benches/core.rs` and
+//! `benches/fig2dev.rs`).
 
 use xglyph::xspline::{ControlPoint, XSpline};
 
 /// A tiny deterministic generator (xorshift64*), so the corpus is the same everywhere.
-struct Rng(u64);
+pub struct Rng(pub u64);
 
 impl Rng {
-    fn next(&mut self) -> f64 {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
