@@ -84,10 +84,18 @@ pub struct ContourFit {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stretch {
     /// The straight edge between two consecutive sharp points, ending at `T = end`.
-    Edge { end: f64 },
+    Edge {
+        /// Global parameter of the sharp point the edge ends at.
+        end: f64,
+    },
     /// A smooth run `[start, end]` (global `T`, `end` may exceed `n`; it wraps), free of
     /// sharp points and cusps inside.
-    Smooth { start: f64, end: f64 },
+    Smooth {
+        /// Global parameter where the run starts.
+        start: f64,
+        /// Global parameter where the run ends.
+        end: f64,
+    },
 }
 
 /// Cuts a contour at its sharp points and cusps, starting at the first sharp point
@@ -158,8 +166,11 @@ pub fn fit_contour(spline: &XSpline, tolerance: f64) -> ContourFit {
 /// (`fit_to_bezpath`, `fit_to_bezpath_opt`) can be run on exactly the same curve: the
 /// reference for segment counts and speed in the tests and benches.
 pub struct StretchSource<'a> {
+    /// The contour.
     pub spline: &'a XSpline,
+    /// Global parameter of the stretch's start (maps to 0).
     pub start: f64,
+    /// Global parameter of the stretch's end (maps to 1).
     pub end: f64,
 }
 

@@ -22,11 +22,8 @@ pub mod cache;
 pub mod cli;
 #[doc(hidden)]
 pub mod commands;
-// Modules whose owners document them in their own change (issue 12's other helpers).
-#[allow(missing_docs)]
 pub mod fit;
 pub mod flatten;
-#[allow(missing_docs)]
 pub mod import;
 pub mod layout;
 pub mod model;
@@ -41,7 +38,6 @@ pub mod source;
 pub mod svg;
 pub mod terminal;
 pub mod write;
-#[allow(missing_docs)]
 pub mod xspline;
 
 pub use model::{Component, Contour, Font, FontInfo, Glyph, KernPair};

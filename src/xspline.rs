@@ -28,11 +28,14 @@ const MIN_RELATIVE_TOLERANCE: f64 = 1e-10;
 /// A control point: position in font units and shape parameter `s ∈ [-1, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlPoint {
+    /// Position, font units, y up.
     pub pos: Point,
+    /// Shape parameter in `[-1, 1]`: 0 sharp, > 0 approximating, < 0 interpolating.
     pub s: f64,
 }
 
 impl ControlPoint {
+    /// The point `(x, y)` with shape `s`.
     pub const fn new(x: f64, y: f64, s: f64) -> Self {
         ControlPoint {
             pos: Point::new(x, y),
@@ -50,13 +53,29 @@ impl ControlPoint {
 #[derive(Clone, Debug, PartialEq)]
 pub enum XSplineError {
     /// A closed contour needs at least three points.
-    TooFewPoints { count: usize },
+    TooFewPoints {
+        /// How many points there are.
+        count: usize,
+    },
     /// A coordinate or shape value is NaN or infinite.
-    NonFinite { index: usize },
+    NonFinite {
+        /// The point's index.
+        index: usize,
+    },
     /// The shape parameter is outside `[-1, 1]`.
-    ShapeOutOfRange { index: usize, s: f64 },
+    ShapeOutOfRange {
+        /// The point's index.
+        index: usize,
+        /// Its shape value.
+        s: f64,
+    },
     /// Point `index` coincides with the next point (cyclically).
-    CoincidentPoints { index: usize, next: usize },
+    CoincidentPoints {
+        /// The first point's index.
+        index: usize,
+        /// The index of the point it coincides with.
+        next: usize,
+    },
 }
 
 impl fmt::Display for XSplineError {
@@ -123,6 +142,7 @@ impl XSpline {
         Ok(XSpline { points, extent })
     }
 
+    /// The control points, as given.
     pub fn points(&self) -> &[ControlPoint] {
         &self.points
     }

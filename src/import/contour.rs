@@ -23,6 +23,7 @@ const MIN_LENGTH: f64 = 1e-6;
 /// the first starts.
 #[derive(Clone, Debug)]
 pub struct SourceContour {
+    /// The contour's segments, in order.
     pub segs: Vec<PathSeg>,
 }
 
@@ -39,7 +40,9 @@ pub enum Piece {
 /// when the contour has no break point at all.
 #[derive(Clone, Debug)]
 pub enum Cut {
+    /// Pieces between corners (sharp points).
     Pieces(Vec<Piece>),
+    /// A smooth closed loop with no corner.
     Loop(Vec<PathSeg>),
 }
 

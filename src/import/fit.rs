@@ -87,6 +87,7 @@ pub const ALTERNATIVES: [Settings; 5] = [
 /// Shapes and spacing of a stretch's initial points.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
+    /// Shape values of the initial points.
     pub shapes: Shapes,
     /// How strongly the initial points of an open stretch crowd toward its sharp ends
     /// (0 = even spacing, 1 = cosine spacing), where the X-spline leaves straight and
@@ -100,7 +101,9 @@ pub struct Settings {
 /// tangent, off the curve: an approximating (`s > 0`) point fits there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shapes {
+    /// Shape of the interior points.
     pub inner: f64,
+    /// Shape of the two points next to the sharp ends.
     pub end: f64,
 }
 
@@ -123,6 +126,7 @@ const CURVE_SAMPLES: usize = 16;
 /// A fitted contour: control points and the measured error during fitting.
 #[derive(Clone, Debug)]
 pub struct FittedXSpline {
+    /// The contour's control points.
     pub points: Vec<ControlPoint>,
     /// Largest sampled distance found while fitting (font units).
     pub fit_error: f64,

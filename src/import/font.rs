@@ -22,7 +22,9 @@ use crate::source::DEFAULT_TOLERANCE;
 pub struct SourceFont {
     /// Names and vertical metrics; `tolerance` is the default until the importer sets it.
     pub info: FontInfo,
+    /// The glyphs asked for, with their outlines.
     pub glyphs: Vec<SourceGlyph>,
+    /// Characters asked for that the font does not map.
     pub missing: Vec<char>,
 }
 

@@ -48,11 +48,14 @@ pub const BUILD_SHARE: f64 = 0.25;
 /// An import failure: the file (when there is one) and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportError {
+    /// The input file at fault, if one is.
     pub path: Option<PathBuf>,
+    /// What is wrong.
     pub message: String,
 }
 
 impl ImportError {
+    /// An error about no file in particular.
     pub fn plain(message: impl Into<String>) -> Self {
         ImportError {
             path: None,
@@ -60,6 +63,7 @@ impl ImportError {
         }
     }
 
+    /// An error about the input file `path`.
     pub fn at(path: &Path, message: impl Into<String>) -> Self {
         ImportError {
             path: Some(path.to_path_buf()),
@@ -82,9 +86,13 @@ impl std::error::Error for ImportError {}
 /// One original glyph: name, code points, advance and outline in font units (y up).
 #[derive(Clone, Debug)]
 pub struct SourceGlyph {
+    /// Glyph name.
     pub name: String,
+    /// Code points mapped to it.
     pub unicodes: Vec<char>,
+    /// Advance, font units.
     pub advance: f64,
+    /// The original outline, font units, y up.
     pub path: BezPath,
 }
 
@@ -128,7 +136,9 @@ pub struct ImportOptions {
 /// A finished import: the font model to emit and the report to print.
 #[derive(Clone, Debug)]
 pub struct Imported {
+    /// The fitted font model.
     pub font: Font,
+    /// Points and errors per glyph.
     pub report: Report,
 }
 
@@ -321,7 +331,9 @@ fn round_to(x: f64, grid: f64) -> f64 {
 /// One imported glyph and its report row.
 #[derive(Clone, Debug)]
 pub struct FittedGlyph {
+    /// The glyph with its X-spline contours.
     pub glyph: Glyph,
+    /// Its report row.
     pub report: GlyphReport,
 }
 

@@ -8,6 +8,7 @@ use super::{BUILD_SHARE, IMPORT_SHARE};
 /// One glyph's numbers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlyphReport {
+    /// Glyph name.
     pub name: String,
     /// On-curve plus off-curve points of the original (implied TrueType points not counted).
     pub original_points: usize,
@@ -23,6 +24,7 @@ pub struct GlyphReport {
 /// The whole import.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
+    /// One row per glyph, in the model's order.
     pub rows: Vec<GlyphReport>,
     /// The import tolerance `T` (font units).
     pub tolerance: f64,
@@ -31,14 +33,17 @@ pub struct Report {
 }
 
 impl Report {
+    /// Original points over all glyphs.
     pub fn original_points(&self) -> usize {
         self.rows.iter().map(|r| r.original_points).sum()
     }
 
+    /// X-spline control points over all glyphs.
     pub fn xspline_points(&self) -> usize {
         self.rows.iter().map(|r| r.xspline_points).sum()
     }
 
+    /// Largest error over all glyphs (font units).
     pub fn max_error(&self) -> f64 {
         self.rows.iter().map(|r| r.max_error).fold(0.0, f64::max)
     }

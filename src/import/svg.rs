@@ -20,14 +20,18 @@ use super::ImportError;
 /// Where a drawing goes in the em: vertical extent in font units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmBox {
+    /// Top of the drawing's box, font units.
     pub ascender: f64,
+    /// Bottom of the drawing's box, font units (negative).
     pub descender: f64,
 }
 
 /// One drawing in font units (y up).
 #[derive(Clone, Debug)]
 pub struct Drawing {
+    /// The filled outline.
     pub path: BezPath,
+    /// Advance: the drawing's width scaled to the em.
     pub advance: f64,
 }
 

@@ -19,7 +19,9 @@ const SNIPPET_CHARS: usize = 120;
 /// How serious a diagnostic is. Errors stop every command; warnings are printed only.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
+    /// The sources cannot be built.
     Error,
+    /// Built anyway, but worth a look.
     Warning,
 }
 
@@ -39,10 +41,15 @@ impl Severity {
 /// belongs to a whole file or folder rather than a place in it (a missing `font.toml`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
+    /// The source file.
     pub path: PathBuf,
+    /// Line, from 1.
     pub line: usize,
+    /// Column in characters, from 1.
     pub col: usize,
+    /// Error or warning.
     pub severity: Severity,
+    /// What is wrong, and what would be right.
     pub message: String,
     /// The source line at `line`, for showing with a caret (`None` without a position).
     pub snippet: Option<Snippet>,

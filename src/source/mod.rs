@@ -9,7 +9,6 @@
 //! `xglyph fmt` performs.
 
 mod components;
-#[allow(missing_docs)] // Documented by its owner's change.
 mod diagnostic;
 pub mod emit;
 pub mod format;
