@@ -22,6 +22,8 @@ pub mod cache;
 pub mod cli;
 #[doc(hidden)]
 pub mod commands;
+pub mod designspace;
+pub mod family;
 pub mod fit;
 pub mod flatten;
 pub mod import;
