@@ -15,6 +15,7 @@ mod import_output;
 mod import_svg;
 mod ir;
 mod limits;
+mod masters;
 mod ocr;
 mod otf;
 mod otf_random;
