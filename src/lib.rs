@@ -27,6 +27,7 @@ pub mod family;
 pub mod fit;
 pub mod flatten;
 pub mod import;
+pub mod instance;
 pub mod layout;
 pub mod model;
 mod names;

@@ -6,6 +6,9 @@
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
+use std::path::PathBuf;
+
+use crate::designspace::{Designspace, Location, Region, RegionError};
 
 use crate::xspline::{ControlPoint, XSpline, XSplineError};
 
@@ -18,6 +21,60 @@ pub struct Font {
     pub glyphs: Vec<Glyph>,
     /// `kerning.toml`.
     pub kerning: Vec<KernPair>,
+}
+
+/// A font with masters: the default master (an ordinary [`Font`]), the design space, and
+/// the other masters. A single-master font has no axes and no masters.
+///
+/// The loader guarantees that every master is compatible with the default: glyph `i` of a
+/// master is glyph `i` of [`Family::default`], with the same contours, point counts, sharp
+/// points and components; and that the master locations form a valid set
+/// ([`Designspace::regions`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Family {
+    /// The default master: the font folder itself, at every axis default.
+    pub default: Font,
+    /// Axes and named instances (`font.toml`).
+    pub designspace: Designspace,
+    /// The other masters, in `font.toml` order.
+    pub masters: Vec<Master>,
+}
+
+/// A non-default master (`[[master]]` in `font.toml`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Master {
+    /// Master name, e.g. `"Bold"`.
+    pub name: String,
+    /// Its folder, as written in `font.toml` (relative to the font folder).
+    pub folder: PathBuf,
+    /// Where it sits (user coordinates).
+    pub location: Location,
+    /// Parallel to the default master's glyphs (same order, names and code points).
+    pub glyphs: Vec<Glyph>,
+    /// This master's kerning; a pair it lacks is 0 here.
+    pub kerning: Vec<KernPair>,
+}
+
+impl Family {
+    /// A single-master family: `font` with no axes.
+    pub fn single(font: Font) -> Family {
+        Family {
+            default: font,
+            designspace: Designspace::default(),
+            masters: Vec::new(),
+        }
+    }
+
+    /// Whether the family has axes (a variable font).
+    pub fn is_variable(&self) -> bool {
+        !self.designspace.axes.is_empty()
+    }
+
+    /// The masters' regions, in [`Family::masters`] order.
+    pub fn regions(&self) -> Result<Vec<Region>, RegionError> {
+        let locations: Vec<Location> = self.masters.iter().map(|m| m.location.clone()).collect();
+        self.designspace.regions(&locations)
+    }
 }
 
 /// The one glyph order of sources and outputs: `.notdef` first, then by name.

@@ -133,6 +133,17 @@ fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> 
             SourceKind::Kerning => {
                 load_kerning_text(&r.path, &r.new, &names).is_ok_and(|k| k == font.kerning)
             }
+            SourceKind::MasterGlyph(m, name) => {
+                let want = loaded.masters[*m].glyphs.iter().find(|g| &g.name == name);
+                load_glyph_text(&r.path, &r.new).is_ok_and(|(g, _)| {
+                    want.is_some_and(|w| {
+                        (&g.name, g.advance, &g.contours, &g.components)
+                            == (&w.name, w.advance, &w.contours, &w.components)
+                    })
+                })
+            }
+            SourceKind::MasterKerning(m) => load_kerning_text(&r.path, &r.new, &names)
+                .is_ok_and(|k| k == loaded.masters[*m].kerning),
         };
         if !same {
             return Err(format!(

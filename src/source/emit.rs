@@ -8,7 +8,8 @@
 
 use std::fmt::Write;
 
-use crate::model::{Font, FontInfo, Glyph, KernPair};
+use crate::designspace::{Designspace, Location};
+use crate::model::{Font, FontInfo, Glyph, KernPair, Master};
 use crate::names::file_stems;
 
 /// Every source file of `font` as `(file name, text)`: `font.toml`, one `<stem>.toml` per
@@ -51,11 +52,79 @@ pub fn font_toml(info: &FontInfo) -> String {
     out
 }
 
+/// `font.toml` of a font with masters: [`font_toml`], then the `[[axis]]`, `[[master]]` and
+/// `[[instance]]` tables in model order. Without axes it is [`font_toml`].
+pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[Master]) -> String {
+    let mut out = font_toml(info);
+    for a in &designspace.axes {
+        let _ = writeln!(out, "\n[[axis]]");
+        let _ = writeln!(out, "tag = {}", string(&a.tag));
+        let _ = writeln!(out, "name = {}", string(&a.name));
+        let _ = writeln!(out, "min = {}", number(a.min));
+        let _ = writeln!(out, "default = {}", number(a.default));
+        let _ = writeln!(out, "max = {}", number(a.max));
+    }
+    for m in masters {
+        let _ = writeln!(out, "\n[[master]]");
+        let _ = writeln!(out, "name = {}", string(&m.name));
+        let folder = m.folder.to_string_lossy();
+        let _ = writeln!(out, "folder = {}", string(&folder));
+        let _ = writeln!(out, "location = {}", location(designspace, &m.location));
+    }
+    for i in &designspace.instances {
+        let _ = writeln!(out, "\n[[instance]]");
+        let _ = writeln!(out, "name = {}", string(&i.name));
+        let _ = writeln!(out, "location = {}", location(designspace, &i.location));
+    }
+    out
+}
+
+/// An inline table of the coordinates `location` writes, in axis order:
+/// `{ wght = 700 }`.
+fn location(designspace: &Designspace, location: &Location) -> String {
+    let items: Vec<String> = designspace
+        .axes
+        .iter()
+        .filter_map(|a| {
+            let v = location.0.get(&a.tag)?;
+            Some(format!("{} = {}", key(&a.tag), number(*v)))
+        })
+        .collect();
+    if items.is_empty() {
+        "{}".to_string()
+    } else {
+        format!("{{ {} }}", items.join(", "))
+    }
+}
+
+/// A TOML key: bare when it can be, else quoted.
+fn key(k: &str) -> String {
+    let bare = !k.is_empty()
+        && k.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if bare {
+        k.to_string()
+    } else {
+        string(k)
+    }
+}
+
 /// One glyph file: name, code points, advance, contours, components.
 pub fn glyph_toml(glyph: &Glyph) -> String {
+    glyph_text(glyph, true)
+}
+
+/// A glyph file of a non-default master: [`glyph_toml`] without `unicode` (a master's
+/// glyph has the default's code points).
+pub fn master_glyph_toml(glyph: &Glyph) -> String {
+    glyph_text(glyph, false)
+}
+
+fn glyph_text(glyph: &Glyph, unicodes: bool) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "name = {}", string(&glyph.name));
-    match glyph.unicodes.as_slice() {
+    let shown: &[char] = if unicodes { &glyph.unicodes } else { &[] };
+    match shown {
         [] => {}
         [c] => {
             let _ = writeln!(out, "unicode = {}", code_point(*c));

@@ -43,9 +43,18 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
         .iter()
         .filter_map(|file| {
             let body = match &file.kind {
-                SourceKind::Info => emit::font_toml(&font.info),
+                SourceKind::Info => {
+                    emit::family_font_toml(&font.info, &loaded.designspace, &loaded.masters)
+                }
                 SourceKind::Glyph(name) => emit::glyph_toml(font.glyph(name)?),
                 SourceKind::Kerning => emit::kerning_toml(&font.kerning),
+                SourceKind::MasterGlyph(m, name) => {
+                    let master = loaded.masters.get(*m)?;
+                    emit::master_glyph_toml(master.glyphs.iter().find(|g| &g.name == name)?)
+                }
+                SourceKind::MasterKerning(m) => {
+                    emit::kerning_toml(&loaded.masters.get(*m)?.kerning)
+                }
             };
             let comments = comment_offsets(&file.text);
             let header_end = header_len(&file.text, &comments);

@@ -24,6 +24,9 @@ const KEYS: &[&str] = &["name", "unicode", "advance", "contour", "component"];
 /// Where the parts of a glyph were written (byte offsets), for diagnostics across files.
 #[derive(Clone, Debug, Default)]
 pub(super) struct GlyphSpans {
+    /// The first key (where a missing key is reported).
+    pub start: usize,
+    /// The `name` value; 0 when the file has no `name` (a written value never starts at 0).
     pub name: usize,
     pub unicodes: Vec<usize>,
     pub bases: Vec<usize>,
@@ -71,7 +74,10 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     let suggested = check_keys(ctx, t, KEYS);
     let at = first_offset(t, 0);
     let mut ok = true;
-    let mut spans = GlyphSpans::default();
+    let mut spans = GlyphSpans {
+        start: at,
+        ..GlyphSpans::default()
+    };
 
     let name = match get(t, "name") {
         None => Some(stem),

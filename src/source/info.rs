@@ -23,6 +23,10 @@ const KEYS: &[&str] = &[
     "license",
     "license_url",
     "vendor",
+    // The masters' tables, read by `super::designspace`.
+    "axis",
+    "master",
+    "instance",
 ];
 
 /// Default `tolerance` in font units.

@@ -8,7 +8,9 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fs::FileType;
 use std::path::{Path, PathBuf};
 
+use super::compat::check_master;
 use super::components::{check_components, ComponentGraph};
+use super::designspace::{load_designspace, DesignspaceSpec};
 use super::diagnostic::{Ctx, Diagnostic, Diagnostics, Severity};
 use super::emit;
 use super::geometry::{distance_outside, glyph_box, FAR_EMS};
@@ -16,7 +18,8 @@ use super::glyph::{load_glyph, GlyphSpans};
 use super::info::load_info;
 use super::kerning::load_kerning;
 use super::limits;
-use crate::model::{glyph_order, Font, FontInfo, Glyph};
+use crate::designspace::Designspace;
+use crate::model::{glyph_order, Family, Font, FontInfo, Glyph, Master};
 
 /// What a source file holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -27,6 +30,11 @@ pub enum SourceKind {
     Glyph(String),
     /// `kerning.toml`.
     Kerning,
+    /// A glyph file of a non-default master: the master's index in
+    /// [`LoadedFont::masters`], and the glyph's name.
+    MasterGlyph(usize, String),
+    /// The `kerning.toml` of a non-default master (its index).
+    MasterKerning(usize),
 }
 
 /// One source file as it was read.
@@ -47,8 +55,30 @@ pub struct LoadedFont {
     pub font: Font,
     /// Warnings of the sources.
     pub warnings: Vec<Diagnostic>,
-    /// `font.toml`, the glyph files in file-name order, then `kerning.toml` if present.
+    /// `font.toml`, the glyph files in file-name order, then `kerning.toml` if present;
+    /// then the same for each non-default master, in `font.toml` order.
     pub files: Vec<SourceFile>,
+    /// Axes and named instances; empty for a single-master font.
+    pub designspace: Designspace,
+    /// The non-default masters, compatible with [`LoadedFont::font`].
+    pub masters: Vec<Master>,
+}
+
+impl LoadedFont {
+    /// The font with its masters.
+    pub fn family(&self) -> Family {
+        Family {
+            default: self.font.clone(),
+            designspace: self.designspace.clone(),
+            masters: self.masters.clone(),
+        }
+    }
+}
+
+/// Load a font directory with its masters ([`load_sources`]): the family and its warnings,
+/// or every diagnostic when there are errors.
+pub fn load_family(dir: &Path) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
+    load_sources(dir).map(|l| (l.family(), l.warnings))
 }
 
 /// Load a font directory: `font.toml`, optional `kerning.toml`, and one glyph per other
@@ -105,6 +135,9 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
     let info = info_text
         .as_deref()
         .and_then(|text| load_info(&mut Ctx::new(&font_path, text, &mut out)));
+    let spec = info_text
+        .as_deref()
+        .and_then(|text| load_designspace(&mut Ctx::new(&font_path, text, &mut out), dir));
 
     if glyph_paths.is_empty() {
         out.push(Diagnostic::whole(
@@ -113,28 +146,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             "no glyph files: add one `<glyph>.toml` per glyph next to `font.toml`",
         ));
     }
-    let mut glyphs = Vec::new();
-    let mut glyph_failed = false;
-    for path in &glyph_paths {
-        let Some(text) = read(path, &mut out) else {
-            glyph_failed = true;
-            continue;
-        };
-        let loaded = load_glyph(&mut Ctx::new(path, &text, &mut out));
-        match loaded {
-            Some(loaded) => {
-                glyph_failed |= !loaded.complete;
-                glyphs.push(GlyphFile {
-                    glyph: loaded.glyph,
-                    complete: loaded.complete,
-                    spans: loaded.spans,
-                    path: path.clone(),
-                    text,
-                });
-            }
-            None => glyph_failed = true,
-        }
-    }
+    let (glyphs, mut glyph_failed) = load_glyph_files(&glyph_paths, &mut out);
 
     check_unique(&glyphs, &mut out);
     let graph = ComponentGraph::new(&glyphs);
@@ -164,11 +176,63 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         }
     };
 
+    // The masters: each folder's glyphs and kerning, compared with the default's.
+    let spec = spec.unwrap_or_default();
+    let mut masters = Vec::new();
+    let mut master_order = Vec::new();
+    for (index, m) in spec.masters.iter().enumerate() {
+        let mdir = dir.join(&m.folder);
+        let (paths, mcandidates) = match glyph_files(&mdir, &mut out) {
+            Ok(found) => found,
+            Err(d) => {
+                out.push(d);
+                glyph_failed = true;
+                continue;
+            }
+        };
+        master_order.push(mdir.clone());
+        master_order.extend(mcandidates);
+        let (mglyphs, failed) = load_glyph_files(&paths, &mut out);
+        glyph_failed |= failed;
+        check_unique(&mglyphs, &mut out);
+        if let Some(text) = &info_text {
+            check_master(m, (&font_path, text), &glyphs, &mglyphs, &mut out);
+        }
+        let mkern_path = mdir.join("kerning.toml");
+        master_order.push(mkern_path.clone());
+        let (mkerning, mkern_text) = match regular_file(&mkern_path) {
+            Ok(true) => {
+                let text = read(&mkern_path, &mut out);
+                let pairs = text.as_deref().and_then(|text| {
+                    load_kerning(&mut Ctx::new(&mkern_path, text, &mut out), &names)
+                });
+                (pairs, text)
+            }
+            Ok(false) => (Some(Vec::new()), None),
+            Err(what) => {
+                out.push(Diagnostic::whole(
+                    &mkern_path,
+                    Severity::Error,
+                    format!("`kerning.toml` is {what}, not a regular file"),
+                ));
+                (None, None)
+            }
+        };
+        glyph_failed |= mkerning.is_none();
+        masters.push(LoadedMaster {
+            index,
+            glyphs: mglyphs,
+            kerning: mkerning.unwrap_or_default(),
+            kern: mkern_text.map(|t| (mkern_path, t)),
+        });
+    }
+
     let mut rank: HashMap<PathBuf, usize> = HashMap::new();
     let order = [dir.to_path_buf(), font_path.clone()]
         .into_iter()
         .chain(candidates)
-        .chain([kern_path.clone()]);
+        .chain([kern_path.clone()])
+        .chain(master_order);
     for (i, path) in order.enumerate() {
         rank.entry(path).or_insert(i);
     }
@@ -203,6 +267,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         });
     }
     model_glyphs.sort_by(|a, b| glyph_order(&a.name, &b.name));
+    let model_masters = model_masters(&spec, masters, &model_glyphs, &mut files);
     Ok(LoadedFont {
         font: Font {
             info,
@@ -211,7 +276,94 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         },
         warnings: out,
         files,
+        designspace: spec.designspace,
+        masters: model_masters,
     })
+}
+
+/// A non-default master's files as loaded.
+struct LoadedMaster {
+    /// Index in the spec's masters.
+    index: usize,
+    glyphs: Vec<GlyphFile>,
+    kerning: Vec<crate::model::KernPair>,
+    /// Its `kerning.toml` and text, when present.
+    kern: Option<(PathBuf, String)>,
+}
+
+/// The model's masters (glyphs parallel to `default`, code points from the default), and
+/// their files appended to `files`. The masters loaded without errors, so each has exactly
+/// the default's glyphs.
+fn model_masters(
+    spec: &DesignspaceSpec,
+    loaded: Vec<LoadedMaster>,
+    default: &[Glyph],
+    files: &mut Vec<SourceFile>,
+) -> Vec<Master> {
+    let mut masters = Vec::with_capacity(loaded.len());
+    for m in loaded {
+        let s = &spec.masters[m.index];
+        let mut by_name: HashMap<String, Glyph> = HashMap::new();
+        for g in m.glyphs {
+            files.push(SourceFile {
+                path: g.path,
+                text: g.text,
+                kind: SourceKind::MasterGlyph(m.index, g.glyph.name.clone()),
+            });
+            by_name.insert(g.glyph.name.clone(), g.glyph);
+        }
+        if let Some((path, text)) = m.kern {
+            files.push(SourceFile {
+                path,
+                text,
+                kind: SourceKind::MasterKerning(m.index),
+            });
+        }
+        let glyphs = default
+            .iter()
+            .filter_map(|d| {
+                let mut g = by_name.remove(&d.name)?;
+                g.unicodes.clone_from(&d.unicodes);
+                Some(g)
+            })
+            .collect();
+        masters.push(Master {
+            name: s.name.clone(),
+            folder: PathBuf::from(&s.folder),
+            location: s.location.clone(),
+            glyphs,
+            kerning: m.kerning,
+        });
+    }
+    masters
+}
+
+/// Reads and loads each glyph file; also whether any failed (unreadable, or with an error
+/// of its own).
+fn load_glyph_files(paths: &[PathBuf], out: &mut Diagnostics) -> (Vec<GlyphFile>, bool) {
+    let mut glyphs = Vec::new();
+    let mut failed = false;
+    for path in paths {
+        let Some(text) = read(path, out) else {
+            failed = true;
+            continue;
+        };
+        let loaded = load_glyph(&mut Ctx::new(path, &text, out));
+        match loaded {
+            Some(loaded) => {
+                failed |= !loaded.complete;
+                glyphs.push(GlyphFile {
+                    glyph: loaded.glyph,
+                    complete: loaded.complete,
+                    spans: loaded.spans,
+                    path: path.clone(),
+                    text,
+                });
+            }
+            None => failed = true,
+        }
+    }
+    (glyphs, failed)
 }
 
 /// The glyph files of `dir`, sorted: every `*.toml` except `font.toml`, `kerning.toml`

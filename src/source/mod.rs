@@ -8,7 +8,9 @@
 //! cycles, an order for sizes computed once per glyph); [`format`] plans the rewrite that
 //! `xglyph fmt` performs.
 
+mod compat;
 mod components;
+mod designspace;
 mod diagnostic;
 pub mod emit;
 pub mod format;
@@ -25,4 +27,4 @@ pub use geometry::{FAR_EMS, FLAT_RELATIVE};
 pub use glyph::load_glyph_text;
 pub use info::{check_tolerance_flag, load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 pub use kerning::load_kerning_text;
-pub use load::{load_font, load_sources, LoadedFont, SourceFile, SourceKind};
+pub use load::{load_family, load_font, load_sources, LoadedFont, SourceFile, SourceKind};

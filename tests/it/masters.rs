@@ -72,8 +72,8 @@ fn single_master_outputs_are_byte_identical_to_before_masters() {
     let mut got = BTreeMap::new();
     hashes(&tmp.join("mini"), "mini", &mut got);
     hashes(&tmp.join("glyphs"), "glyphs", &mut got);
-    let golden = fs::read_to_string(root().join("tests/fixtures/single_master_outputs.sha256"))
-        .unwrap();
+    let golden =
+        fs::read_to_string(root().join("tests/fixtures/single_master_outputs.sha256")).unwrap();
     let want: BTreeMap<String, String> = golden
         .lines()
         .map(|l| {

@@ -1,0 +1,152 @@
+//! Instances: a position in the design space -> a static [`Font`], the masters blended
+//! with [`Designspace::weights`](crate::designspace::Designspace::weights).
+//!
+//! Every number that may differ between masters is blended the same way, as the weighted
+//! sum over the masters (default first): control points' `x`, `y` and `s`, advances,
+//! component offsets and kerning values (a pair a master lacks counts as 0 there). At a
+//! master's location its weight is exactly 1 and the others exactly 0, so the instance is
+//! that master bit for bit. Inside the masters' span the weights are a convex combination,
+//! so `s` stays in [-1, 1] and a point sharp in every master stays sharp.
+
+use std::fmt;
+
+use crate::designspace::{Location, RegionError};
+use crate::model::{Component, Contour, Family, Font, Glyph, KernPair};
+use crate::xspline::{ControlPoint, XSplineError};
+
+/// Why an instance could not be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InstanceError {
+    /// The masters' locations do not form a valid set (the loader refuses these).
+    Regions(RegionError),
+    /// A blended contour is not a valid X-spline (e.g. two neighbouring points meet at this
+    /// position although they differ in every master).
+    Contour {
+        /// The glyph.
+        glyph: String,
+        /// Index of the contour in the glyph.
+        contour: usize,
+        /// What is wrong with it.
+        error: XSplineError,
+    },
+}
+
+impl fmt::Display for InstanceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InstanceError::Regions(e) => write!(f, "the masters cannot be blended: {e:?}"),
+            InstanceError::Contour {
+                glyph,
+                contour,
+                error,
+            } => write!(
+                f,
+                "glyph `{glyph}`, contour {contour}: the blended contour is not a valid \
+                 X-spline here: {error}"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for InstanceError {}
+
+/// `Σ weights[i] × values[i]`, in master order (default first).
+fn blend(weights: &[f64], values: impl IntoIterator<Item = f64>) -> f64 {
+    let mut terms = weights.iter().zip(values).map(|(w, v)| w * v);
+    let first = terms.next().unwrap_or(0.0);
+    terms.fold(first, |acc, t| acc + t)
+}
+
+impl Family {
+    /// The static font at `location` (user coordinates; an axis left out is at its
+    /// default, a value beyond the axis range is clamped). The info and glyph set are the
+    /// default master's; the style name is left as it is.
+    pub fn instance_at(&self, location: &Location) -> Result<Font, InstanceError> {
+        let regions = self.regions().map_err(InstanceError::Regions)?;
+        let w = self.designspace.weights(&regions, location);
+        let mut glyphs = Vec::with_capacity(self.default.glyphs.len());
+        for (gi, d) in self.default.glyphs.iter().enumerate() {
+            let masters: Vec<&Glyph> = std::iter::once(d)
+                .chain(self.masters.iter().map(|m| &m.glyphs[gi]))
+                .collect();
+            let mut contours = Vec::with_capacity(d.contours.len());
+            for (ci, contour) in d.contours.iter().enumerate() {
+                let points = (0..contour.points().len())
+                    .map(|pi| {
+                        let at = |f: fn(&ControlPoint) -> f64| {
+                            blend(&w, masters.iter().map(|g| f(&g.contours[ci].points()[pi])))
+                        };
+                        ControlPoint::new(at(|p| p.pos.x), at(|p| p.pos.y), at(|p| p.s))
+                    })
+                    .collect();
+                let contour = Contour::new(points).map_err(|error| InstanceError::Contour {
+                    glyph: d.name.clone(),
+                    contour: ci,
+                    error,
+                })?;
+                contours.push(contour);
+            }
+            let components = d
+                .components
+                .iter()
+                .enumerate()
+                .map(|(k, c)| Component {
+                    base: c.base.clone(),
+                    offset: (
+                        blend(&w, masters.iter().map(|g| g.components[k].offset.0)),
+                        blend(&w, masters.iter().map(|g| g.components[k].offset.1)),
+                    ),
+                })
+                .collect();
+            glyphs.push(Glyph {
+                name: d.name.clone(),
+                unicodes: d.unicodes.clone(),
+                advance: blend(&w, masters.iter().map(|g| g.advance)),
+                contours,
+                components,
+            });
+        }
+        Ok(Font {
+            info: self.default.info.clone(),
+            glyphs,
+            kerning: self.kerning_at(&w),
+        })
+    }
+
+    /// The kerning blended with `weights`: the default's pairs in order, then pairs only
+    /// other masters have (in master order), each left out where it blends to 0.
+    fn kerning_at(&self, weights: &[f64]) -> Vec<KernPair> {
+        let tables: Vec<&[KernPair]> = std::iter::once(self.default.kerning.as_slice())
+            .chain(self.masters.iter().map(|m| m.kerning.as_slice()))
+            .collect();
+        let value = |table: &[KernPair], left: &str, right: &str| {
+            table
+                .iter()
+                .find(|k| k.left == left && k.right == right)
+                .map_or(0.0, |k| k.value)
+        };
+        let mut out: Vec<KernPair> = Vec::new();
+        for (t, table) in tables.iter().enumerate() {
+            for pair in table.iter() {
+                let seen = out
+                    .iter()
+                    .any(|k| k.left == pair.left && k.right == pair.right);
+                if seen {
+                    continue;
+                }
+                let v = blend(
+                    weights,
+                    tables.iter().map(|tb| value(tb, &pair.left, &pair.right)),
+                );
+                if t == 0 || v != 0.0 {
+                    out.push(KernPair {
+                        left: pair.left.clone(),
+                        right: pair.right.clone(),
+                        value: v,
+                    });
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,449 @@
+//! `font.toml`'s `[[axis]]`, `[[master]]` and `[[instance]]` tables -> a [`Designspace`]
+//! and the non-default masters' names, folders and locations.
+//!
+//! Checks here need `font.toml` and the font folder only (tags, ranges, folders, the
+//! master set as [`Designspace::regions`] sees it); the glyph files of the masters are read
+//! and compared with the default's in [`super::load`] and [`super::compat`].
+
+use std::collections::BTreeMap;
+use std::path::{Component, Path};
+
+use toml::de::{DeTable, DeValue};
+use toml::Spanned;
+
+use super::diagnostic::Ctx;
+use super::emit;
+use super::value::{check_keys, get, number, require, string, tables, type_name};
+use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError};
+
+/// A non-default master as `font.toml` names it, with where its keys were written.
+#[derive(Clone, Debug)]
+pub(super) struct MasterSpec {
+    pub name: String,
+    /// As written: relative to the font folder.
+    pub folder: String,
+    pub location: Location,
+    /// Byte offset of the `folder` value.
+    pub folder_at: usize,
+}
+
+/// The design space of `font.toml` and its masters; both empty for a single-master font.
+#[derive(Clone, Debug, Default)]
+pub(super) struct DesignspaceSpec {
+    pub designspace: Designspace,
+    pub masters: Vec<MasterSpec>,
+}
+
+/// Reads the masters' tables of `font.toml` (`dir` is the font folder, for the master
+/// folders). `None` when there is an error (reported), including a master set that
+/// [`Designspace::regions`] refuses.
+pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<DesignspaceSpec> {
+    let text = ctx.text;
+    // Invalid TOML is reported by `load_info`.
+    let table = DeTable::parse(text).ok()?;
+    let t = table.get_ref();
+    let mut ok = true;
+
+    let mut axes: Vec<(Axis, AxisSpans)> = Vec::new();
+    if let Some(v) = get(t, "axis") {
+        for (at, header) in tables(ctx, v, "axis", &mut ok) {
+            match load_axis(ctx, at, header) {
+                Some((axis, spans)) => {
+                    if let Some((_, first)) = axes.iter().find(|(a, _)| a.tag == axis.tag) {
+                        let (line, _) = ctx.line_col(first.tag);
+                        ctx.err(
+                            spans.tag,
+                            format!(
+                                "duplicate axis tag `{}` (first written at line {line})",
+                                axis.tag
+                            ),
+                        );
+                        ok = false;
+                    } else {
+                        axes.push((axis, spans));
+                    }
+                }
+                None => ok = false,
+            }
+        }
+    }
+    let axis_list: Vec<Axis> = axes.iter().map(|(a, _)| a.clone()).collect();
+
+    let mut masters: Vec<(MasterSpec, usize, usize)> = Vec::new();
+    if let Some(v) = get(t, "master") {
+        for (mt, header) in tables(ctx, v, "master", &mut ok) {
+            if axis_list.is_empty() && ok {
+                ctx.err(
+                    header,
+                    "a `[[master]]` needs the axes it sits on: add an `[[axis]]` table",
+                );
+                ok = false;
+                continue;
+            }
+            match load_master(ctx, mt, header, dir, &axis_list) {
+                Some((spec, name_at, location_at)) => {
+                    if masters.iter().any(|m| m.0.name == spec.name) {
+                        ctx.err(name_at, format!("duplicate master name `{}`", spec.name));
+                        ok = false;
+                    } else {
+                        masters.push((spec, name_at, location_at));
+                    }
+                }
+                None => ok = false,
+            }
+        }
+    }
+
+    let mut instances: Vec<NamedInstance> = Vec::new();
+    if let Some(v) = get(t, "instance") {
+        for (it, header) in tables(ctx, v, "instance", &mut ok) {
+            if axis_list.is_empty() {
+                if ok {
+                    ctx.err(
+                        header,
+                        "an `[[instance]]` needs the axes it sits on: add an `[[axis]]` table",
+                    );
+                }
+                ok = false;
+                continue;
+            }
+            let suggested = check_keys(ctx, it, &["name", "location"]);
+            let name = require(ctx, it, "name", "name = \"Bold\"", header, &suggested)
+                .and_then(|v| non_empty(ctx, v, "name"));
+            let location = require(
+                ctx,
+                it,
+                "location",
+                "location = { wght = 700 }",
+                header,
+                &suggested,
+            )
+            .and_then(|v| location(ctx, v, &axis_list));
+            match (name, location) {
+                (Some((name, at)), Some(location)) => {
+                    if instances.iter().any(|i| i.name == name) {
+                        ctx.err(at, format!("duplicate instance name `{name}`"));
+                        ok = false;
+                    } else {
+                        instances.push(NamedInstance { name, location });
+                    }
+                }
+                _ => ok = false,
+            }
+        }
+    }
+    if !ok {
+        return None;
+    }
+
+    let designspace = Designspace {
+        axes: axis_list,
+        instances,
+    };
+    if !designspace.axes.is_empty() {
+        let locations: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();
+        if let Err(e) = designspace.regions(&locations) {
+            region_error(ctx, &e, &designspace, &masters, &axes);
+            return None;
+        }
+    }
+    Some(DesignspaceSpec {
+        designspace,
+        masters: masters.into_iter().map(|m| m.0).collect(),
+    })
+}
+
+/// Where an axis's keys were written.
+struct AxisSpans {
+    tag: usize,
+    min: usize,
+    max: usize,
+}
+
+fn load_axis(ctx: &mut Ctx<'_>, t: &DeTable<'_>, header: usize) -> Option<(Axis, AxisSpans)> {
+    let suggested = check_keys(ctx, t, &["tag", "name", "min", "default", "max"]);
+    let tag = require(ctx, t, "tag", "tag = \"wght\"", header, &suggested).and_then(|v| {
+        let tag = string(ctx, v, "tag")?;
+        let printable = tag.bytes().all(|b| (0x20..=0x7E).contains(&b));
+        if (1..=4).contains(&tag.len()) && printable {
+            Some((tag, v.span().start))
+        } else {
+            ctx.err(
+                v.span().start,
+                format!(
+                    "`tag` must be 1 to 4 printable ASCII characters (an OpenType axis tag \
+                     such as \"wght\"), found {tag:?}"
+                ),
+            );
+            None
+        }
+    });
+    let name = require(ctx, t, "name", "name = \"Weight\"", header, &suggested)
+        .and_then(|v| non_empty(ctx, v, "name"));
+    let value = |ctx: &mut Ctx<'_>, key: &str, example: &str| {
+        require(ctx, t, key, example, header, &suggested)
+            .and_then(|v| Some((number(ctx, v, key)?, v.span().start)))
+    };
+    let min = value(ctx, "min", "min = 400");
+    let default = value(ctx, "default", "default = 400");
+    let max = value(ctx, "max", "max = 700");
+    let (Some((tag, tag_at)), Some((name, _)), Some((min, min_at)), Some((default, d_at))) =
+        (tag, name, min, default)
+    else {
+        return None;
+    };
+    let (max, max_at) = max?;
+    if min > max {
+        ctx.err(
+            min_at,
+            format!(
+                "`min` = {} is greater than `max` = {}",
+                emit::number(min),
+                emit::number(max)
+            ),
+        );
+        return None;
+    }
+    if !(min..=max).contains(&default) {
+        ctx.err(
+            d_at,
+            format!(
+                "`default` = {} is outside the axis range {}..{}",
+                emit::number(default),
+                emit::number(min),
+                emit::number(max)
+            ),
+        );
+        return None;
+    }
+    Some((
+        Axis {
+            tag,
+            name,
+            min,
+            default,
+            max,
+        },
+        AxisSpans {
+            tag: tag_at,
+            min: min_at,
+            max: max_at,
+        },
+    ))
+}
+
+/// A `[[master]]`: the spec, and where its `name` and `location` were written.
+fn load_master(
+    ctx: &mut Ctx<'_>,
+    t: &DeTable<'_>,
+    header: usize,
+    dir: &Path,
+    axes: &[Axis],
+) -> Option<(MasterSpec, usize, usize)> {
+    let suggested = check_keys(ctx, t, &["name", "folder", "location"]);
+    let name = require(ctx, t, "name", "name = \"Bold\"", header, &suggested)
+        .and_then(|v| non_empty(ctx, v, "name"));
+    let folder = require(ctx, t, "folder", "folder = \"bold\"", header, &suggested)
+        .and_then(|v| Some((string(ctx, v, "folder")?, v.span().start)))
+        .and_then(|(f, at)| check_folder(ctx, dir, &f, at).then_some((f, at)));
+    let loc = require(
+        ctx,
+        t,
+        "location",
+        "location = { wght = 700 }",
+        header,
+        &suggested,
+    );
+    let location_at = loc.map(|v| v.span().start);
+    let location = loc.and_then(|v| location(ctx, v, axes));
+    let ((name, name_at), (folder, folder_at), location, location_at) =
+        (name?, folder?, location?, location_at?);
+    Some((
+        MasterSpec {
+            name,
+            folder,
+            location,
+            folder_at,
+        },
+        name_at,
+        location_at,
+    ))
+}
+
+/// A master folder: relative, without `..`, inside the font folder (links followed), and
+/// an existing folder. Reports and returns false otherwise.
+fn check_folder(ctx: &mut Ctx<'_>, dir: &Path, folder: &str, at: usize) -> bool {
+    let path = Path::new(folder);
+    let why = if folder.trim().is_empty() {
+        Some("`folder` must not be empty; name a sub-folder such as \"bold\"".to_string())
+    } else if path.is_absolute() || path.has_root() {
+        Some(format!(
+            "`folder` must be relative to the font folder, found {folder:?}"
+        ))
+    } else if path.components().any(|c| c == Component::ParentDir) {
+        Some(format!(
+            "`folder` must stay inside the font folder (no `..`), found {folder:?}"
+        ))
+    } else if path.components().all(|c| c == Component::CurDir) {
+        Some(
+            "`folder` must be a sub-folder: the font folder itself is the default master"
+                .to_string(),
+        )
+    } else {
+        let full = dir.join(path);
+        match (full.canonicalize(), dir.canonicalize()) {
+            (Ok(f), Ok(d)) if !f.starts_with(&d) => Some(format!(
+                "`folder` {folder:?} leads outside the font folder (through a link)"
+            )),
+            (Ok(f), _) if !f.is_dir() => Some(format!("`folder` {folder:?} is not a folder")),
+            (Ok(_), _) => None,
+            (Err(_), _) => Some(format!("master folder {} not found", full.display())),
+        }
+    };
+    match why {
+        Some(why) => {
+            ctx.err(at, why);
+            false
+        }
+        None => true,
+    }
+}
+
+/// A location: an inline table of axis tag = user value, each a known axis, inside its
+/// range.
+fn location(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, axes: &[Axis]) -> Option<Location> {
+    let DeValue::Table(t) = v.get_ref() else {
+        ctx.err(
+            v.span().start,
+            format!(
+                "`location` must be a table of axis values such as {{ wght = 700 }}, found {}",
+                type_name(v.get_ref())
+            ),
+        );
+        return None;
+    };
+    let mut ok = true;
+    let mut out = BTreeMap::new();
+    for (k, value) in t.iter() {
+        let tag: &str = k.get_ref();
+        let Some(axis) = axes.iter().find(|a| a.tag == tag) else {
+            let known: Vec<String> = axes.iter().map(|a| format!("`{}`", a.tag)).collect();
+            ctx.err(
+                k.span().start,
+                format!(
+                    "unknown axis `{tag}` in `location`; the axes are {}",
+                    known.join(", ")
+                ),
+            );
+            ok = false;
+            continue;
+        };
+        let Some(x) = number(ctx, value, tag) else {
+            ok = false;
+            continue;
+        };
+        if !(axis.min..=axis.max).contains(&x) {
+            ctx.err(
+                value.span().start,
+                format!(
+                    "{tag} = {} is outside the axis range {}..{}",
+                    emit::number(x),
+                    emit::number(axis.min),
+                    emit::number(axis.max)
+                ),
+            );
+            ok = false;
+            continue;
+        }
+        out.insert(tag.to_string(), x);
+    }
+    ok.then_some(Location(out))
+}
+
+/// A non-empty string and where it was written.
+fn non_empty(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, key: &str) -> Option<(String, usize)> {
+    let s = string(ctx, v, key)?;
+    if s.trim().is_empty() {
+        ctx.err(v.span().start, format!("`{key}` must not be empty"));
+        return None;
+    }
+    Some((s, v.span().start))
+}
+
+/// `location` as `font.toml` writes it, e.g. `wght = 700, wdth = 75` (every axis).
+fn describe(designspace: &Designspace, location: &Location) -> String {
+    designspace
+        .axes
+        .iter()
+        .map(|a| format!("{} = {}", a.tag, emit::number(location.get(a))))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Reports why the master set cannot blend, at the master's `location` (or, for an axis
+/// end without a master, at that end's value).
+fn region_error(
+    ctx: &mut Ctx<'_>,
+    e: &RegionError,
+    designspace: &Designspace,
+    masters: &[(MasterSpec, usize, usize)],
+    axes: &[(Axis, AxisSpans)],
+) {
+    match *e {
+        RegionError::AtDefault { master } => {
+            let (m, _, at) = &masters[master];
+            ctx.err(
+                *at,
+                format!(
+                    "master `{}` is at the default location ({}), where the font folder itself \
+                     is the default master; move it along an axis",
+                    m.name,
+                    describe(designspace, &m.location)
+                ),
+            );
+        }
+        RegionError::OffAxis { master } => {
+            let (m, _, at) = &masters[master];
+            ctx.err(
+                *at,
+                format!(
+                    "master `{}` ({}) is away from the defaults on more than one axis; each \
+                     master must lie on one axis (the others at their defaults)",
+                    m.name,
+                    describe(designspace, &m.location)
+                ),
+            );
+        }
+        RegionError::Duplicate { first, second } => {
+            let (m, _, at) = &masters[second];
+            ctx.err(
+                *at,
+                format!(
+                    "master `{}` is at the same location as master `{}` ({})",
+                    m.name,
+                    masters[first].0.name,
+                    describe(designspace, &m.location)
+                ),
+            );
+        }
+        RegionError::UncoveredEnd { axis, user } => {
+            let (a, spans) = &axes[axis];
+            let (key, at) = if user == a.max {
+                ("max", spans.max)
+            } else {
+                ("min", spans.min)
+            };
+            ctx.err(
+                at,
+                format!(
+                    "axis `{}` ends at {key} = {} but no master is there; add a `[[master]]` \
+                     with location {{ {} = {} }}, or set {key} to the default",
+                    a.tag,
+                    emit::number(user),
+                    a.tag,
+                    emit::number(user)
+                ),
+            );
+        }
+    }
+}
