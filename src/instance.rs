@@ -10,8 +10,9 @@
 
 use std::fmt;
 
-use crate::designspace::{Location, RegionError};
+use crate::designspace::{Designspace, Location, RegionError};
 use crate::model::{Component, Contour, Family, Font, Glyph, KernPair};
+use crate::source::emit;
 use crate::xspline::{ControlPoint, XSplineError};
 
 /// Why an instance could not be built.
@@ -149,4 +150,68 @@ impl Family {
         }
         out
     }
+}
+
+/// Parses a position given on the command line, `TAG=VALUE[,TAG=VALUE...]` in user
+/// coordinates (e.g. `wght=650`), against the font's axes. The error names the `--at`
+/// flag and says what is wrong.
+pub fn parse_location(designspace: &Designspace, text: &str) -> Result<Location, String> {
+    let flag = format!("--at {text}");
+    let axes = || {
+        designspace
+            .axes
+            .iter()
+            .map(|a| {
+                format!(
+                    "`{}` ({}..{})",
+                    a.tag,
+                    emit::number(a.min),
+                    emit::number(a.max)
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if designspace.axes.is_empty() {
+        return Err(format!(
+            "{flag}: the font has no axes (no `[[axis]]` in font.toml), so it has one position \
+             only; leave out --at"
+        ));
+    }
+    let mut location = Location::default();
+    for item in text.split(',') {
+        let Some((tag, value)) = item.split_once('=') else {
+            return Err(format!(
+                "{flag}: expected TAG=VALUE (several separated by commas), such as wght=650; \
+                 found `{item}`"
+            ));
+        };
+        let (tag, value) = (tag.trim(), value.trim());
+        let Some(axis) = designspace.axes.iter().find(|a| a.tag == tag) else {
+            return Err(format!(
+                "{flag}: unknown axis `{tag}`; the font's axes are {}",
+                axes()
+            ));
+        };
+        let x: f64 = match value.parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            _ => {
+                return Err(format!(
+                    "{flag}: `{value}` is not a number (the {tag} value)"
+                ))
+            }
+        };
+        if !(axis.min..=axis.max).contains(&x) {
+            return Err(format!(
+                "{flag}: {tag} = {} is outside the axis range {}..{}",
+                emit::number(x),
+                emit::number(axis.min),
+                emit::number(axis.max)
+            ));
+        }
+        if location.0.insert(tag.to_string(), x).is_some() {
+            return Err(format!("{flag}: axis `{tag}` is given twice"));
+        }
+    }
+    Ok(location)
 }

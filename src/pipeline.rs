@@ -8,20 +8,26 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::designspace::Location;
+use crate::instance::InstanceError;
+use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::render::{
-    encode_png, render_proof, sheet_png_files, ProofOptions, RenderError, SheetOptions,
+    encode_png, render_instances_proof, render_proof, sheet_png_files, ProofOptions, RenderError,
+    SheetOptions,
 };
-use crate::source::{check_tolerance_flag, load_font, Diagnostic, Severity};
+use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::{OutputSet, WriteError};
 
 /// A font directory loaded and outlined, and the warnings of its sources.
 #[derive(Clone, Debug)]
 pub struct Loaded {
-    /// Every glyph fitted.
+    /// Every glyph of the default master fitted.
     pub font: OutlinedFont,
+    /// The sources' model with its masters (a single-master font has no axes).
+    pub family: Family,
     /// Warnings of the sources (errors stop [`load`]).
     pub warnings: Vec<Diagnostic>,
 }
@@ -44,6 +50,8 @@ pub enum PipelineError {
     Render(RenderError),
     /// The font does not fit into OpenType.
     Otf(OtfError),
+    /// An instance of the masters could not be built.
+    Instance(String),
     /// Writing the outputs failed; the output directory is as it was.
     Write {
         /// The output directory.
@@ -78,6 +86,7 @@ impl fmt::Display for PipelineError {
             ),
             PipelineError::Render(e) => write!(f, "{e}"),
             PipelineError::Otf(e) => write!(f, "{e}"),
+            PipelineError::Instance(msg) => write!(f, "{msg}"),
             PipelineError::Write { dir, error } => {
                 write!(f, "{error}; {} is unchanged", dir.display())
             }
@@ -113,18 +122,133 @@ pub fn load_with(
     if let Some(t) = tolerance {
         check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
     }
-    let (font, warnings) = load_font(font_dir).map_err(|diagnostics| PipelineError::Sources {
-        dir: font_dir.to_path_buf(),
-        diagnostics,
-    })?;
-    if font.glyphs.is_empty() {
+    let (family, warnings) =
+        load_family(font_dir).map_err(|diagnostics| PipelineError::Sources {
+            dir: font_dir.to_path_buf(),
+            diagnostics,
+        })?;
+    if family.default.glyphs.is_empty() {
         return Err(PipelineError::NoGlyphs(font_dir.to_path_buf()));
     }
-    let tolerance = tolerance.unwrap_or(font.info.tolerance);
+    let tolerance = tolerance.unwrap_or(family.default.info.tolerance);
     Ok(Loaded {
-        font: outline_font_with(&font, tolerance, opts),
+        font: outline_font_with(&family.default, tolerance, opts),
+        family,
         warnings,
     })
+}
+
+impl From<InstanceError> for PipelineError {
+    fn from(e: InstanceError) -> Self {
+        PipelineError::Instance(e.to_string())
+    }
+}
+
+/// The static font at `location` (see [`Family::instance_at`]), fitted statically to the
+/// tolerance of `loaded`; its style is `style` when given (a named instance's name).
+pub fn instance(
+    loaded: &Loaded,
+    location: &Location,
+    style: Option<&str>,
+) -> Result<OutlinedFont, PipelineError> {
+    let mut font = loaded.family.instance_at(location)?;
+    if let Some(style) = style {
+        font.info.style = style.to_string();
+    }
+    Ok(outline_font_with(
+        &font,
+        loaded.font.tolerance,
+        OutlineOptions::default(),
+    ))
+}
+
+/// Every named instance of a font with masters, fitted statically, in `font.toml` order.
+pub fn named_instances(loaded: &Loaded) -> Result<Vec<(String, OutlinedFont)>, PipelineError> {
+    loaded
+        .family
+        .designspace
+        .instances
+        .iter()
+        .map(|i| {
+            Ok((
+                i.name.clone(),
+                instance(loaded, &i.location, Some(&i.name))?,
+            ))
+        })
+        .collect()
+}
+
+/// The outputs a font with masters adds to [`outputs`]: each named instance as a static
+/// `<Family>-<Instance>.ttf`, `.otf` and `.svg` font, and `proof-instances.png` (the proof
+/// text at each named instance, one labelled block each). Nothing for a single-master font.
+///
+/// An instance whose files would have the default master's names is left out when it sits
+/// at the default location (the default master's files are that instance); anywhere else
+/// it is an error, since its files would replace the default's.
+pub fn instance_outputs(
+    loaded: &Loaded,
+    opts: &BuildOptions,
+) -> Result<Vec<OutputFile>, PipelineError> {
+    if !loaded.family.is_variable() || loaded.family.designspace.instances.is_empty() {
+        return Ok(Vec::new());
+    }
+    let instances = named_instances(loaded)?;
+    let default_stem = output_stem(&loaded.font.info);
+    let mut files = Vec::new();
+    for ((name, font), named) in instances.iter().zip(&loaded.family.designspace.instances) {
+        let stem = output_stem(&font.info);
+        if stem == default_stem {
+            let at_default = loaded
+                .family
+                .designspace
+                .normalize(&named.location)
+                .iter()
+                .all(|&v| v == 0.0);
+            if at_default {
+                continue;
+            }
+            return Err(PipelineError::Instance(format!(
+                "the named instance `{name}` away from the default location would write                  {stem}.ttf, the default master's file; rename the instance or the default                  `style`"
+            )));
+        }
+        files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(font)?));
+        files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(font)?));
+        files.push((
+            PathBuf::from(format!("{stem}.svg")),
+            svg_font(font).into_bytes(),
+        ));
+    }
+    let labelled: Vec<(String, &OutlinedFont)> = instances
+        .iter()
+        .zip(&loaded.family.designspace.instances)
+        .map(|((name, font), named)| {
+            let at: Vec<String> = loaded
+                .family
+                .designspace
+                .axes
+                .iter()
+                .map(|a| {
+                    format!(
+                        "{} {}",
+                        a.tag,
+                        crate::source::emit::number(named.location.get(a))
+                    )
+                })
+                .collect();
+            (format!("{name} ({})", at.join(", ")), font)
+        })
+        .collect();
+    let proof = render_instances_proof(&labelled, &instances_proof_options(&opts.proof))?;
+    files.push((PathBuf::from("proof-instances.png"), encode_png(&proof)?));
+    Ok(files)
+}
+
+/// The instances proof: the build's proof text at three sizes (every instance is a block).
+fn instances_proof_options(proof: &ProofOptions) -> ProofOptions {
+    ProofOptions {
+        sizes: vec![24.0, 48.0, 96.0],
+        ..proof.clone()
+    }
 }
 
 /// Options for every output of a build.

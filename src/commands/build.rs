@@ -172,7 +172,8 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         },
         ..BuildOptions::default()
     };
-    let files = pipeline::outputs(&loaded.font, &opts)?;
+    let mut files = pipeline::outputs(&loaded.font, &opts)?;
+    files.extend(pipeline::instance_outputs(&loaded, &opts)?);
     pipeline::write_outputs(&args.font.out, &files)?;
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);

@@ -5,7 +5,7 @@
 //! text; the image is as wide as the longest line (plus margins) up to a maximum width,
 //! and lines longer than that are cut at the right edge (no wrapping).
 
-use tiny_skia::{Color, Pixmap};
+use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
 use super::draw::{fill_glyph, Placement};
 use super::{white_pixmap, RenderError};
@@ -152,6 +152,63 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
                 fill_glyph(&mut img, &layout.outline(placed).path, at, Color::BLACK);
             }
         }
+    }
+    Ok(img)
+}
+
+/// Height of an instance label line, pixels per em of the built-in label face.
+const LABEL_EM: f64 = 20.0;
+
+/// The proof of several fonts (the named instances of a font with masters), stacked top to
+/// bottom, each block under its label (set in the built-in face, [`super::labels`]). Every
+/// block sets the same text: `opts.text`, or the first font's [`default_text`].
+pub fn render_instances_proof(
+    fonts: &[(String, &OutlinedFont)],
+    opts: &ProofOptions,
+) -> Result<Pixmap, RenderError> {
+    let Some((_, first)) = fonts.first() else {
+        return Err(RenderError::NoGlyphs);
+    };
+    let opts = ProofOptions {
+        text: Some(opts.text.clone().unwrap_or_else(|| default_text(first))),
+        ..opts.clone()
+    };
+    let label_h = (LABEL_EM * 1.5).ceil();
+    let mut blocks = Vec::with_capacity(fonts.len());
+    for (label, font) in fonts {
+        blocks.push((label, render_proof(font, &opts)?));
+    }
+    let width = blocks
+        .iter()
+        .map(|(_, b)| u64::from(b.width()))
+        .max()
+        .unwrap_or(1);
+    let height: u64 = blocks
+        .iter()
+        .map(|(_, b)| label_h as u64 + u64::from(b.height()))
+        .sum();
+    let mut img = white_pixmap(width, height)?;
+    let mut y = 0.0;
+    for (label, block) in blocks {
+        let room = width as f64 - 2.0 * MARGIN;
+        super::labels::draw_line(
+            &mut img,
+            label,
+            (MARGIN, y + 0.4 * LABEL_EM),
+            LABEL_EM,
+            room,
+            Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
+        );
+        y += label_h;
+        img.draw_pixmap(
+            0,
+            y as i32,
+            block.as_ref(),
+            &PixmapPaint::default(),
+            Transform::identity(),
+            None,
+        );
+        y += f64::from(block.height());
     }
     Ok(img)
 }
