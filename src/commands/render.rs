@@ -5,7 +5,8 @@ use std::process::ExitCode;
 
 use super::build::load;
 use super::{CommandError, FontArgs};
-use crate::pipeline::write_outputs;
+use crate::instance::parse_location;
+use crate::pipeline::{self, write_outputs};
 use crate::render::{
     encode_png, render_proof, sheet_png_files, ProofOptions, RenderError, SheetOptions, MAX_AREA,
     MAX_SIDE,
@@ -33,7 +34,8 @@ squares (sharp, s = 0), blue circles (approximating, s > 0), green diamonds
 Examples:
   xglyph render                              # both images, glyphs/ -> out/
   xglyph render --only sheet --overlay --cell 320 --columns 4
-  xglyph render --only proof --text 'Hamburgefonstiv\\nHOHOHO' --sizes 18,36,72")]
+  xglyph render --only proof --text 'Hamburgefonstiv\\nHOHOHO' --sizes 18,36,72
+  xglyph render --at wght=650                # a font with masters, at weight 650")]
 pub struct RenderArgs {
     #[command(flatten)]
     pub font: FontArgs,
@@ -58,13 +60,24 @@ pub struct RenderArgs {
     /// Largest proof width, pixels, 1..=30000 (the image fits its longest line up to this).
     #[arg(long, default_value_t = ProofOptions::default().width_px)]
     pub width: u32,
+    /// Render the font at this position of its design space (a font with masters), user
+    /// coordinates: TAG=VALUE, several separated by commas, e.g. `wght=650`.
+    #[arg(long, value_name = "TAG=VALUE")]
+    pub at: Option<String>,
 }
 
 /// Runs `xglyph render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     check_flags(&args)?;
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let font = &loaded.font;
+    let at_font = match &args.at {
+        Some(at) => {
+            let location = parse_location(&loaded.family.designspace, at)?;
+            Some(pipeline::instance(&loaded, &location, None)?)
+        }
+        None => None,
+    };
+    let font = at_font.as_ref().unwrap_or(&loaded.font);
     let mut files = Vec::new();
     if args.only != Some(Only::Proof) {
         let opts = SheetOptions {

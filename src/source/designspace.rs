@@ -67,6 +67,11 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
             }
         }
     }
+    if !ok {
+        // Locations are checked against the axes; with a broken axis they would only
+        // report follow-on errors.
+        return None;
+    }
     let axis_list: Vec<Axis> = axes.iter().map(|(a, _)| a.clone()).collect();
 
     let mut masters: Vec<(MasterSpec, usize, usize)> = Vec::new();

@@ -89,3 +89,268 @@ fn single_master_outputs_are_byte_identical_to_before_masters() {
         .collect();
     assert!(differ.is_empty(), "outputs that changed: {differ:?}");
 }
+
+fn fixture() -> PathBuf {
+    root().join("tests/fixtures/masters")
+}
+
+/// Copies the fixture to `<scratch>/font`, applies `edit` (relative path, old text, new
+/// text; an empty new text with old `"*"` deletes the file), runs `xglyph check font` in
+/// the scratch folder and returns (exit code, stdout).
+fn check_edited(test: &str, edits: &[(&str, &str, &str)]) -> (Option<i32>, String) {
+    let tmp = scratch(test);
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    for (file, old, new) in edits {
+        let path = font.join(file);
+        if *old == "*" {
+            if new.is_empty() {
+                fs::remove_file(&path).unwrap();
+            } else {
+                fs::write(&path, new).unwrap();
+            }
+            continue;
+        }
+        let text = fs::read_to_string(&path).unwrap();
+        assert!(text.contains(old), "{file} has no {old:?}");
+        fs::write(&path, text.replacen(old, new, 1)).unwrap();
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args(["check", "font"])
+        .current_dir(&tmp)
+        .output()
+        .unwrap();
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code(), text)
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    fs::create_dir_all(to).unwrap();
+    for entry in fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let dest = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_dir(&path, &dest);
+        } else {
+            fs::copy(&path, &dest).unwrap();
+        }
+    }
+}
+
+/// `check` fails (exit 1) with exactly this one error line among its output.
+fn assert_one_error(test: &str, edits: &[(&str, &str, &str)], error: &str) {
+    let (code, out) = check_edited(test, edits);
+    assert_eq!(code, Some(1), "{out}");
+    let errors: Vec<&str> = out.lines().filter(|l| l.contains(": error: ")).collect();
+    assert_eq!(errors, [error], "{out}");
+    assert!(out.ends_with("1 error, 0 warnings\n"), "{out}");
+}
+
+#[test]
+fn the_fixture_checks_clean_and_is_canonical() {
+    let (code, out) = check_edited("clean", &[]);
+    assert_eq!((code, out.as_str()), (Some(0), "0 errors, 0 warnings\n"));
+    let fmt = xglyph(&["fmt", "--check", fixture().to_str().unwrap()]);
+    assert_eq!(fmt.status.code(), Some(0), "{fmt:?}");
+}
+
+#[test]
+fn a_glyph_missing_from_a_master_is_reported_at_its_folder() {
+    assert_one_error(
+        "missing",
+        &[("bold/n.toml", "*", "")],
+        "font/font.toml:21:10: error: master `Bold` has no glyph `n`; add bold/n.toml (a copy \
+         of font/n.toml with this master's coordinates)",
+    );
+}
+
+#[test]
+fn an_extra_glyph_in_a_master_is_reported() {
+    assert_one_error(
+        "extra",
+        &[(
+            "bold/x.toml",
+            "*",
+            "name = \"x\"\nadvance = 500\n\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [50, 100, 0]]\n",
+        )],
+        "font/bold/x.toml:1:8: error: glyph `x` is not in the default master; add it there \
+         too, or remove this file",
+    );
+}
+
+#[test]
+fn a_missing_contour_is_reported_with_what_the_default_has() {
+    let bold_o = fs::read_to_string(fixture().join("bold/O_.toml")).unwrap();
+    let first_contour = &bold_o[..bold_o.rfind("\n[[contour]]").unwrap() + 1];
+    assert_one_error(
+        "contours",
+        &[("bold/O_.toml", "*", first_contour)],
+        "font/bold/O_.toml:6:3: error: this master has 1 contour, the default master has 2; \
+         add contour 1 (8 points in the default)",
+    );
+}
+
+#[test]
+fn an_extra_contour_is_reported_at_its_first_point() {
+    assert_one_error(
+        "extra-contour",
+        &[(
+            "bold/H_.toml",
+            "[70, 700, 0],\n]\n",
+            "[70, 700, 0],\n]\n\n[[contour]]\npoints = [[0, 0, 0], [10, 0, 0], [5, 10, 0]]\n",
+        )],
+        "font/bold/H_.toml:21:11: error: contour 1 is not in the default master, which has 1 \
+         contour; remove it (or add it to every master)",
+    );
+}
+
+#[test]
+fn a_missing_point_is_reported_with_both_counts() {
+    assert_one_error(
+        "points",
+        &[("bold/H_.toml", "  [70, 700, 0],\n", "")],
+        "font/bold/H_.toml:16:3: error: contour 0 has 11 points here, the default master has \
+         12; add 1 point after point 10",
+    );
+}
+
+#[test]
+fn an_extra_point_is_reported_at_the_first_extra_one() {
+    assert_one_error(
+        "points-extra",
+        &[(
+            "bold/H_.toml",
+            "  [70, 700, 0],\n",
+            "  [70, 700, 0],\n  [60, 400, 0],\n",
+        )],
+        "font/bold/H_.toml:18:3: error: contour 0 has 13 points here, the default master has \
+         12; point 12 and after are extra; remove 1",
+    );
+}
+
+#[test]
+fn a_point_sharp_in_one_master_only_is_reported_with_both_values() {
+    assert_one_error(
+        "sharp",
+        &[("bold/n.toml", "[200, 330, 1]", "[200, 330, 0]")],
+        "font/bold/n.toml:8:3: error: point 2 of contour 0 is sharp (s = 0) here but s = 1 in \
+         the default master; a sharp point must be sharp in every master (a corner cannot \
+         appear mid-axis): make it s = 0 in every master, or non-zero here",
+    );
+    assert_one_error(
+        "smooth",
+        &[("bold/n.toml", "[60, 0, 0]", "[60, 0, 0.25]")],
+        "font/bold/n.toml:6:3: error: point 0 of contour 0 has s = 0.25 here but is sharp \
+         (s = 0) in the default master; a sharp point must be sharp in every master (a corner \
+         cannot appear mid-axis): make it s = 0 here",
+    );
+}
+
+#[test]
+fn different_components_are_reported() {
+    assert_one_error(
+        "components",
+        &[("bold/ndot.toml", "base = \"n\"", "base = \"H\"")],
+        "font/bold/ndot.toml:5:8: error: component 0 is `H` here but `n` in the default \
+         master, whose components are `n`, `dotcomb`; masters need the same components in the \
+         same order",
+    );
+}
+
+#[test]
+fn a_master_unicode_must_match_the_default() {
+    assert_one_error(
+        "unicode",
+        &[(
+            "bold/n.toml",
+            "advance = 590",
+            "unicode = 0x006D\nadvance = 590",
+        )],
+        "font/bold/n.toml:2:11: error: `unicode` 0x006D differs from the default master's \
+         0x006E; leave it out (a master has the default's code points) or make it the same",
+    );
+}
+
+#[test]
+fn font_toml_axis_master_and_instance_errors() {
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "tag",
+            "tag = \"wght\"",
+            "tag = \"weight\"",
+            "font/font.toml:13:7: error: `tag` must be 1 to 4 printable ASCII characters (an \
+             OpenType axis tag such as \"wght\"), found \"weight\"",
+        ),
+        (
+            "default-range",
+            "default = 400",
+            "default = 800",
+            "font/font.toml:16:11: error: `default` = 800 is outside the axis range 400..700",
+        ),
+        (
+            "unknown-axis",
+            "location = { wght = 700 }",
+            "location = { wdth = 700 }",
+            "font/font.toml:22:14: error: unknown axis `wdth` in `location`; the axes are `wght`",
+        ),
+        (
+            "master-range",
+            "location = { wght = 700 }",
+            "location = { wght = 750 }",
+            "font/font.toml:22:21: error: wght = 750 is outside the axis range 400..700",
+        ),
+        (
+            "instance-range",
+            "location = { wght = 500 }",
+            "location = { wght = 300 }",
+            "font/font.toml:30:21: error: wght = 300 is outside the axis range 400..700",
+        ),
+        (
+            "dotdot",
+            "folder = \"bold\"",
+            "folder = \"../bold\"",
+            "font/font.toml:21:10: error: `folder` must stay inside the font folder (no `..`), \
+             found \"../bold\"",
+        ),
+        (
+            "absolute",
+            "folder = \"bold\"",
+            "folder = \"/bold\"",
+            "font/font.toml:21:10: error: `folder` must be relative to the font folder, found \
+             \"/bold\"",
+        ),
+        (
+            "no-folder",
+            "folder = \"bold\"",
+            "folder = \"heavy\"",
+            "font/font.toml:21:10: error: master folder font/heavy not found",
+        ),
+        (
+            "at-default",
+            "location = { wght = 700 }",
+            "location = { wght = 400 }",
+            "font/font.toml:22:12: error: master `Bold` is at the default location (wght = \
+             400), where the font folder itself is the default master; move it along an axis",
+        ),
+        (
+            "uncovered",
+            "location = { wght = 700 }",
+            "location = { wght = 600 }",
+            "font/font.toml:17:7: error: axis `wght` ends at max = 700 but no master is there; \
+             add a `[[master]]` with location { wght = 700 }, or set max to the default",
+        ),
+    ];
+    for (name, old, new, error) in cases {
+        assert_one_error(name, &[("font.toml", old, new)], error);
+    }
+    assert_one_error(
+        "dup-tag",
+        &[(
+            "font.toml",
+            "\n[[master]]",
+            "\n[[axis]]\ntag = \"wght\"\nname = \"W\"\nmin = 0\ndefault = 0\nmax = 0\n\n[[master]]",
+        )],
+        "font/font.toml:20:7: error: duplicate axis tag `wght` (first written at line 13)",
+    );
+}
