@@ -354,3 +354,227 @@ fn font_toml_axis_master_and_instance_errors() {
         "font/font.toml:20:7: error: duplicate axis tag `wght` (first written at line 13)",
     );
 }
+
+fn at(wght: f64) -> xglyph::designspace::Location {
+    xglyph::designspace::Location([("wght".to_string(), wght)].into_iter().collect())
+}
+
+/// Every blended number of a glyph, in one list: x, y, s of each point, the advance,
+/// component offsets.
+fn numbers(g: &xglyph::model::Glyph) -> Vec<f64> {
+    let mut out = vec![g.advance];
+    for c in &g.contours {
+        for p in c.points() {
+            out.extend([p.pos.x, p.pos.y, p.s]);
+        }
+    }
+    for c in &g.components {
+        out.extend([c.offset.0, c.offset.1]);
+    }
+    out
+}
+
+fn kern(k: &[xglyph::model::KernPair], l: &str, r: &str) -> f64 {
+    k.iter()
+        .find(|p| p.left == l && p.right == r)
+        .map_or(0.0, |p| p.value)
+}
+
+#[test]
+fn the_blend_is_each_master_at_its_location_and_the_mean_halfway() {
+    let (family, warnings) = xglyph::source::load_family(&fixture()).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(family.masters.len(), 1);
+    let bold = &family.masters[0];
+    let regular = family.instance_at(&at(400.0)).unwrap();
+    assert_eq!(regular, family.default, "the default location is the default master");
+    let at700 = family.instance_at(&at(700.0)).unwrap();
+    let mid = family.instance_at(&at(550.0)).unwrap();
+    assert_eq!(at700.glyphs.len(), 7);
+    let mut compared = 0;
+    for (i, g) in at700.glyphs.iter().enumerate() {
+        assert_eq!(numbers(g), numbers(&bold.glyphs[i]), "{}", g.name);
+        let (d, b, m) = (
+            numbers(&family.default.glyphs[i]),
+            numbers(&bold.glyphs[i]),
+            numbers(&mid.glyphs[i]),
+        );
+        for k in 0..d.len() {
+            assert_eq!(m[k], (d[k] + b[k]) / 2.0, "{} number {k}", g.name);
+            compared += 1;
+        }
+    }
+    // 7 advances, 8 + 12 + 16 + 12 + 4 points x 3, 2 component offsets x 2.
+    assert_eq!(compared, 7 + 3 * (8 + 12 + 16 + 12 + 4) + 4);
+    // Spot values: H's first point and advance, the dot's offset.
+    let h = mid.glyphs.iter().find(|g| g.name == "H").unwrap();
+    assert_eq!(
+        (h.advance, h.contours[0].points()[0].pos.x),
+        (670.0, 75.0)
+    );
+    let ndot = mid.glyphs.iter().find(|g| g.name == "ndot").unwrap();
+    assert_eq!(ndot.components[1].offset, (17.5, 0.0));
+    // Kerning: each master's values at its location, the mean between, a pair only the
+    // Bold master has blended from 0.
+    for (l, r, d, b) in [("H", "O", -10.0, -30.0), ("O", "H", -12.0, -20.0), ("n", "O", 0.0, -16.0)] {
+        assert_eq!(kern(&regular.kerning, l, r), d);
+        assert_eq!(kern(&at700.kerning, l, r), b);
+        assert_eq!(kern(&mid.kerning, l, r), (d + b) / 2.0);
+    }
+    assert_eq!(regular.kerning.len(), 2, "the Bold-only pair is 0 at the default");
+    assert_eq!(at700.kerning.len(), 3);
+}
+
+#[test]
+fn render_at_a_position_draws_the_blend() {
+    let tmp = scratch("render-at");
+    let font = fixture();
+    let mut inked = Vec::new();
+    for wght in ["400", "550", "700"] {
+        let out = tmp.join(wght);
+        let result = xglyph(&[
+            "render",
+            font.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--only",
+            "proof",
+            "--text",
+            "HOn",
+            "--sizes",
+            "100",
+            "--at",
+            &format!("wght={wght}"),
+        ]);
+        assert_eq!(result.status.code(), Some(0), "{result:?}");
+        let img = image_ink(&out.join("proof.png"));
+        inked.push(img);
+    }
+    // Heavier is darker: the ink grows with the weight, and 550 lies strictly between.
+    assert!(inked[0] < inked[1] && inked[1] < inked[2], "{inked:?}");
+    let (plain, at_default) = (tmp.join("plain"), tmp.join("400"));
+    let result = xglyph(&[
+        "render",
+        font.to_str().unwrap(),
+        "-o",
+        plain.to_str().unwrap(),
+        "--only",
+        "proof",
+        "--text",
+        "HOn",
+        "--sizes",
+        "100",
+    ]);
+    assert_eq!(result.status.code(), Some(0));
+    assert_eq!(
+        fs::read(plain.join("proof.png")).unwrap(),
+        fs::read(at_default.join("proof.png")).unwrap(),
+        "--at the default location renders the default master"
+    );
+}
+
+/// Sum of (255 - red) over the PNG's pixels.
+fn image_ink(path: &Path) -> u64 {
+    let png = fs::read(path).unwrap();
+    let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
+    pixmap
+        .pixels()
+        .iter()
+        .map(|p| 255 - u64::from(p.red()))
+        .sum()
+}
+
+#[test]
+fn bad_at_flags_are_clear_errors() {
+    let font = fixture();
+    let mini = root().join("tests/fixtures/mini");
+    let tmp = scratch("bad-at");
+    for (dir, at, message) in [
+        (&font, "wght=800", "error: --at wght=800: wght = 800 is outside the axis range 400..700\n"),
+        (&font, "wdth=80", "error: --at wdth=80: unknown axis `wdth`; the font's axes are `wght` (400..700)\n"),
+        (&font, "wght", "error: --at wght: expected TAG=VALUE (several separated by commas), such as wght=650; found `wght`\n"),
+        (&font, "wght=heavy", "error: --at wght=heavy: `heavy` is not a number (the wght value)\n"),
+        (&font, "wght=500,wght=600", "error: --at wght=500,wght=600: axis `wght` is given twice\n"),
+        (&mini, "wght=500", "error: --at wght=500: the font has no axes (no `[[axis]]` in font.toml), so it has one position only; leave out --at\n"),
+    ] {
+        let out = tmp.join("out");
+        let result = xglyph(&[
+            "render",
+            dir.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--at",
+            at,
+        ]);
+        assert_eq!(result.status.code(), Some(1));
+        assert_eq!(String::from_utf8_lossy(&result.stderr), message);
+        assert!(!out.exists(), "nothing written");
+    }
+}
+
+#[test]
+fn build_writes_each_named_instance_and_their_proof() {
+    let tmp = scratch("build");
+    let out = tmp.join("out");
+    let result = xglyph(&["build", fixture().to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(result.status.code(), Some(0), "{result:?}");
+    let mut names: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("MastersTest-") || n.starts_with("proof"))
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "MastersTest-Bold.otf",
+            "MastersTest-Bold.svg",
+            "MastersTest-Bold.ttf",
+            "MastersTest-Medium.otf",
+            "MastersTest-Medium.svg",
+            "MastersTest-Medium.ttf",
+            "MastersTest-Regular.otf",
+            "MastersTest-Regular.svg",
+            "MastersTest-Regular.ttf",
+            "MastersTest-Regular.woff2",
+            "MastersTest-SemiBold.otf",
+            "MastersTest-SemiBold.svg",
+            "MastersTest-SemiBold.ttf",
+            "proof-instances.png",
+            "proof.png",
+        ]
+    );
+    // Each static instance carries the instance's advances: read hmtx back with read-fonts.
+    use read_fonts::{FontRef, TableProvider};
+    let (family, _) = xglyph::source::load_family(&fixture()).unwrap();
+    for (style, wght, weight_class) in [("Medium", 500.0, 500), ("SemiBold", 600.0, 600), ("Bold", 700.0, 700)] {
+        let bytes = fs::read(out.join(format!("MastersTest-{style}.ttf"))).unwrap();
+        let ttf = FontRef::new(&bytes).unwrap();
+        let want = family.instance_at(&at(wght)).unwrap();
+        let hmtx = ttf.hmtx().unwrap();
+        let h = want.glyphs.iter().position(|g| g.name == "H").unwrap();
+        assert_eq!(
+            f64::from(hmtx.advance(read_fonts::types::GlyphId::new(h as u32)).unwrap()),
+            want.glyphs[h].advance.round(),
+            "{style}"
+        );
+        assert_eq!(ttf.os2().unwrap().us_weight_class(), weight_class);
+    }
+    // The instances proof stacks four labelled blocks; heavier blocks hold more ink.
+    let proof = fs::read(out.join("proof-instances.png")).unwrap();
+    let pixmap = resvg::tiny_skia::Pixmap::decode_png(&proof).unwrap();
+    let single = resvg::tiny_skia::Pixmap::decode_png(&fs::read(out.join("proof.png")).unwrap()).unwrap();
+    assert!(pixmap.height() > 4 * 100, "{}", pixmap.height());
+    let quarter = pixmap.height() as usize / 4;
+    let w = pixmap.width() as usize;
+    let ink: Vec<u64> = (0..4)
+        .map(|b| {
+            pixmap.pixels()[b * quarter * w..(b + 1) * quarter * w]
+                .iter()
+                .map(|p| 255 - u64::from(p.red()))
+                .sum()
+        })
+        .collect();
+    assert!(ink[0] < ink[1] && ink[1] < ink[2] && ink[2] < ink[3], "{ink:?}");
+    assert!(single.height() > 0);
+}
