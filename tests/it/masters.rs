@@ -578,3 +578,54 @@ fn build_writes_each_named_instance_and_their_proof() {
     assert!(ink[0] < ink[1] && ink[1] < ink[2] && ink[2] < ink[3], "{ink:?}");
     assert!(single.height() > 0);
 }
+
+#[test]
+fn fmt_rewrites_the_masters_keys_and_master_files_canonically() {
+    let tmp = scratch("fmt");
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    let edit = |file: &str, old: &str, new: &str| {
+        let path = font.join(file);
+        let text = fs::read_to_string(&path).unwrap();
+        assert!(text.contains(old), "{file}: {old:?}");
+        fs::write(&path, text.replacen(old, new, 1)).unwrap();
+    };
+    // Keys out of order, an inline location written as a sub-table, a master file with
+    // its (matching) unicode and points on one line, a master kerning value as a float.
+    edit(
+        "font.toml",
+        "tag = \"wght\"\nname = \"Weight\"",
+        "name = \"Weight\"\ntag = \"wght\"",
+    );
+    edit(
+        "font.toml",
+        "name = \"Bold\"\nfolder = \"bold\"\nlocation = { wght = 700 }",
+        "folder = \"bold\"\nname = \"Bold\"\nlocation.wght = 700.0",
+    );
+    edit(
+        "bold/dotcomb.toml",
+        "advance = 0",
+        "unicode = 0x0307\nadvance = 0",
+    );
+    edit(
+        "bold/dotcomb.toml",
+        "points = [\n  [220, 570, 0],\n  [340, 570, 0],\n  [340, 690, 0],\n  [220, 690, 0],\n]",
+        "points = [[220, 570, 0], [340, 570, 0], [340, 690, 0], [220, 690, 0]]",
+    );
+    edit("bold/kerning.toml", "value = -16", "value = -16.0");
+    let check = xglyph(&["fmt", "--check", font.to_str().unwrap()]);
+    assert_eq!(check.status.code(), Some(1));
+    let listed = String::from_utf8_lossy(&check.stdout);
+    for file in ["font.toml", "bold/dotcomb.toml", "bold/kerning.toml"] {
+        assert!(listed.contains(&format!("font/{file}")), "{listed}");
+    }
+    let result = xglyph(&["fmt", font.to_str().unwrap()]);
+    assert_eq!(result.status.code(), Some(0), "{result:?}");
+    for file in ["font.toml", "bold/dotcomb.toml", "bold/kerning.toml"] {
+        assert_eq!(
+            fs::read_to_string(font.join(file)).unwrap(),
+            fs::read_to_string(fixture().join(file)).unwrap(),
+            "{file}"
+        );
+    }
+}
