@@ -215,3 +215,22 @@ pub fn parse_location(designspace: &Designspace, text: &str) -> Result<Location,
     }
     Ok(location)
 }
+
+/// A style name for the font at `location`: the named instance there, or the axis values,
+/// e.g. `"wght650"` (for file and font names of an instance that has no name).
+pub fn style_at(designspace: &Designspace, location: &Location) -> String {
+    let here = designspace.normalize(location);
+    if let Some(named) = designspace
+        .instances
+        .iter()
+        .find(|i| designspace.normalize(&i.location) == here)
+    {
+        return named.name.clone();
+    }
+    designspace
+        .axes
+        .iter()
+        .map(|a| format!("{}{}", a.tag, emit::number(location.get(a))))
+        .collect::<Vec<_>>()
+        .join(" ")
+}

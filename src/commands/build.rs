@@ -12,9 +12,12 @@ use std::time::{Duration, Instant};
 
 use super::{CommandError, FontArgs};
 use crate::cache::{FitCache, LoadOutcome, CACHE_FILE};
+use crate::designspace::Location;
+use crate::model::Family;
 use crate::outline::{OutlineOptions, Progress};
 use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Summary};
 use crate::render::ProofOptions;
+use crate::source::emit;
 use crate::source::Diagnostic;
 use crate::terminal::{err, errln, out, outln};
 
@@ -154,6 +157,44 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
     )
 }
 
+/// The line a build of a font with masters adds: the masters and the named instances with
+/// their positions.
+fn masters_line(family: &Family) -> String {
+    let ds = &family.designspace;
+    let at = |location: &Location| -> String {
+        ds.axes
+            .iter()
+            .map(|a| format!("{} {}", a.tag, emit::number(location.get(a))))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut masters = vec![format!(
+        "{} ({}, default)",
+        family.default.info.style,
+        at(&Location::default())
+    )];
+    masters.extend(
+        family
+            .masters
+            .iter()
+            .map(|m| format!("{} ({})", m.name, at(&m.location))),
+    );
+    let instances: Vec<String> = ds
+        .instances
+        .iter()
+        .map(|i| format!("{} ({})", i.name, at(&i.location)))
+        .collect();
+    format!(
+        "masters: {}; named instances: {}",
+        masters.join(", "),
+        if instances.is_empty() {
+            "none".to_string()
+        } else {
+            instances.join(", ")
+        }
+    )
+}
+
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     let cache_path = args.font.out.join(CACHE_FILE);
@@ -181,6 +222,9 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         "{}",
         summary(&Summary::new(&loaded.font), &family, &args.font.out, &files)
     );
+    if loaded.family.is_variable() {
+        outln!("{}", masters_line(&loaded.family));
+    }
     if cache.hits() > 0 {
         outln!(
             "refitted {} contours; {} fits from the cache {}",

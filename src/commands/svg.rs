@@ -4,7 +4,8 @@ use std::process::ExitCode;
 
 use super::build::load;
 use super::{CommandError, FontArgs};
-use crate::pipeline::{svg_outputs, write_outputs};
+use crate::instance::{parse_location, style_at};
+use crate::pipeline::{instance, svg_outputs, write_outputs};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -15,16 +16,29 @@ Writes into OUT:
 
 Examples:
   xglyph svg                      # glyphs/ -> out/
-  xglyph svg my-font -o icons --tolerance 0.25")]
+  xglyph svg my-font -o icons --tolerance 0.25
+  xglyph svg --at wght=650        # a font with masters, at weight 650")]
 pub struct SvgArgs {
     #[command(flatten)]
     pub font: FontArgs,
+    /// Write the font at this position of its design space (a font with masters), user
+    /// coordinates: TAG=VALUE, several separated by commas, e.g. `wght=650`.
+    #[arg(long, value_name = "TAG=VALUE")]
+    pub at: Option<String>,
 }
 
 /// Runs `xglyph svg`.
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
-    let files = svg_outputs(&loaded.font);
+    let at_font = match &args.at {
+        Some(at) => {
+            let location = parse_location(&loaded.family.designspace, at)?;
+            let style = style_at(&loaded.family.designspace, &location);
+            Some(instance(&loaded, &location, Some(&style))?)
+        }
+        None => None,
+    };
+    let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
     write_outputs(&args.font.out, &files)?;
     outln!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",

@@ -195,6 +195,12 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         let (mglyphs, failed) = load_glyph_files(&paths, &mut out);
         glyph_failed |= failed;
         check_unique(&mglyphs, &mut out);
+        // The outputs' limits hold for each master, so every instance between fits too
+        // (an instance's extent and counts are within its masters').
+        limits::check_font(&mdir, &mglyphs, &ComponentGraph::new(&mglyphs), &mut out);
+        if let Some(info) = &info {
+            check_far_points(&mglyphs, info, &mut out);
+        }
         if let Some(text) = &info_text {
             check_master(m, (&font_path, text), &glyphs, &mglyphs, &mut out);
         }
