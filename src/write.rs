@@ -506,39 +506,16 @@ pub fn write_all_atomic<P: AsRef<Path>>(files: &[(P, Vec<u8>)]) -> io::Result<()
     set.commit().map_err(io::Error::other)
 }
 
+// The folder snapshot the integration tests use too (unit tests cannot reach `tests/`).
+#[cfg(test)]
+#[path = "../tests/it/common/tree.rs"]
+mod test_tree;
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Every entry under `dir` (relative, sorted), with file contents; links as `-> target`.
-    fn tree(dir: &Path) -> Vec<(String, String)> {
-        fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
-            for entry in fs::read_dir(dir).unwrap() {
-                let path = entry.unwrap().path();
-                let rel = path.strip_prefix(root).unwrap().display().to_string();
-                let meta = fs::symlink_metadata(&path).unwrap();
-                if meta.file_type().is_symlink() {
-                    let target = fs::read_link(&path).unwrap();
-                    out.push((rel, format!("-> {}", target.display())));
-                } else if meta.is_dir() {
-                    out.push((rel.clone() + "/", String::new()));
-                    walk(root, &path, out);
-                } else {
-                    out.push((rel, fs::read_to_string(&path).unwrap()));
-                }
-            }
-        }
-        let mut out = Vec::new();
-        walk(dir, dir, &mut out);
-        out.sort();
-        out
-    }
-
-    fn entries(list: &[(&str, &str)]) -> Vec<(String, String)> {
-        list.iter()
-            .map(|(a, b)| (a.to_string(), b.to_string()))
-            .collect()
-    }
+    use super::test_tree::{entries, tree};
 
     #[test]
     fn commit_writes_every_file_and_creates_folders() {
@@ -552,8 +529,8 @@ mod tests {
             tree(&out),
             entries(&[
                 ("a.txt", "A"),
-                ("sub/", ""),
-                ("sub/deeper/", ""),
+                ("sub", "/"),
+                ("sub/deeper", "/"),
                 ("sub/deeper/b.txt", "B")
             ])
         );
