@@ -613,60 +613,51 @@ mod tests {
         fs::write(out.join("svg"), "a file").unwrap();
         let before = tree(&out);
 
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("new/folder/x.svg"), "x");
-        set.add(out.join("proof.png"), "proof");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot write {}: a folder of that name is in the way",
-                out.join("proof.png").display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("svg/a.svg"), "a");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot create the folder {}: a file of that name is in the way",
-                out.join("svg").display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
         let long = "n".repeat(300) + ".svg";
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("glyphs").join(&long), "long");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot write {}: file name too long",
-                out.join("glyphs").join(&long).display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
-        // A folder name too long: the error names it as a folder.
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("new").join(&long).join("x.svg"), "x");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot create the folder {}: file name too long",
-                out.join("new").join(&long).display()
-            )
-        );
-        assert_eq!(tree(&out), before);
+        // The files of each set after `sheet.png` (which could be written), and the error.
+        let cases = [
+            (
+                vec![
+                    (out.join("new/folder/x.svg"), "x"),
+                    (out.join("proof.png"), "proof"),
+                ],
+                format!(
+                    "cannot write {}: a folder of that name is in the way",
+                    out.join("proof.png").display()
+                ),
+            ),
+            (
+                vec![(out.join("svg/a.svg"), "a")],
+                format!(
+                    "cannot create the folder {}: a file of that name is in the way",
+                    out.join("svg").display()
+                ),
+            ),
+            (
+                vec![(out.join("glyphs").join(&long), "long")],
+                format!(
+                    "cannot write {}: file name too long",
+                    out.join("glyphs").join(&long).display()
+                ),
+            ),
+            // A folder name too long: the error names it as a folder.
+            (
+                vec![(out.join("new").join(&long).join("x.svg"), "x")],
+                format!(
+                    "cannot create the folder {}: file name too long",
+                    out.join("new").join(&long).display()
+                ),
+            ),
+        ];
+        for (files, message) in cases {
+            let mut set = OutputSet::new();
+            set.add(out.join("sheet.png"), "sheet");
+            for (file, bytes) in files {
+                set.add(file, bytes);
+            }
+            assert_eq!(set.commit().unwrap_err().to_string(), message);
+            assert_eq!(tree(&out), before, "{message}");
+        }
     }
 
     #[test]
