@@ -8,6 +8,7 @@
 //! that master bit for bit. Inside the masters' span the weights are a convex combination,
 //! so `s` stays in [-1, 1] and a point sharp in every master stays sharp.
 
+use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use crate::designspace::{Designspace, Location, RegionError};
@@ -117,27 +118,29 @@ impl Family {
     /// The kerning blended with `weights`: the default's pairs in order, then pairs only
     /// other masters have (in master order), each left out where it blends to 0.
     fn kerning_at(&self, weights: &[f64]) -> Vec<KernPair> {
-        let tables: Vec<&[KernPair]> = std::iter::once(self.default.kerning.as_slice())
-            .chain(self.masters.iter().map(|m| m.kerning.as_slice()))
-            .collect();
-        let value = |table: &[KernPair], left: &str, right: &str| {
-            table
-                .iter()
-                .find(|k| k.left == left && k.right == right)
-                .map_or(0.0, |k| k.value)
-        };
-        let mut out: Vec<KernPair> = Vec::new();
-        for (t, table) in tables.iter().enumerate() {
-            for pair in table.iter() {
-                let seen = out
+        let tables: Vec<HashMap<(&str, &str), f64>> = std::iter::once(&self.default.kerning)
+            .chain(self.masters.iter().map(|m| &m.kerning))
+            .map(|pairs| {
+                pairs
                     .iter()
-                    .any(|k| k.left == pair.left && k.right == pair.right);
-                if seen {
+                    .map(|k| ((k.left.as_str(), k.right.as_str()), k.value))
+                    .collect()
+            })
+            .collect();
+        let mut seen: HashSet<(&str, &str)> = HashSet::new();
+        let mut out = Vec::new();
+        let all = std::iter::once(&self.default.kerning)
+            .chain(self.masters.iter().map(|m| &m.kerning))
+            .enumerate();
+        for (t, pairs) in all {
+            for pair in pairs {
+                let key = (pair.left.as_str(), pair.right.as_str());
+                if !seen.insert(key) {
                     continue;
                 }
                 let v = blend(
                     weights,
-                    tables.iter().map(|tb| value(tb, &pair.left, &pair.right)),
+                    tables.iter().map(|tb| tb.get(&key).copied().unwrap_or(0.0)),
                 );
                 if t == 0 || v != 0.0 {
                     out.push(KernPair {

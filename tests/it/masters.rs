@@ -360,6 +360,35 @@ fn font_toml_axis_master_and_instance_errors() {
         )],
         "font/font.toml:20:7: error: duplicate axis tag `wght` (first written at line 13)",
     );
+    assert_one_error(
+        "two-at-one-place",
+        &[(
+            "font.toml",
+            "location = { wght = 700 }\n",
+            "location = { wght = 700 }\n\n[[master]]\nname = \"Heavy\"\nfolder = \"bold\"\nlocation = { wght = 700 }\n",
+        )],
+        "font/font.toml:27:12: error: master `Heavy` is at the same location as master `Bold` \
+         (wght = 700)",
+    );
+    assert_one_error(
+        "off-axis",
+        &[
+            (
+                "font.toml",
+                "max = 700\n",
+                "max = 700\n\n[[axis]]\ntag = \"wdth\"\nname = \"Width\"\nmin = 75\ndefault = 100\nmax = 100\n",
+            ),
+            ("font.toml", "location = { wght = 700 }", "location = { wght = 700, wdth = 75 }"),
+        ],
+        "font/font.toml:29:12: error: master `Bold` (wght = 700, wdth = 75) is away from the \
+         defaults on more than one axis; each master must lie on one axis (the others at their \
+         defaults)",
+    );
+    assert_one_error(
+        "dup-instance",
+        &[("font.toml", "name = \"Medium\"", "name = \"Regular\"")],
+        "font/font.toml:29:8: error: duplicate instance name `Regular`",
+    );
 }
 
 fn at(wght: f64) -> xglyph::designspace::Location {
