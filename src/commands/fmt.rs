@@ -17,10 +17,11 @@ use std::process::ExitCode;
 
 use super::check;
 use super::CommandError;
+use crate::designspace::Location;
 use crate::source::format::{rewrites, Rewrite};
 use crate::source::{
-    line_col, load_glyph_text, load_info_text, load_kerning_text, load_sources, LoadedFont,
-    SourceKind,
+    line_col, load_designspace_text, load_glyph_text, load_info_text, load_kerning_text,
+    load_sources, LoadedFont, SourceKind,
 };
 use crate::terminal::{err, errln, outln};
 use crate::write::{reason, OutputSet};
@@ -126,7 +127,20 @@ fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> 
     let names = font.glyphs.iter().map(|g| g.name.clone()).collect();
     for r in changes {
         let same = match &r.kind {
-            SourceKind::Info => load_info_text(&r.path, &r.new).is_ok_and(|(i, _)| i == font.info),
+            SourceKind::Info => {
+                let dir = r.path.parent().unwrap_or(Path::new("."));
+                let masters: Vec<(String, String, Location)> = loaded
+                    .masters
+                    .iter()
+                    .map(|m| {
+                        let folder = m.folder.to_string_lossy().into_owned();
+                        (m.name.clone(), folder, m.location.clone())
+                    })
+                    .collect();
+                load_info_text(&r.path, &r.new).is_ok_and(|(i, _)| i == font.info)
+                    && load_designspace_text(&r.path, &r.new, dir)
+                        .is_ok_and(|(ds, ms)| ds == loaded.designspace && ms == masters)
+            }
             SourceKind::Glyph(name) => {
                 load_glyph_text(&r.path, &r.new).is_ok_and(|(g, _)| font.glyph(name) == Some(&g))
             }

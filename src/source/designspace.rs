@@ -11,8 +11,9 @@ use std::path::{Component, Path};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use super::diagnostic::Ctx;
+use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
 use super::emit;
+use super::limits;
 use super::value::{check_keys, get, number, require, string, tables, type_name};
 use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError};
 
@@ -32,6 +33,28 @@ pub(super) struct MasterSpec {
 pub(super) struct DesignspaceSpec {
     pub designspace: Designspace,
     pub masters: Vec<MasterSpec>,
+}
+
+/// Loads the masters' tables of one `font.toml` from memory (`path` labels diagnostics,
+/// `dir` is the font folder, for the master folders): the design space and each master's
+/// name, folder and location, or every diagnostic when there is an error. What `fmt`
+/// checks its rewrite of `font.toml` against.
+pub fn load_designspace_text(
+    path: &Path,
+    text: &str,
+    dir: &Path,
+) -> Result<(Designspace, Vec<(String, String, Location)>), Vec<Diagnostic>> {
+    let mut out = Diagnostics::default();
+    match load_designspace(&mut Ctx::new(path, text, &mut out), dir) {
+        Some(spec) if !out.has_errors() => Ok((
+            spec.designspace,
+            spec.masters
+                .into_iter()
+                .map(|m| (m.name, m.folder, m.location))
+                .collect(),
+        )),
+        _ => Err(out.into_vec()),
+    }
 }
 
 /// Reads the masters' tables of `font.toml` (`dir` is the font folder, for the master
@@ -99,6 +122,10 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
         }
     }
 
+    let family = get(t, "family").and_then(|v| match v.get_ref() {
+        DeValue::String(f) => Some(f.to_string()),
+        _ => None,
+    });
     let mut instances: Vec<NamedInstance> = Vec::new();
     if let Some(v) = get(t, "instance") {
         for (it, header) in tables(ctx, v, "instance", &mut ok) {
@@ -124,6 +151,12 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
                 &suggested,
             )
             .and_then(|v| location(ctx, v, &axis_list));
+            // The instance is a static font `<family>-<name>`: the same file-name limit
+            // as `family` and `style`.
+            let name = name.filter(|(n, at)| match &family {
+                Some(f) => limits::family_style(ctx, f, n, *at),
+                None => true,
+            });
             match (name, location) {
                 (Some((name, at)), Some(location)) => {
                     if instances.iter().any(|i| i.name == name) {

@@ -22,6 +22,7 @@ pub mod limits;
 mod load;
 mod value;
 
+pub use designspace::load_designspace_text;
 pub use diagnostic::{line_col, Diagnostic, Severity, Snippet, MAX_PER_FILE};
 pub use geometry::{FAR_EMS, FLAT_RELATIVE};
 pub use glyph::load_glyph_text;
