@@ -35,6 +35,9 @@ pub(super) struct DesignspaceSpec {
     pub masters: Vec<MasterSpec>,
 }
 
+/// A `[[master]]` as `font.toml` writes it: name, folder, location.
+pub type MasterEntry = (String, String, Location);
+
 /// Loads the masters' tables of one `font.toml` from memory (`path` labels diagnostics,
 /// `dir` is the font folder, for the master folders): the design space and each master's
 /// name, folder and location, or every diagnostic when there is an error. What `fmt`
@@ -43,7 +46,7 @@ pub fn load_designspace_text(
     path: &Path,
     text: &str,
     dir: &Path,
-) -> Result<(Designspace, Vec<(String, String, Location)>), Vec<Diagnostic>> {
+) -> Result<(Designspace, Vec<MasterEntry>), Vec<Diagnostic>> {
     let mut out = Diagnostics::default();
     match load_designspace(&mut Ctx::new(path, text, &mut out), dir) {
         Some(spec) if !out.has_errors() => Ok((
