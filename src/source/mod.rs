@@ -6,7 +6,9 @@
 //! each; `value` reads typed TOML values; `geometry` holds the point checks; [`limits`]
 //! holds the limits of the outputs; `components` resolves the component graph (bases,
 //! cycles, an order for sizes computed once per glyph); [`format`] plans the rewrite that
-//! `xglyph fmt` performs.
+//! `xglyph fmt` performs. For a font with masters, `designspace` reads `font.toml`'s
+//! `[[axis]]`, `[[master]]` and `[[instance]]` tables, and `compat` compares each master
+//! folder's glyphs with the default master's.
 
 mod compat;
 mod components;
