@@ -38,6 +38,7 @@ mod quadratic;
 mod specimen;
 mod tables;
 mod truetype;
+mod variable;
 mod woff2;
 
 use std::collections::BTreeMap;
@@ -47,6 +48,7 @@ use kurbo::BezPath;
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
+pub use variable::variable_ttf;
 
 /// Something the model holds that an OpenType font cannot.
 #[derive(Debug)]
