@@ -95,7 +95,16 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
                 )
             })?);
         }
-        let (tt, deltas) = glyph_variations(&paths, &advances, font.tolerance, glyph)?;
+        let (tt, deltas) =
+            glyph_variations(&paths, &advances, font.tolerance, glyph).map_err(|e| match e {
+                Incompatible::Master(m) => OtfError::Table(format!(
+                    "variable font: glyph '{}' has other path elements in master '{}' than in \
+                     the default master",
+                    glyph.model_name,
+                    family.masters[m - 1].name
+                )),
+                Incompatible::Otf(e) => e,
+            })?;
         tt_glyphs.push(tt);
         point_deltas.push(deltas);
         advance_deltas.push(
@@ -141,6 +150,20 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
     Ok(builder.build())
 }
 
+/// Why one glyph has no variations.
+enum Incompatible {
+    /// The path of this master (1 = the first non-default one) has other elements.
+    Master(usize),
+    /// A value out of the OpenType range.
+    Otf(OtfError),
+}
+
+impl From<OtfError> for Incompatible {
+    fn from(e: OtfError) -> Self {
+        Incompatible::Otf(e)
+    }
+}
+
 /// One glyph's default outline for `glyf` and, per other master, its deltas: rounded
 /// master points minus rounded default points, then the phantom points (only the advance
 /// point moves, by the difference of the rounded advances).
@@ -149,9 +172,9 @@ fn glyph_variations(
     advances: &[u16],
     accuracy: f64,
     glyph: &super::OtGlyph,
-) -> Result<(TtGlyph, MasterDeltas), OtfError> {
+) -> Result<(TtGlyph, MasterDeltas), Incompatible> {
     let name = &glyph.model_name;
-    let masters = quadratic::compatible_contours(paths, accuracy, name)?;
+    let masters = quadratic::compatible_contours(paths, accuracy).map_err(Incompatible::Master)?;
     let mut rounded: Vec<Vec<Vec<CurvePoint>>> = Vec::with_capacity(masters.len());
     for contours in &masters {
         let mut out = Vec::with_capacity(contours.len());
@@ -170,14 +193,14 @@ fn glyph_variations(
     let default = &rounded[0];
     let points: usize = default.iter().map(Vec::len).sum();
     if points > usize::from(u16::MAX) || default.len() >= i16::MAX as usize {
-        return Err(OtfError::OutOfRange {
+        return Err(Incompatible::Otf(OtfError::OutOfRange {
             what: format!(
                 "glyph '{name}' as TrueType ({} contours): its point count",
                 default.len()
             ),
             value: points as f64,
             range: "0..=65535 points, at most 32766 contours",
-        });
+        }));
     }
     let deltas = rounded[1..]
         .iter()
