@@ -217,7 +217,12 @@ fn tiny() -> OutlinedFamily {
     };
     let default = OutlinedFont {
         info: FontInfo::with_em("Tiny Var", 1000),
-        kerning: vec![kern("l", "o", -12.0), kern("o", "l", -6.0)],
+        // `l l` is the same in every master: its deltas are all 0.
+        kerning: vec![
+            kern("l", "o", -12.0),
+            kern("o", "l", -6.0),
+            kern("l", "l", -5.0),
+        ],
         tolerance: 0.5,
         glyphs: vec![
             outlined("o", 'o', 2.0 * 230.0 + 80.3, ring(40.0, 230.0, 260.0, 70.0)),
@@ -241,19 +246,27 @@ fn tiny() -> OutlinedFamily {
                 "Light",
                 100.0,
                 master(215.0, 22.0, 26.0),
-                vec![kern("l", "o", -4.0)],
+                vec![kern("l", "o", -4.0), kern("l", "l", -5.0)],
             ),
             (
                 "SemiBold",
                 600.0,
                 master(255.0, 120.0, 130.0),
-                vec![kern("l", "o", -25.0), kern("o", "l", -10.0)],
+                vec![
+                    kern("l", "o", -25.0),
+                    kern("o", "l", -10.0),
+                    kern("l", "l", -5.0),
+                ],
             ),
             (
                 "Bold",
                 900.0,
                 master(290.0, 170.0, 190.0),
-                vec![kern("l", "o", -40.0), kern("o", "l", -18.0)],
+                vec![
+                    kern("l", "o", -40.0),
+                    kern("o", "l", -18.0),
+                    kern("l", "l", -5.0),
+                ],
             ),
         ],
     )

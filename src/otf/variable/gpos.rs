@@ -83,3 +83,68 @@ pub fn gpos_gdef(
     gdef.item_var_store = store.into();
     Ok(Some((kern_gpos(coverage, pair_sets), gdef)))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use read_fonts::tables::gpos::{Gpos as ReadGpos, PairPos as ReadPairPos, PositionSubtables};
+    use read_fonts::tables::layout::DeviceOrVariationIndex as ReadDevice;
+    use read_fonts::FontRead;
+    use write_fonts::dump_table;
+
+    #[test]
+    fn a_pair_equal_in_every_master_still_has_a_device() {
+        let region = Region {
+            axis: 0,
+            start: 0.0,
+            peak: 1.0,
+            end: 1.0,
+        };
+        let mut default = KernPairs::new();
+        default.entry(1).or_default().insert(2, -50);
+        default.entry(1).or_default().insert(3, -20);
+        let mut bold = KernPairs::new();
+        bold.entry(1).or_default().insert(2, -50);
+        bold.entry(1).or_default().insert(3, -35);
+        let (gpos, gdef) = gpos_gdef(&[default, bold], &[region], 1).unwrap().unwrap();
+        let store = gdef.item_var_store.as_ref().expect("a store");
+        assert_eq!(store.variation_region_list.variation_regions.len(), 1);
+        assert_eq!(store.item_variation_data.len(), 1);
+        let bytes = dump_table(&gpos).unwrap();
+        let read = ReadGpos::read(bytes.as_slice().into()).unwrap();
+        let lookup = read.lookup_list().unwrap().lookups().get(0).unwrap();
+        let PositionSubtables::Pair(subtables) = lookup.subtables().unwrap() else {
+            panic!("pair lookup expected");
+        };
+        let ReadPairPos::Format1(pair) = subtables.get(0).unwrap() else {
+            panic!("format 1 expected");
+        };
+        let set = pair.pair_sets().get(0).unwrap();
+        let values: Vec<(u16, Option<i16>, Option<(u16, u16)>)> = set
+            .pair_value_records()
+            .iter()
+            .map(|r| {
+                let r = r.unwrap();
+                let v = r.value_record1();
+                (
+                    r.second_glyph().to_u16(),
+                    v.x_advance(),
+                    match v.x_advance_device() {
+                        Some(Ok(ReadDevice::VariationIndex(i))) => {
+                            Some((i.delta_set_outer_index(), i.delta_set_inner_index()))
+                        }
+                        _ => None,
+                    },
+                )
+            })
+            .collect();
+        // The constant pair points at an empty delta set (0 everywhere), the other not.
+        assert_eq!(values.len(), 2);
+        assert_eq!((values[0].0, values[0].1), (2, Some(-50)));
+        assert_eq!((values[1].0, values[1].1), (3, Some(-20)));
+        let (Some(constant), Some(varying)) = (values[0].2, values[1].2) else {
+            panic!("every pair has a VariationIndex: {values:?}");
+        };
+        assert_ne!(constant, varying);
+    }
+}
