@@ -691,26 +691,34 @@ fn skrifa_reads_outlines_and_advances_at_positions() {
 fn names_fvar_and_stat() {
     let bytes = variable_ttf(bundled()).unwrap();
     let font = FontRef::new(&bytes).unwrap();
-    let names: Vec<(String, Vec<f32>)> = font
+    let text = |id| {
+        font.localized_strings(id)
+            .english_or_first()
+            .unwrap()
+            .to_string()
+    };
+    let names: Vec<(String, String, Vec<f32>)> = font
         .named_instances()
         .iter()
         .map(|i| {
-            let name = font
-                .localized_strings(i.subfamily_name_id())
-                .english_or_first()
-                .unwrap()
-                .to_string();
-            (name, i.user_coords().collect())
+            (
+                text(i.subfamily_name_id()),
+                text(i.postscript_name_id().unwrap()),
+                i.user_coords().collect(),
+            )
         })
         .collect();
+    let expected = [
+        ("Regular", "XglyphSans-Regular", 400.0),
+        ("Medium", "XglyphSans-Medium", 500.0),
+        ("SemiBold", "XglyphSans-SemiBold", 600.0),
+        ("Bold", "XglyphSans-Bold", 700.0),
+    ]
+    .map(|(s, p, w)| (s.to_string(), p.to_string(), vec![w]));
+    assert_eq!(names, expected);
     assert_eq!(
-        names,
-        [
-            ("Regular".to_string(), vec![400.0]),
-            ("Medium".to_string(), vec![500.0]),
-            ("SemiBold".to_string(), vec![600.0]),
-            ("Bold".to_string(), vec![700.0]),
-        ]
+        text(skrifa::raw::types::NameId::VARIATIONS_POSTSCRIPT_NAME_PREFIX),
+        "XglyphSans"
     );
     let axis = font.axes().get(0).unwrap();
     assert_eq!(

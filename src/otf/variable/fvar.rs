@@ -8,7 +8,7 @@ use super::tag;
 use crate::designspace::Designspace;
 use crate::otf::OtfError;
 
-/// The `fvar` table, axes and instances in design-space order (no PostScript names).
+/// The `fvar` table, axes and instances in design-space order.
 pub fn fvar(designspace: &Designspace, names: &VariableNames) -> Result<Fvar, OtfError> {
     let f = |v: f64| Fixed::from_f64(v);
     let axes = designspace
@@ -29,8 +29,8 @@ pub fn fvar(designspace: &Designspace, names: &VariableNames) -> Result<Fvar, Ot
     let instances = designspace
         .instances
         .iter()
-        .zip(&names.instances)
-        .map(|(instance, &id)| InstanceRecord {
+        .zip(names.instances.iter().zip(&names.ps_names))
+        .map(|(instance, (&id, &ps_id))| InstanceRecord {
             subfamily_name_id: NameId::new(id),
             flags: 0,
             coordinates: designspace
@@ -38,7 +38,7 @@ pub fn fvar(designspace: &Designspace, names: &VariableNames) -> Result<Fvar, Ot
                 .iter()
                 .map(|a| f(instance.location.get(a)))
                 .collect(),
-            post_script_name_id: None,
+            post_script_name_id: Some(NameId::new(ps_id)),
         })
         .collect();
     Ok(Fvar::new(AxisInstanceArrays::new(axes, instances)))

@@ -115,7 +115,7 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
         );
     }
 
-    let names = VariableNames::new(designspace);
+    let names = VariableNames::new(designspace, &font.info.family);
     let weight_class = designspace
         .axes
         .iter()
