@@ -120,7 +120,9 @@ mod tests {
             panic!("format 1 expected");
         };
         let set = pair.pair_sets().get(0).unwrap();
-        let values: Vec<(u16, Option<i16>, Option<(u16, u16)>)> = set
+        // (second glyph, x advance, VariationIndex (outer, inner)) per pair.
+        type Read = (u16, Option<i16>, Option<(u16, u16)>);
+        let values: Vec<Read> = set
             .pair_value_records()
             .iter()
             .map(|r| {
