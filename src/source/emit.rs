@@ -114,8 +114,8 @@ pub fn glyph_toml(glyph: &Glyph) -> String {
     glyph_text(glyph, true)
 }
 
-/// A glyph file of a non-default master: [`glyph_toml`] without `unicode` (a master's
-/// glyph has the default's code points).
+/// A glyph file of a non-default master that leaves out `unicode` (a master's glyph has
+/// the default's code points): [`glyph_toml`] without it.
 pub fn master_glyph_toml(glyph: &Glyph) -> String {
     glyph_text(glyph, false)
 }

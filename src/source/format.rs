@@ -11,6 +11,7 @@
 use std::path::PathBuf;
 
 use super::emit;
+use super::glyph::load_glyph_text;
 use super::load::{LoadedFont, SourceKind};
 
 /// One source file and its canonical text.
@@ -50,7 +51,16 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
                 SourceKind::Kerning => emit::kerning_toml(&font.kerning),
                 SourceKind::MasterGlyph(m, name) => {
                     let master = loaded.masters.get(*m)?;
-                    emit::master_glyph_toml(master.glyphs.iter().find(|g| &g.name == name)?)
+                    let glyph = master.glyphs.iter().find(|g| &g.name == name)?;
+                    // `unicode` stays as the author has it: written (then it is the
+                    // default's, the loader checked) or left out.
+                    let written = load_glyph_text(&file.path, &file.text)
+                        .is_ok_and(|(g, _)| !g.unicodes.is_empty());
+                    if written {
+                        emit::glyph_toml(glyph)
+                    } else {
+                        emit::master_glyph_toml(glyph)
+                    }
                 }
                 SourceKind::MasterKerning(m) => {
                     emit::kerning_toml(&loaded.masters.get(*m)?.kerning)
