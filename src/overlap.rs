@@ -54,6 +54,17 @@ pub const UNION_SHARE: f64 = 1e-3;
 /// A path that is not made of closed subpaths, or has non-finite coordinates, is returned
 /// unchanged (the IR only holds closed, finite subpaths).
 pub fn remove_overlaps(path: &BezPath, tolerance: f64) -> BezPath {
+    region(path, tolerance, |winding| winding != 0)
+}
+
+/// The outline of the region `path` fills by the even-odd rule, as [`remove_overlaps`]
+/// gives the nonzero one: outer contours counter-clockwise, holes clockwise (y up), so that
+/// its nonzero fill is the same region. For SVG drawings with `fill-rule="evenodd"`.
+pub fn even_odd_region(path: &BezPath, tolerance: f64) -> BezPath {
+    region(path, tolerance, |winding| winding % 2 != 0)
+}
+
+fn region(path: &BezPath, tolerance: f64, inside: impl Fn(i32) -> bool) -> BezPath {
     if path.elements().is_empty() {
         return path.clone();
     }
@@ -69,7 +80,7 @@ pub fn remove_overlaps(path: &BezPath, tolerance: f64) -> BezPath {
     if is_simple(&topology, eps) {
         return path.clone();
     }
-    let contours = topology.contours(|winding| *winding != 0);
+    let contours = topology.contours(|winding| inside(*winding));
     let mut out = BezPath::new();
     for contour in contours.contours() {
         // linesweeper's orientation agrees with kurbo's: positive area for an outer
