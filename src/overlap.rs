@@ -35,13 +35,14 @@
 //! where it cut it). The accents of the bundled typeface clear their bases and no contour
 //! crosses another, so its glyphs are all returned unchanged.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use kurbo::{BezPath, PathEl, Shape};
 use linesweeper::sweep::Correctness::ReallyCorrect;
 use linesweeper::topology::Topology;
 use linesweeper::SegIdx;
 
+use crate::orient::orient_contours;
 use crate::outline::{OutlinedFont, OutlinedGlyph};
 
 /// The share of the font's tolerance the union may move a boundary by.
@@ -173,23 +174,38 @@ fn push_without_slivers(out: &mut BezPath, contour: &BezPath, eps: f64) {
     out.close_path();
 }
 
-/// The font with every glyph's outline replaced by [`remove_overlaps`] at
+/// The font with every glyph's outline replaced by the union of its parts at
 /// [`UNION_SHARE`] of the font's tolerance; segment counts updated, everything else kept.
+///
+/// The parts are the glyph's own contours and each component's (recursively), each set
+/// oriented on its own by [`orient_contours`] before the union: the IR orients a glyph's
+/// contours by their nesting in the whole glyph, so an accent lowered into its base's ink
+/// would be a hole there, while the union must add it. A glyph without components is
+/// unioned as it is.
 pub fn remove_overlaps_font(font: &OutlinedFont) -> OutlinedFont {
     use rayon::prelude::*;
     let eps = UNION_SHARE * font.tolerance;
+    let by_name: HashMap<&str, &OutlinedGlyph> =
+        font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
     OutlinedFont {
         glyphs: font
             .glyphs
             .par_iter()
-            .map(|glyph| remove_glyph_overlaps(glyph, eps))
+            .map(|glyph| remove_glyph_overlaps(glyph, &by_name, eps))
             .collect(),
         ..font.clone()
     }
 }
 
-fn remove_glyph_overlaps(glyph: &OutlinedGlyph, eps: f64) -> OutlinedGlyph {
-    let path = remove_overlaps(&glyph.path, eps);
+fn remove_glyph_overlaps(
+    glyph: &OutlinedGlyph,
+    by_name: &HashMap<&str, &OutlinedGlyph>,
+    eps: f64,
+) -> OutlinedGlyph {
+    let path = match parts(glyph, by_name) {
+        Some(parts) => remove_overlaps(&parts, eps),
+        None => remove_overlaps(&glyph.path, eps),
+    };
     let segments = path
         .elements()
         .iter()
@@ -202,6 +218,44 @@ fn remove_glyph_overlaps(glyph: &OutlinedGlyph, eps: f64) -> OutlinedGlyph {
     }
 }
 
+/// A composite's path with each part (its own contours, each component's own) oriented on
+/// its own; `None` for a glyph without components, or when the path's subpaths do not
+/// match its contours one to one (then the IR's orientation is kept).
+fn parts(glyph: &OutlinedGlyph, by_name: &HashMap<&str, &OutlinedGlyph>) -> Option<BezPath> {
+    if glyph.components.is_empty() {
+        return None;
+    }
+    // The contours are the glyph's own, then each component's, depth first (as
+    // `Font::placed_contours_in` lists them); a stack, since chains can be long.
+    let mut sizes = Vec::new();
+    let mut stack = vec![glyph];
+    while let Some(g) = stack.pop() {
+        let bases: Vec<&OutlinedGlyph> = g
+            .components
+            .iter()
+            .filter_map(|c| by_name.get(c.base.as_str()).copied())
+            .collect();
+        let from_bases: usize = bases.iter().map(|b| b.contours.len()).sum();
+        sizes.push(g.contours.len().checked_sub(from_bases)?);
+        stack.extend(bases.into_iter().rev());
+    }
+    let subpaths: Vec<BezPath> = glyph
+        .path
+        .elements()
+        .split_inclusive(|el| matches!(el, PathEl::ClosePath))
+        .map(|els| BezPath::from_vec(els.to_vec()))
+        .collect();
+    if sizes.iter().sum::<usize>() != subpaths.len() {
+        return None;
+    }
+    let mut out = BezPath::new();
+    let mut rest = subpaths.into_iter();
+    for size in sizes {
+        let part: Vec<BezPath> = rest.by_ref().take(size).collect();
+        out.extend(orient_contours(part).iter());
+    }
+    Some(out)
+}
 #[cfg(test)]
 mod tests {
     use super::*;
