@@ -31,11 +31,21 @@ use std::fmt;
 
 use kurbo::{BezPath, CubicBez, Vec2};
 
-use crate::fit::{self, Poly, Stretch};
+use crate::fit::{self, Stretch};
 use crate::xspline::{ControlPoint, XSpline, XSplineError};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
+/// Most rounds of refitting a span that fails verification.
+const MAX_REFITS: usize = 3;
+/// The first span tried when refitting a span, as a fraction of it.
+const REFIT_GUESS: f64 = 0.6;
+/// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
+/// of the masters' curves.
+const GAP_SAMPLES_PER_SEGMENT: usize = 8;
+/// A blend's goal is at least this multiple of that distance (the cubics between vertices
+/// add their own error).
+const VERTEX_MARGIN: f64 = 1.25;
 
 /// One glyph contour fitted for every master with one segment structure.
 #[derive(Clone, Debug)]
@@ -161,9 +171,10 @@ pub fn fit_compatible(
     let pieces = joint_stretches(masters);
     let mut spans = Vec::new();
     let mut guess = 1.0;
+    let searched: Vec<usize> = (0..fitter.searched).collect();
     for piece in &pieces {
         if let Stretch::Smooth { start, end } = *piece {
-            fitter.cover(start, end, &mut guess, &mut spans);
+            fitter.cover((start, end), (start, end), &searched, &mut guess, &mut spans);
         }
     }
     let spans = fitter.verify(spans);
@@ -291,6 +302,10 @@ struct Fitter<'a> {
     /// For every position, its probe.
     position_probe: Vec<usize>,
     goal: f64,
+    /// The goal at each probe: `goal`, or at a blend whose curve lies farther than that from
+    /// the blend of the masters' curves (`s` interpolates non-linearly), that distance with
+    /// a margin: no structure with vertices on the masters' curves gets closer.
+    goals: Vec<f64>,
 }
 
 impl<'a> Fitter<'a> {
@@ -330,17 +345,31 @@ impl<'a> Fitter<'a> {
             .iter()
             .map(|p| p.spline.min_tolerance())
             .fold(0.0, f64::max);
+        let goal = tolerance.max(floor) * fit::SAFETY;
+        let goals = probes
+            .iter()
+            .enumerate()
+            .map(|(k, probe)| {
+                if k < count {
+                    goal
+                } else {
+                    goal.max(VERTEX_MARGIN * blend_gap(masters, probe))
+                }
+            })
+            .collect();
         Fitter {
             masters,
             probes,
             searched,
             position_probe,
-            goal: tolerance.max(floor) * fit::SAFETY,
+            goal,
+            goals,
         }
     }
 
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sampled
-    /// (lower-bound) error over the searched probes.
+    /// (lower-bound) error over the masters: the search's cheap error. The other probes are
+    /// only measured (their sampled error costs nearly a measure and saved no trials).
     fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
         let mut worst: f64 = 0.0;
         let cubics: Vec<CubicBez> = self
@@ -353,24 +382,20 @@ impl<'a> Fitter<'a> {
                 cubic
             })
             .collect();
-        if worst <= self.goal {
-            for probe in &self.probes[self.masters.len()..self.searched] {
-                let cubic = blend_cubic(&cubics, &probe.weights);
-                worst = worst.max(sampled_error(&probe.spline, a, b, &cubic));
-            }
-        }
         (cubics, worst)
     }
 
-    /// The measured error of the span's blended cubic at each probe in `probes`.
-    fn measure(&self, span: &mut Span, probes: std::ops::Range<usize>) -> f64 {
+    /// Measures the span's blended cubic at each probe in `probes`; the largest error as a
+    /// multiple of [`Fitter::goal`] relative to each probe's own goal (at most `goal` when
+    /// the span meets every probe's goal).
+    fn measure(&self, span: &mut Span, probes: impl IntoIterator<Item = usize>) -> f64 {
         let mut worst: f64 = 0.0;
         for k in probes {
             let probe = &self.probes[k];
             let cubic = blend_cubic(&span.cubics, &probe.weights);
             let err = fit::measure(&probe.spline, span.a, span.b, &cubic);
             span.errors[k] = err;
-            worst = worst.max(err);
+            worst = worst.max(err * self.goal / self.goals[k]);
         }
         worst
     }
@@ -385,14 +410,14 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// The span `[a, a + h]` fitted and measured at the searched probes, if it fits there.
-    fn fitted(&self, a: f64, h: f64, stretch: (f64, f64)) -> Result<Span, f64> {
+    /// The span `[a, a + h]` fitted and measured at the probes `checks`, if it fits there.
+    fn fitted(&self, a: f64, h: f64, stretch: (f64, f64), checks: &[usize]) -> Result<Span, f64> {
         let (cubics, sampled) = self.trial(a, a + h, stretch);
         if sampled > self.goal {
             return Err(sampled);
         }
         let mut span = self.span(a, a + h, stretch, cubics);
-        let err = self.measure(&mut span, 0..self.searched);
+        let err = self.measure(&mut span, checks.iter().copied());
         if err <= self.goal {
             Ok(span)
         } else {
@@ -400,17 +425,23 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// Covers the stretch `[t0, t1]` greedily with the longest spans that fit at the
-    /// searched probes, appending them to `spans`.
+    /// Covers `[from, to]` of the smooth stretch `stretch` greedily with the longest spans
+    /// that fit at the probes `checks`, appending them to `spans`.
     ///
     /// The search is [`fit::fit_contour`]'s, on the joint error: the span predicted from
     /// `err ~ h^p`, bracketed between the longest span that fitted and the shortest that
     /// did not, on sampled errors; only a span about to be taken is measured. (Written
     /// again here rather than shared: the static fitter's search is tied to one curve.)
-    fn cover(&self, t0: f64, t1: f64, guess: &mut f64, spans: &mut Vec<Span>) {
-        let stretch = (t0, t1);
+    fn cover(
+        &self,
+        (from, t1): (f64, f64),
+        stretch: (f64, f64),
+        checks: &[usize],
+        guess: &mut f64,
+        spans: &mut Vec<Span>,
+    ) {
         let goal = self.goal;
-        let mut a = t0;
+        let mut a = from;
         while t1 - a > 1e-12 * (1.0 + t1.abs()) {
             let rest = t1 - a;
             let mut h = guess.min(rest);
@@ -426,7 +457,7 @@ impl<'a> Fitter<'a> {
                 let mut measured = None;
                 if taken {
                     let mut span = self.span(a, a + h, stretch, cubics.clone());
-                    err = self.measure(&mut span, 0..self.searched);
+                    err = self.measure(&mut span, checks.iter().copied());
                     measured = Some(span);
                 }
                 if err <= goal {
@@ -475,18 +506,18 @@ impl<'a> Fitter<'a> {
                 Some((_, _, Some(span))) => span,
                 Some((h, cubics, None)) => {
                     let mut span = self.span(a, a + h, stretch, cubics);
-                    if self.measure(&mut span, 0..self.searched) <= goal {
+                    if self.measure(&mut span, checks.iter().copied()) <= goal {
                         span
                     } else {
-                        self.shortest(a, 0.5 * h, stretch)
+                        self.shortest(a, 0.5 * h, stretch, checks)
                     }
                 }
-                None => self.shortest(a, h, stretch),
+                None => self.shortest(a, h, stretch, checks),
             };
             let h = span.b - span.a;
             // No sliver at the stretch's end (see `fit::SLIVER`).
             let span = if h < rest && rest - h < fit::SLIVER * rest {
-                self.fitted(a, rest, stretch).unwrap_or(span)
+                self.fitted(a, rest, stretch, checks).unwrap_or(span)
             } else {
                 span
             };
@@ -500,14 +531,14 @@ impl<'a> Fitter<'a> {
     }
 
     /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
-    fn shortest(&self, a: f64, mut h: f64, stretch: (f64, f64)) -> Span {
+    fn shortest(&self, a: f64, mut h: f64, stretch: (f64, f64), checks: &[usize]) -> Span {
         loop {
-            match self.fitted(a, h, stretch) {
+            match self.fitted(a, h, stretch, checks) {
                 Ok(span) => return span,
                 Err(_) if h < 1e-9 => {
                     let (cubics, _) = self.trial(a, a + h, stretch);
                     let mut span = self.span(a, a + h, stretch, cubics);
-                    self.measure(&mut span, 0..self.searched);
+                    self.measure(&mut span, checks.iter().copied());
                     return span;
                 }
                 Err(_) => h *= 0.5,
@@ -515,29 +546,29 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// Measures every span at the other probes, halving a span that fails at any until
-    /// its pieces fit everywhere (or are too short to halve).
+    /// Measures every span at the probes it was not measured at; a span that fails at
+    /// some is covered again by the search with those probes added to the checks, and the
+    /// new spans are verified in turn (at most [`MAX_REFITS`] rounds: past that, a position
+    /// no structure reaches ends the fit, reported in `max_error`).
     fn verify(&self, spans: Vec<Span>) -> Vec<Span> {
-        let all = 0..self.probes.len();
+        let count = self.probes.len();
         let mut out = Vec::with_capacity(spans.len());
-        let mut todo: Vec<(Span, bool)> = spans.into_iter().rev().map(|s| (s, false)).collect();
-        while let Some((mut span, fresh)) = todo.pop() {
-            let range = if fresh {
-                all.clone()
-            } else {
-                self.searched..self.probes.len()
-            };
-            let err = self.measure(&mut span, range);
-            let h = span.b - span.a;
-            if err <= self.goal || h < 1e-9 {
+        // (span, the round of refits that made it).
+        let mut todo: Vec<(Span, usize)> = spans.into_iter().rev().map(|s| (s, 0)).collect();
+        while let Some((mut span, round)) = todo.pop() {
+            let unmeasured: Vec<usize> = (0..count).filter(|&k| span.errors[k].is_nan()).collect();
+            let err = self.measure(&mut span, unmeasured);
+            if err <= self.goal || round == MAX_REFITS {
                 out.push(span);
                 continue;
             }
-            let mid = span.a + 0.5 * h;
-            for (a, b) in [(mid, span.b), (span.a, mid)] {
-                let (cubics, _) = self.trial(a, b, span.stretch);
-                todo.push((self.span(a, b, span.stretch, cubics), true));
-            }
+            let checks: Vec<usize> = (0..count)
+                .filter(|&k| k < self.searched || span.errors[k] > self.goals[k])
+                .collect();
+            let mut pieces = Vec::new();
+            let mut guess = REFIT_GUESS * (span.b - span.a);
+            self.cover((span.a, span.b), span.stretch, &checks, &mut guess, &mut pieces);
+            todo.extend(pieces.into_iter().rev().map(|s| (s, round + 1)));
         }
         out
     }
@@ -599,19 +630,41 @@ impl<'a> Fitter<'a> {
     }
 }
 
-/// The largest distance from curve samples on `[a, b]` (the polish's density) to `cubic`:
-/// a cheap lower bound of the error, for the search.
-fn sampled_error(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
-    let n = (((b - a) * fit::POLISH_SAMPLES_PER_SEGMENT).ceil() as usize).max(fit::MIN_POLISH_SAMPLES);
-    let poly = Poly::new(cubic);
-    let mut u: f64 = 0.0;
-    let mut worst: f64 = 0.0;
-    for i in 0..=n {
-        let share = i as f64 / n as f64;
-        let p = spline.eval(a + (b - a) * share);
-        let (ui, d) = poly.project_steps(p, u.max(share - 0.25).min(share + 0.25), 4);
-        u = ui;
-        worst = worst.max(d);
+/// How far the blend of the masters' curve points, `Σ w_i C_i(T)`, strays from the blended
+/// X-spline's curve (the largest distance over samples of `T`). Zero when all masters have
+/// the same `s`; a span's vertices lie on the masters' curves, so at the probe they are
+/// this far off at worst.
+fn blend_gap(masters: &[&XSpline], probe: &Probe) -> f64 {
+    let spline = &probe.spline;
+    if masters.iter().all(|m| {
+        m.points()
+            .iter()
+            .zip(spline.points())
+            .all(|(p, q)| p.s == q.s)
+    }) {
+        return 0.0;
     }
-    worst
+    let steps = GAP_SAMPLES_PER_SEGMENT * spline.segment_count();
+    let mut gap: f64 = 0.0;
+    for i in 0..steps {
+        let mut t = i as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
+        let q = masters
+            .iter()
+            .zip(&probe.weights)
+            .fold(Vec2::ZERO, |acc, (m, w)| acc + *w * m.eval(t).to_vec2())
+            .to_point();
+        // Newton on the curve parameter towards the nearest point, from the same `T`.
+        let mut best = spline.eval(t).distance(q);
+        for _ in 0..3 {
+            let (c, d) = spline.eval_deriv(t);
+            let dd = d.dot(d);
+            if dd <= 0.0 {
+                break;
+            }
+            t += (q - c).dot(d) / dd;
+            best = best.min(spline.eval(t).distance(q));
+        }
+        gap = gap.max(best);
+    }
+    gap
 }

@@ -55,9 +55,9 @@ const EXACT_PEAK: f64 = 0.9;
 const POLISH_ROUNDS: usize = 6;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
-pub(crate) const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
+const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
 /// Fewest curve samples per polished span.
-pub(crate) const MIN_POLISH_SAMPLES: usize = 6;
+const MIN_POLISH_SAMPLES: usize = 6;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
@@ -711,7 +711,7 @@ fn polish(
 /// A cubic in power form, `c0 + c1 u + c2 u^2 + c3 u^3`: cheap repeated evaluation of the
 /// point and its derivatives, which projection needs thousands of times per fit.
 #[derive(Clone, Copy)]
-pub(crate) struct Poly {
+struct Poly {
     c0: Vec2,
     c1: Vec2,
     c2: Vec2,
@@ -719,7 +719,7 @@ pub(crate) struct Poly {
 }
 
 impl Poly {
-    pub(crate) fn new(c: &CubicBez) -> Poly {
+    fn new(c: &CubicBez) -> Poly {
         let (p0, p1, p2, p3) = (
             c.p0.to_vec2(),
             c.p1.to_vec2(),
@@ -745,7 +745,7 @@ impl Poly {
     }
 
     /// [`Poly::project`] with at most `steps` Newton steps.
-    pub(crate) fn project_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, f64) {
+    fn project_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, f64) {
         let p = p.to_vec2();
         for _ in 0..steps {
             let r = self.eval(u) - p;

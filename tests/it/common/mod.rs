@@ -2,4 +2,5 @@
 
 pub mod corpus;
 pub mod curves;
+pub mod masters;
 pub mod paths;
