@@ -39,7 +39,12 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             pairs
                 .iter()
-                .map(|(light, _)| fit_contour(black_box(light), tolerance).path.elements().len())
+                .map(|(light, _)| {
+                    fit_contour(black_box(light), tolerance)
+                        .path
+                        .elements()
+                        .len()
+                })
                 .sum::<usize>()
         })
     });
@@ -47,7 +52,12 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             pairs
                 .iter()
-                .map(|(_, bold)| fit_contour(black_box(bold), tolerance).path.elements().len())
+                .map(|(_, bold)| {
+                    fit_contour(black_box(bold), tolerance)
+                        .path
+                        .elements()
+                        .len()
+                })
                 .sum::<usize>()
         })
     });

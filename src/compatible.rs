@@ -38,6 +38,10 @@ use crate::xspline::{ControlPoint, XSpline, XSplineError};
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
 /// Most rounds of refitting a span that fails verification.
 const MAX_REFITS: usize = 3;
+/// Spans are not shortened below this (in X-spline segments) for a blend's sake.
+const SHORTEST_BLEND_SPAN: f64 = 1.0 / 32.0;
+/// A refit is kept only if it takes the error at the failing probes below this fraction.
+const REFIT_GAIN: f64 = 0.5;
 /// The first span tried when refitting a span, as a fraction of it.
 const REFIT_GUESS: f64 = 0.6;
 /// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
@@ -174,7 +178,13 @@ pub fn fit_compatible(
     let searched: Vec<usize> = (0..fitter.searched).collect();
     for piece in &pieces {
         if let Stretch::Smooth { start, end } = *piece {
-            fitter.cover((start, end), (start, end), &searched, &mut guess, &mut spans);
+            fitter.cover(
+                (start, end),
+                (start, end),
+                &searched,
+                &mut guess,
+                &mut spans,
+            );
         }
     }
     let spans = fitter.verify(spans);
@@ -323,13 +333,14 @@ impl<'a> Fitter<'a> {
                 spline: (*spline).clone(),
             })
             .collect();
-        let add = |probes: &mut Vec<Probe>, weights: Vec<f64>, spline: XSpline| {
-            match probes.iter().position(|p| p.spline == spline) {
-                Some(k) => k,
-                None => {
-                    probes.push(Probe { weights, spline });
-                    probes.len() - 1
-                }
+        let add = |probes: &mut Vec<Probe>, weights: Vec<f64>, spline: XSpline| match probes
+            .iter()
+            .position(|p| p.spline == spline)
+        {
+            Some(k) => k,
+            None => {
+                probes.push(Probe { weights, spline });
+                probes.len() - 1
             }
         };
         let centre = vec![1.0 / count as f64; count];
@@ -531,10 +542,19 @@ impl<'a> Fitter<'a> {
     }
 
     /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
+    ///
+    /// Below [`SHORTEST_BLEND_SPAN`] only the masters bind: a blend that still fails is one
+    /// whose curve strays from the blend of the masters' curves, which no shorter span
+    /// mends (verification reports it).
     fn shortest(&self, a: f64, mut h: f64, stretch: (f64, f64), checks: &[usize]) -> Span {
+        let masters: Vec<usize> = (0..self.masters.len()).collect();
+        let mut checks = checks;
         loop {
             match self.fitted(a, h, stretch, checks) {
                 Ok(span) => return span,
+                Err(_) if h < SHORTEST_BLEND_SPAN && checks.len() > masters.len() => {
+                    checks = &masters;
+                }
                 Err(_) if h < 1e-9 => {
                     let (cubics, _) = self.trial(a, a + h, stretch);
                     let mut span = self.span(a, a + h, stretch, cubics);
@@ -546,31 +566,51 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// Measures every span at the probes it was not measured at; a span that fails at
-    /// some is covered again by the search with those probes added to the checks, and the
-    /// new spans are verified in turn (at most [`MAX_REFITS`] rounds: past that, a position
-    /// no structure reaches ends the fit, reported in `max_error`).
+    /// Measures every span at the probes it was not measured at (see [`Fitter::verify_span`]).
     fn verify(&self, spans: Vec<Span>) -> Vec<Span> {
-        let count = self.probes.len();
         let mut out = Vec::with_capacity(spans.len());
-        // (span, the round of refits that made it).
-        let mut todo: Vec<(Span, usize)> = spans.into_iter().rev().map(|s| (s, 0)).collect();
-        while let Some((mut span, round)) = todo.pop() {
-            let unmeasured: Vec<usize> = (0..count).filter(|&k| span.errors[k].is_nan()).collect();
-            let err = self.measure(&mut span, unmeasured);
-            if err <= self.goal || round == MAX_REFITS {
-                out.push(span);
-                continue;
-            }
-            let checks: Vec<usize> = (0..count)
-                .filter(|&k| k < self.searched || span.errors[k] > self.goals[k])
-                .collect();
-            let mut pieces = Vec::new();
-            let mut guess = REFIT_GUESS * (span.b - span.a);
-            self.cover((span.a, span.b), span.stretch, &checks, &mut guess, &mut pieces);
-            todo.extend(pieces.into_iter().rev().map(|s| (s, round + 1)));
+        for span in spans {
+            self.verify_span(span, 0, &mut out);
         }
         out
+    }
+
+    /// Measures `span` at the probes it was not measured at; if it fails at some, covers it
+    /// again by the search with those probes added to the checks, and verifies the new spans
+    /// in turn. The refit is kept only if it at least halves the error at those probes:
+    /// where it does not, the blend strays from the masters' curves by more than the goal
+    /// and no cut mends it, so the span stays and `max_error` reports it. At most
+    /// [`MAX_REFITS`] rounds; spans shorter than twice [`SHORTEST_BLEND_SPAN`] stay.
+    fn verify_span(&self, mut span: Span, round: usize, out: &mut Vec<Span>) {
+        let count = self.probes.len();
+        let unmeasured: Vec<usize> = (0..count).filter(|&k| span.errors[k].is_nan()).collect();
+        let err = self.measure(&mut span, unmeasured);
+        if err <= self.goal || round == MAX_REFITS || span.b - span.a < 2.0 * SHORTEST_BLEND_SPAN {
+            out.push(span);
+            return;
+        }
+        let failing: Vec<usize> = (self.searched..count)
+            .filter(|&k| span.errors[k] > self.goals[k])
+            .collect();
+        let checks: Vec<usize> = (0..self.searched).chain(failing.iter().copied()).collect();
+        let mut pieces = Vec::new();
+        let mut guess = REFIT_GUESS * (span.b - span.a);
+        self.cover(
+            (span.a, span.b),
+            span.stretch,
+            &checks,
+            &mut guess,
+            &mut pieces,
+        );
+        let worst = |s: &Span| failing.iter().map(|&k| s.errors[k]).fold(0.0, f64::max);
+        let after = pieces.iter().map(worst).fold(0.0, f64::max);
+        if failing.is_empty() || after > REFIT_GAIN * worst(&span) {
+            out.push(span);
+            return;
+        }
+        for piece in pieces {
+            self.verify_span(piece, round + 1, out);
+        }
     }
 
     /// One path per master from the cuts and the verified spans, and the errors per
@@ -616,10 +656,7 @@ impl<'a> Fitter<'a> {
         let max_error = (0..positions)
             .map(|k| {
                 let probe = self.position_probe[k];
-                spans
-                    .iter()
-                    .map(|s| s.errors[probe])
-                    .fold(0.0, f64::max)
+                spans.iter().map(|s| s.errors[probe]).fold(0.0, f64::max)
             })
             .collect();
         CompatibleFit {

@@ -301,7 +301,7 @@ fn random_pair() -> impl Strategy<Value = Option<(XSpline, XSpline, f64)>> {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 48,
+        cases: 32,
         rng_seed: proptest::test_runner::RngSeed::Fixed(seed()),
         .. ProptestConfig::default()
     })]
@@ -313,7 +313,7 @@ proptest! {
         };
         let tol = 0.5 * scale / 1000.0;
         let masters = [&light, &bold];
-        let mut at = positions(0, &mut Rng(1));
+        let mut at = masters::evenly_spaced(5);
         at.push(vec![1.0 - t, t]);
         // A blend where two points meet is not a contour: skip such pairs.
         if at.iter().any(|w| {
