@@ -577,7 +577,7 @@ impl<'a> Fitter<'a> {
 
     /// Measures `span` at the probes it was not measured at; if it fails at some, covers it
     /// again by the search with those probes added to the checks, and verifies the new spans
-    /// in turn. The refit is kept only if it at least halves the error at those probes:
+    /// in turn. The refit is kept if it meets their goals or at least halves the error:
     /// where it does not, the blend strays from the masters' curves by more than the goal
     /// and no cut mends it, so the span stays and `max_error` reports it. At most
     /// [`MAX_REFITS`] rounds; spans shorter than twice [`SHORTEST_BLEND_SPAN`] stay.
@@ -602,9 +602,15 @@ impl<'a> Fitter<'a> {
             &mut guess,
             &mut pieces,
         );
-        let worst = |s: &Span| failing.iter().map(|&k| s.errors[k]).fold(0.0, f64::max);
+        // The worst error at the failing probes, as a multiple of their goals.
+        let worst = |s: &Span| {
+            failing
+                .iter()
+                .map(|&k| s.errors[k] / self.goals[k])
+                .fold(0.0, f64::max)
+        };
         let after = pieces.iter().map(worst).fold(0.0, f64::max);
-        if failing.is_empty() || after > REFIT_GAIN * worst(&span) {
+        if failing.is_empty() || (after > 1.0 && after > REFIT_GAIN * worst(&span)) {
             out.push(span);
             return;
         }
