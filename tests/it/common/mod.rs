@@ -1,6 +1,8 @@
 //! Helpers shared by the test modules.
 
+pub mod cli;
 pub mod corpus;
 pub mod curves;
 pub mod masters;
 pub mod paths;
+pub mod tree;
