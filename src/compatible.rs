@@ -16,16 +16,24 @@
 //! master and the masters' centroid fit, searched on the cheap sampled errors and measured
 //! (two-sided, [`fit`]'s measure) for the span about to be taken. Once the contour is
 //! covered, every span is measured at every other position; a span that fails anywhere is
-//! halved, and the halves are measured everywhere, until all fit.
+//! covered again by the same search with the failing positions added to its checks.
 //!
 //! Limits:
 //! - The bound holds at the positions given, by the static fitter's sampled measure; between
 //!   them it is not checked (callers pass the masters, the instances and a grid).
+//! - Where `s` differs between masters, the blended X-spline is not the blend of the
+//!   masters' curves (the blending functions depend on `s`), and every vertex of the blended
+//!   Béziers lies on that blend. Where the two are farther apart than the tolerance, no
+//!   structure of this kind meets it: the fit does not cut without end there, it keeps the
+//!   spans and reports the error in `max_error` (above the tolerance). With the same `s` in
+//!   every master the blend is exact.
 //! - Joins inside a smooth stretch are G1 in every master. Between masters the handle
-//!   directions blend, so a join there is G1 only up to a small kink (each master's handle
-//!   lengths are its own).
+//!   directions blend, so a join there is G1 only up to a kink (each master's handle lengths
+//!   are its own): on the bundled glyphs with a bold master, at the midpoint, 41 of 813
+//!   joins bend by more than 1°, 7 by more than 5° (at most 17°), all at handles a few units
+//!   long.
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
-//!   shortened until the measure passes.
+//!   refitted as long as that helps.
 
 use std::fmt;
 
