@@ -719,3 +719,47 @@ fn blend_gap(masters: &[&XSpline], probe: &Probe) -> f64 {
     }
     gap
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn contour(points: &[(f64, f64, f64)]) -> XSpline {
+        XSpline::new(
+            points
+                .iter()
+                .map(|&(x, y, s)| ControlPoint::new(x, y, s))
+                .collect(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn blends_are_exact_at_the_masters_and_linear_with_equal_shapes() {
+        let a = contour(&[(0., 0., 0.), (300., 0., -1.), (150., 260., 1.)]);
+        let b = contour(&[(10., 0., 0.), (330., 20., -1.), (150., 300., 1.)]);
+        assert_eq!(blend(&[&a, &b], &[1.0, 0.0]).unwrap(), a);
+        assert_eq!(blend(&[&a, &b], &[0.0, 1.0]).unwrap(), b);
+        let mid = blend(&[&a, &b], &[0.5, 0.5]).unwrap();
+        let probe = Probe {
+            weights: vec![0.5, 0.5],
+            spline: mid.clone(),
+        };
+        assert_eq!(blend_gap(&[&a, &b], &probe), 0.0);
+        // Same `s`: the blended curve is the blend of the curves, point for point.
+        let t = 1.37;
+        let expected = (a.eval(t).to_vec2() + b.eval(t).to_vec2()) * 0.5;
+        assert!((mid.eval(t).to_vec2() - expected).hypot() < 1e-12);
+        // Different `s`: it is not, and the gap says by how much.
+        let c = contour(&[(10., 0., 0.), (330., 20., 0.5), (150., 300., 1.)]);
+        let mid = blend(&[&a, &c], &[0.5, 0.5]).unwrap();
+        let gap = blend_gap(
+            &[&a, &c],
+            &Probe {
+                weights: vec![0.5, 0.5],
+                spline: mid,
+            },
+        );
+        assert!(gap > 1.0 && gap < 100.0, "{gap}");
+    }
+}
