@@ -19,6 +19,7 @@ mod limits;
 mod ocr;
 mod otf;
 mod otf_random;
+mod overlap;
 mod production;
 mod render;
 mod scale;
