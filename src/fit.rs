@@ -39,14 +39,14 @@ const MIN_HANDLE: f64 = 1e-4;
 /// Most bisections of one sample step when the curve turns fast.
 const MAX_REFINE: usize = 8;
 /// Fraction of the tolerance a candidate must meet by measurement.
-const SAFETY: f64 = 0.96;
+pub(crate) const SAFETY: f64 = 0.96;
 /// The span search stops when the longest fitting span is known within this ratio.
-const SPAN_PRECISION: f64 = 1.05;
+pub(crate) const SPAN_PRECISION: f64 = 1.05;
 /// A fitting span whose error is at least this fraction of the goal is taken as the
 /// longest (with err ~ h^5 it is within about 1 % of it).
-const NEAR_GOAL: f64 = 0.5;
+pub(crate) const NEAR_GOAL: f64 = 0.5;
 /// Most fits tried per output cubic before falling back to halving.
-const MAX_TRIES: usize = 12;
+pub(crate) const MAX_TRIES: usize = 12;
 /// Sampled error peaks at least this fraction of the largest are refined between samples.
 const PEAK: f64 = 0.6;
 /// Refined peaks at least this fraction of the largest are also checked on the true curve.
@@ -338,7 +338,7 @@ fn fit_stretch(
 
 /// A span that ends within this fraction of the stretch's end would leave a sliver: a
 /// cubic a millionth of a unit long, which rounds to a zero-length segment in every output.
-const SLIVER: f64 = 0.05;
+pub(crate) const SLIVER: f64 = 0.05;
 
 /// The cubic for the whole rest `[a, t1]` of a stretch, if it passes the measure.
 fn whole_rest(
@@ -383,7 +383,7 @@ fn shortest_fit(
 
 /// Tangent direction at `t` inside the stretch `[t0, t1]`, one-sided at the stretch ends
 /// (where a sharp point may sit and the derivative vanishes). Always a finite unit vector.
-fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
+pub(crate) fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
     let n = spline.segment_count();
     let at_knot = (t - t.round()).abs() < 1e-12;
     let exact = if at_knot && (t - t0).abs() < 1e-12 {
@@ -585,7 +585,7 @@ fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
 /// minimax ones. (Measured on the test corpus: a least-squares start on chord-length
 /// parameters needs 5 % more segments; kurbo's area-and-moment `fit_to_cubic` as a second
 /// start saves a few percent of segments at twice the time.)
-fn fit_span(
+pub(crate) fn fit_span(
     spline: &XSpline,
     a: f64,
     b: f64,
@@ -775,7 +775,7 @@ impl Poly {
 /// distance at the maximum found is taken again against the true curve (exact curve
 /// points; Newton on the curve parameter), so neither a maximum between samples nor the
 /// Hermite pieces' own error can hide an excess.
-fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
+pub(crate) fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
     let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
     let poly = Poly::new(cubic);
     let n = samples.len();

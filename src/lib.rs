@@ -22,6 +22,7 @@ pub mod cache;
 pub mod cli;
 #[doc(hidden)]
 pub mod commands;
+pub mod compatible;
 pub mod designspace;
 pub mod family;
 pub mod fit;

@@ -6,6 +6,7 @@ mod common;
 
 mod build;
 mod cache;
+mod compatible;
 mod fit;
 mod fit_count;
 mod flatten;

@@ -3,5 +3,6 @@
 pub mod cli;
 pub mod corpus;
 pub mod curves;
+pub mod masters;
 pub mod paths;
 pub mod tree;
