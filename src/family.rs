@@ -12,11 +12,18 @@
 //! variable font there; the compatible fitter guarantees that it lies within the tolerance
 //! of the X-spline interpolated at the same position, at every position it checked.
 
-use kurbo::BezPath;
+use std::fmt;
 
-use crate::designspace::{Designspace, Location, Region};
-use crate::model::KernPair;
-use crate::outline::OutlinedFont;
+use kurbo::{Affine, BezPath, PathEl, Shape, Vec2};
+use rayon::prelude::*;
+
+use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
+use crate::designspace::{Designspace, Location, Region, RegionError};
+use crate::fit::fit_contour;
+use crate::model::{Contour, Family, Font, GlyphIndex, KernPair};
+use crate::orient::nesting_depths;
+use crate::outline::{OutlinedFont, OutlinedGlyph, PlacedContour};
+use crate::xspline::XSpline;
 
 /// A font with masters, every glyph fitted compatibly.
 #[derive(Clone, Debug)]
@@ -59,4 +66,285 @@ impl OutlinedFamily {
         let regions: Vec<Region> = self.masters.iter().map(|m| m.region).collect();
         self.designspace.weights(&regions, location)
     }
+}
+
+/// Why a family could not be outlined compatibly.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FamilyError {
+    /// The masters' locations do not form a valid set (the loader refuses these).
+    Regions(RegionError),
+    /// A contour's masters cannot share one structure (the loader refuses these).
+    Contour {
+        /// The glyph.
+        glyph: String,
+        /// Index of the contour among the glyph's placed contours.
+        contour: usize,
+        /// Why.
+        error: CompatibleError,
+    },
+}
+
+impl fmt::Display for FamilyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FamilyError::Regions(e) => write!(f, "the masters cannot be blended: {e:?}"),
+            FamilyError::Contour {
+                glyph,
+                contour,
+                error,
+            } => write!(f, "glyph `{glyph}`, contour {contour}: {error}"),
+        }
+    }
+}
+
+impl std::error::Error for FamilyError {}
+
+/// Evenly spaced positions checked along each axis, ends included (the issue asks for 9
+/// or more).
+pub const AXIS_SAMPLES: usize = 11;
+
+/// The positions every compatible fit is checked at: the default, each master, each named
+/// instance, and [`AXIS_SAMPLES`] evenly spaced user values along each axis (the others at
+/// their defaults). Duplicates are left out; the order is stable.
+pub fn check_locations(family: &Family) -> Vec<Location> {
+    let ds = &family.designspace;
+    let mut out: Vec<Location> = vec![Location::default()];
+    out.extend(family.masters.iter().map(|m| m.location.clone()));
+    out.extend(ds.instances.iter().map(|i| i.location.clone()));
+    for axis in &ds.axes {
+        for k in 0..AXIS_SAMPLES {
+            let t = k as f64 / (AXIS_SAMPLES - 1) as f64;
+            let user = axis.min + t * (axis.max - axis.min);
+            out.push(Location([(axis.tag.clone(), user)].into_iter().collect()));
+        }
+    }
+    let mut unique: Vec<Location> = Vec::with_capacity(out.len());
+    for loc in out {
+        let norm = ds.normalize(&loc);
+        if !unique.iter().any(|u| ds.normalize(u) == norm) {
+            unique.push(loc);
+        }
+    }
+    unique
+}
+
+/// How a family's compatible outlines compare with static fits, and how close they come
+/// to the tolerance: what a build reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FamilySummary {
+    /// Segments of the compatible outlines (per master; the same in every master).
+    pub compatible_segments: usize,
+    /// Σ over glyphs of the static fitter's segment count for the glyph's most demanding
+    /// master.
+    pub static_segments: usize,
+    /// Positions checked per contour.
+    pub positions: usize,
+    /// The worst glyph, its position and its error (font units), if any glyph has contours.
+    pub worst: Option<(String, Location, f64)>,
+}
+
+/// Fits every glyph of `family` with one segment structure for all masters
+/// ([`fit_compatible`], contours in parallel), checked at [`check_locations`].
+///
+/// Each contour is fitted where it was drawn and moved by its component offset in each
+/// master (the offsets blend like everything else, and the X-spline commutes with
+/// translation). Contours are oriented by the default master's nesting, and every master
+/// gets the same reversals, so the structures stay parallel.
+pub fn outline_family(
+    family: &Family,
+    tolerance: f64,
+) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
+    let regions = family.regions().map_err(FamilyError::Regions)?;
+    let ds = &family.designspace;
+    let locations = check_locations(family);
+    let positions: Vec<Vec<f64>> = locations.iter().map(|l| ds.weights(&regions, l)).collect();
+    // One `Font` per master (default first) so components resolve inside each master.
+    let fonts: Vec<Font> = std::iter::once(family.default.clone())
+        .chain(family.masters.iter().map(|m| Font {
+            info: family.default.info.clone(),
+            glyphs: m.glyphs.clone(),
+            kerning: m.kerning.clone(),
+        }))
+        .collect();
+    let indexes: Vec<_> = fonts.iter().map(Font::index).collect();
+    // The outline order: `.notdef` first, then the model's (as `outline_font`).
+    let order: Vec<usize> = (0..family.default.glyphs.len())
+        .filter(|&i| family.default.glyphs[i].name == ".notdef")
+        .chain(
+            (0..family.default.glyphs.len())
+                .filter(|&i| family.default.glyphs[i].name != ".notdef"),
+        )
+        .collect();
+    let glyphs: Vec<FittedGlyph> = order
+        .par_iter()
+        .map(|&gi| fit_glyph(&fonts, &indexes, gi, &positions, tolerance))
+        .collect::<Result<_, _>>()?;
+
+    let mut summary = FamilySummary {
+        compatible_segments: 0,
+        static_segments: 0,
+        positions: positions.len(),
+        worst: None,
+    };
+    for g in &glyphs {
+        summary.compatible_segments += g.default.segments;
+        summary.static_segments += g.static_segments;
+        if let Some((p, &e)) = g
+            .errors
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(b.1))
+        {
+            if summary.worst.as_ref().is_none_or(|w| e > w.2) {
+                summary.worst = Some((g.default.name.clone(), locations[p].clone(), e));
+            }
+        }
+    }
+    let default = OutlinedFont {
+        info: family.default.info.clone(),
+        kerning: family.default.kerning.clone(),
+        tolerance,
+        glyphs: glyphs.iter().map(|g| g.default.clone()).collect(),
+    };
+    let masters = family
+        .masters
+        .iter()
+        .zip(&regions)
+        .enumerate()
+        .map(|(m, (master, region))| OutlinedMaster {
+            name: master.name.clone(),
+            location: master.location.clone(),
+            region: *region,
+            glyphs: glyphs.iter().map(|g| g.masters[m].clone()).collect(),
+            kerning: master.kerning.clone(),
+        })
+        .collect();
+    Ok((
+        OutlinedFamily {
+            designspace: ds.clone(),
+            default,
+            masters,
+        },
+        summary,
+    ))
+}
+
+/// One glyph fitted in every master.
+struct FittedGlyph {
+    default: OutlinedGlyph,
+    masters: Vec<MasterGlyph>,
+    /// Largest error over the glyph's contours, per checked position.
+    errors: Vec<f64>,
+    static_segments: usize,
+}
+
+fn fit_glyph(
+    fonts: &[Font],
+    indexes: &[GlyphIndex<'_>],
+    gi: usize,
+    positions: &[Vec<f64>],
+    tolerance: f64,
+) -> Result<FittedGlyph, FamilyError> {
+    let glyph = &fonts[0].glyphs[gi];
+    let placed: Vec<Vec<(&Contour, (f64, f64))>> = fonts
+        .iter()
+        .zip(indexes)
+        .map(|(font, index)| font.placed_contours_in(index, &font.glyphs[gi]))
+        .collect();
+    let contours = placed[0].len();
+    let fits: Vec<CompatibleFit> = (0..contours)
+        .into_par_iter()
+        .map(|c| {
+            let splines: Vec<&XSpline> = placed.iter().map(|p| p[c].0.spline()).collect();
+            fit_compatible(&splines, positions, tolerance).map_err(|error| FamilyError::Contour {
+                glyph: glyph.name.clone(),
+                contour: c,
+                error,
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    // Each master's paths, moved to where they are placed.
+    let moved = |m: usize| -> Vec<BezPath> {
+        fits.iter()
+            .zip(&placed[m])
+            .map(|(fit, (_, (dx, dy)))| Affine::translate((*dx, *dy)) * fit.paths[m].clone())
+            .collect()
+    };
+    let default_paths = moved(0);
+    let depths = nesting_depths(&default_paths);
+    // kurbo's area is positive for counter-clockwise contours in y-up coordinates; outer
+    // contours (even depth) run counter-clockwise.
+    let reverse: Vec<bool> = default_paths
+        .iter()
+        .zip(&depths)
+        .map(|(p, d)| (p.area() > 0.0) != (d % 2 == 0))
+        .collect();
+    let join = |paths: Vec<BezPath>| -> BezPath {
+        let mut out = BezPath::new();
+        for (p, &rev) in paths.iter().zip(&reverse) {
+            if rev {
+                out.extend(p.reverse_subpaths().iter());
+            } else {
+                out.extend(p.iter());
+            }
+        }
+        out
+    };
+    let mut errors = vec![0.0f64; positions.len()];
+    for fit in &fits {
+        for (e, f) in errors.iter_mut().zip(&fit.max_error) {
+            *e = e.max(*f);
+        }
+    }
+    let static_segments = placed
+        .iter()
+        .map(|p| {
+            p.iter()
+                .map(|(c, _)| segment_count(&fit_contour(c.spline(), tolerance).path))
+                .sum::<usize>()
+        })
+        .max()
+        .unwrap_or(0);
+    let segments = fits.iter().map(|f| f.segments).sum();
+    let masters = (1..fonts.len())
+        .map(|m| MasterGlyph {
+            advance: fonts[m].glyphs[gi].advance,
+            path: join(moved(m)),
+        })
+        .collect();
+    let default = OutlinedGlyph {
+        name: glyph.name.clone(),
+        unicodes: glyph.unicodes.clone(),
+        advance: glyph.advance,
+        components: glyph.components.clone(),
+        contours: placed[0]
+            .iter()
+            .map(|(c, (dx, dy))| PlacedContour {
+                spline: c.spline().clone(),
+                offset: Vec2::new(*dx, *dy),
+            })
+            .collect(),
+        path: join(default_paths),
+        max_error: errors.iter().copied().fold(0.0, f64::max),
+        segments,
+    };
+    Ok(FittedGlyph {
+        default,
+        masters,
+        errors,
+        static_segments,
+    })
+}
+
+/// Lines and curves in `path`.
+fn segment_count(path: &BezPath) -> usize {
+    path.elements()
+        .iter()
+        .filter(|el| {
+            matches!(
+                el,
+                PathEl::LineTo(_) | PathEl::QuadTo(..) | PathEl::CurveTo(..)
+            )
+        })
+        .count()
 }

@@ -9,6 +9,8 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::designspace::Location;
+use crate::family::{outline_family, FamilyError, FamilySummary};
+use crate::overlap::remove_overlaps_font;
 use crate::instance::InstanceError;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
@@ -52,6 +54,8 @@ pub enum PipelineError {
     Otf(OtfError),
     /// An instance of the masters could not be built.
     Instance(String),
+    /// The masters could not be fitted compatibly.
+    Family(FamilyError),
     /// Writing the outputs failed; the output directory is as it was.
     Write {
         /// The output directory.
@@ -87,6 +91,7 @@ impl fmt::Display for PipelineError {
             PipelineError::Render(e) => write!(f, "{e}"),
             PipelineError::Otf(e) => write!(f, "{e}"),
             PipelineError::Instance(msg) => write!(f, "{msg}"),
+            PipelineError::Family(e) => write!(f, "{e}"),
             PipelineError::Write { dir, error } => {
                 write!(f, "{error}; {} is unchanged", dir.display())
             }
@@ -208,11 +213,20 @@ pub fn instance_outputs(
                 continue;
             }
             return Err(PipelineError::Instance(format!(
-                "the named instance `{name}` away from the default location would write                  {stem}.ttf, the default master's file; rename the instance or the default                  `style`"
+                "the named instance `{name}` away from the default location would write \
+                 {stem}.ttf, the default master's file; rename the instance or the default \
+                 `style`"
             )));
         }
-        files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(font)?));
-        files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(font)?));
+        let unioned;
+        let ot = if opts.keep_overlaps {
+            font
+        } else {
+            unioned = remove_overlaps_font(font);
+            &unioned
+        };
+        files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(ot)?));
+        files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
         files.push((
             PathBuf::from(format!("{stem}.svg")),
             svg_font(font).into_bytes(),
@@ -243,6 +257,42 @@ pub fn instance_outputs(
     Ok(files)
 }
 
+/// The variable font of a font with masters, `<Family>[<axis tags>].ttf` and `.woff2`
+/// (the naming Google Fonts uses), from the compatible outlines ([`outline_family`]), with
+/// the fit's summary. `None` for a single-master font.
+pub fn variable_outputs(
+    loaded: &Loaded,
+) -> Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError> {
+    if !loaded.family.is_variable() {
+        return Ok(None);
+    }
+    let (family, summary) =
+        outline_family(&loaded.family, loaded.font.tolerance).map_err(PipelineError::Family)?;
+    let ttf = otf::variable_ttf(&family)?;
+    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    let tags: Vec<&str> = family
+        .designspace
+        .axes
+        .iter()
+        .map(|a| a.tag.as_str())
+        .collect();
+    // The static stem without its `-<style>`.
+    let info = &family.default.info;
+    let static_stem = output_stem(info);
+    let style: String = info.style.chars().filter(|c| !c.is_whitespace()).collect();
+    let family_stem = static_stem
+        .strip_suffix(&format!("-{style}"))
+        .unwrap_or(&static_stem);
+    let stem = format!("{family_stem}[{}]", tags.join(","));
+    Ok(Some((
+        vec![
+            (PathBuf::from(format!("{stem}.ttf")), ttf),
+            (PathBuf::from(format!("{stem}.woff2")), woff2),
+        ],
+        summary,
+    )))
+}
+
 /// The instances proof: the build's proof text at three sizes (every instance is a block).
 fn instances_proof_options(proof: &ProofOptions) -> ProofOptions {
     ProofOptions {
@@ -258,6 +308,9 @@ pub struct BuildOptions {
     pub sheet: SheetOptions,
     /// The text proof.
     pub proof: ProofOptions,
+    /// Write the TTF, OTF and WOFF2 with overlapping contours as they are (by default they
+    /// are unioned: [`remove_overlaps_font`]).
+    pub keep_overlaps: bool,
 }
 
 /// One output file: its path relative to the output directory, and its bytes.
@@ -275,10 +328,17 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
         encode_png(&render_proof(font, &opts.proof)?)?,
     ));
     let stem = output_stem(&font.info);
-    let ttf = otf::ttf(font)?;
+    let unioned;
+    let ot = if opts.keep_overlaps {
+        font
+    } else {
+        unioned = remove_overlaps_font(font);
+        &unioned
+    };
+    let ttf = otf::ttf(ot)?;
     let woff2 = otf::woff2_from_ttf(&ttf)?;
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
-    files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(font)?));
+    files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
     files.push((PathBuf::from(format!("{stem}.woff2")), woff2));
     let (woff2_name, otf_name) = (format!("{stem}.woff2"), format!("{stem}.otf"));
     files.push((

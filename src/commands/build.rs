@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 use super::{CommandError, FontArgs};
 use crate::cache::{FitCache, LoadOutcome, CACHE_FILE};
 use crate::designspace::Location;
+use crate::family::FamilySummary;
 use crate::model::Family;
 use crate::outline::{OutlineOptions, Progress};
 use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Summary};
@@ -43,6 +44,10 @@ pub struct BuildArgs {
     /// Proof text (default: lines the font covers); `\n` in the text starts a new line.
     #[arg(long)]
     pub text: Option<String>,
+    /// Write the TTF, OTF and WOFF2 with overlapping contours as drawn (by default they are
+    /// unioned into one outline).
+    #[arg(long)]
+    pub keep_overlaps: bool,
 }
 
 /// Prints a diagnostic as `check` does (source line and caret), to stderr.
@@ -195,6 +200,34 @@ fn masters_line(family: &Family) -> String {
     )
 }
 
+/// The line on the variable font's compatible fit: its segments against static fits of the
+/// most demanding master, and the worst error over every checked position.
+fn variable_line(fs: &FamilySummary, family: &Family, tolerance: f64) -> String {
+    let ratio = fs.compatible_segments as f64 / fs.static_segments.max(1) as f64;
+    let worst = match &fs.worst {
+        Some((glyph, at, e)) => {
+            let where_: Vec<String> = family
+                .designspace
+                .axes
+                .iter()
+                .map(|a| format!("{} {}", a.tag, emit::number(at.get(a))))
+                .collect();
+            format!(
+                "; worst {} of {} in `{glyph}` at {}",
+                emit::number((e * 1e4).round() / 1e4),
+                emit::number(tolerance),
+                where_.join(", ")
+            )
+        }
+        None => String::new(),
+    };
+    format!(
+        "variable font: {} segments in every master, static fits of the most demanding \
+         master {} ({ratio:.3}x); checked at {} positions{worst}",
+        fs.compatible_segments, fs.static_segments, fs.positions
+    )
+}
+
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     let cache_path = args.font.out.join(CACHE_FILE);
@@ -211,10 +244,15 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             text: args.text.map(|t| t.replace("\\n", "\n")),
             ..ProofOptions::default()
         },
+        keep_overlaps: args.keep_overlaps,
         ..BuildOptions::default()
     };
     let mut files = pipeline::outputs(&loaded.font, &opts)?;
     files.extend(pipeline::instance_outputs(&loaded, &opts)?);
+    let variable = pipeline::variable_outputs(&loaded)?;
+    if let Some((var_files, _)) = &variable {
+        files.extend(var_files.iter().cloned());
+    }
     pipeline::write_outputs(&args.font.out, &files)?;
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
@@ -224,6 +262,9 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     );
     if loaded.family.is_variable() {
         outln!("{}", masters_line(&loaded.family));
+    }
+    if let Some((_, fs)) = &variable {
+        outln!("{}", variable_line(fs, &loaded.family, loaded.font.tolerance));
     }
     if cache.hits() > 0 {
         outln!(
