@@ -262,7 +262,7 @@ fn fit_stretch(
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
             if taken {
-                err = measure(spline, a, a + h, &cubic);
+                err = measure_within(spline, a, a + h, &cubic, goal);
             }
             if err <= goal {
                 fits = Some((h, cubic, err, taken));
@@ -310,7 +310,7 @@ fn fit_stretch(
         let (h, cubic, err) = match fits {
             Some((h, cubic, err, true)) => (h, cubic, err),
             Some((h, cubic, _, false)) => {
-                let err = measure(spline, a, a + h, &cubic);
+                let err = measure_within(spline, a, a + h, &cubic, goal);
                 if err <= goal {
                     (h, cubic, err)
                 } else {
@@ -353,7 +353,7 @@ fn whole_rest(
     if sampled > goal {
         return None;
     }
-    let err = measure(spline, a, t1, &cubic);
+    let err = measure_within(spline, a, t1, &cubic, goal);
     (err <= goal).then_some((t1 - a, cubic, err))
 }
 
@@ -370,7 +370,7 @@ fn shortest_fit(
     loop {
         let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
         let err = if sampled <= goal {
-            measure(spline, a, a + h, &cubic)
+            measure_within(spline, a, a + h, &cubic, goal)
         } else {
             sampled
         };
@@ -738,6 +738,18 @@ impl Poly {
         self.c0 + u * (self.c1 + u * (self.c2 + u * self.c3))
     }
 
+    /// `self(s) - other(u0 + s du)`, in power form (`other` expanded about `u0`).
+    fn minus_along(&self, other: &Poly, u0: f64, du: f64) -> Poly {
+        let d1 = other.c1 + u0 * (2.0 * other.c2 + 3.0 * u0 * other.c3);
+        let d2 = other.c2 + 3.0 * u0 * other.c3;
+        Poly {
+            c0: self.c0 - other.eval(u0),
+            c1: self.c1 - d1 * du,
+            c2: self.c2 - d2 * (du * du),
+            c3: self.c3 - other.c3 * (du * du * du),
+        }
+    }
+
     /// Nearest point to `p` by Newton iteration from `u` (clamped to `[0, 1]`);
     /// `(u, distance)`. Local: callers start it near the answer.
     fn project(&self, p: Point, u: f64) -> (f64, f64) {
@@ -766,6 +778,117 @@ impl Poly {
     }
 }
 
+/// Sub-steps per sample interval at which [`gap_bound`] evaluates the gap polynomial.
+const GAP_STEPS: usize = 4;
+
+/// Two-sided distance between `cubic` and the sampled curve for a candidate that must be
+/// within `goal`: a proven upper bound ([`gap_bound`]) when that bound is within `goal`,
+/// otherwise [`measure`]'s golden-section estimate (the two-sided bound can be loose
+/// where the samples' projections jump, and must not turn away what [`measure`] accepts).
+///
+/// Why the bound holds. Let `H` be the Hermite interpolant of the samples (the curve
+/// [`measure`] refines on) and `B` the cubic. Each sample `i` has its cubic parameter
+/// `u_i` (its projection; the first and last are set to 0 and 1). On the interval between
+/// samples `i` and `i + 1`, pair the Hermite point `H_i(s)` with the cubic point
+/// `B(u_i + s (u_{i+1} - u_i))`; their difference `g_i(s)` is a cubic polynomial in `s`,
+/// built exactly. Then:
+/// - curve to cubic: the distance from `H_i(s)` to the cubic is at most `|g_i(s)|`;
+/// - cubic to curve: the paired parameters run continuously from 0 to 1 over the
+///   intervals, so every cubic point `B(v)` is paired with some `H_i(s)` (intermediate
+///   values), and its distance to the curve is at most `|g_i(s)|`.
+///
+/// So the largest `|g_i|` bounds both directions (a Fréchet bound, which is stronger than
+/// the Hausdorff distance [`measure`] estimates). [`gap_bound`] bounds `|g_i|` on each
+/// interval from its values at [`GAP_STEPS`] sub-steps and the exact bound of its second
+/// derivative (linear in `s`), with no search that could miss a peak: where it accepts,
+/// [`measure`]'s golden sections, which only estimate the peaks between samples, would
+/// have found at most this. As in [`measure`], the top peaks are then also checked
+/// against the true curve, in both directions (the Hermite pieces' own error, O(h^4)).
+/// Rounding in the bound is relative 1e-13, far inside the acceptance's 4 % margin.
+fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64) -> f64 {
+    let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
+    let poly = Poly::new(cubic);
+    let (u, near) = project_samples(samples, &poly);
+    let pieces = hermite_pieces(samples);
+    let n = samples.len();
+    let paired = |i: usize| match i {
+        0 => 0.0,
+        i if i == n - 1 => 1.0,
+        i => u[i],
+    };
+    // (bound, where) on each interval.
+    let gaps: Vec<(f64, f64)> = (0..n - 1)
+        .map(|i| {
+            let (u0, du) = (paired(i), paired(i + 1) - paired(i));
+            gap_bound(&pieces[i].minus_along(&poly, u0, du))
+        })
+        .collect();
+    let top = gaps.iter().map(|g| g.0).fold(0.0, f64::max);
+    if top > goal {
+        return measure_golden(spline, samples, &poly, &pieces, &u, &near);
+    }
+    // The exact checks, at the interval maxima near the top (as `measure` checks its
+    // refined peaks): the true curve point against the cubic, and the cubic point
+    // against the true curve (Newton on the curve parameter from the paired point).
+    let (lo, hi) = (samples.t[0], samples.t[n - 1]);
+    let mut err = top;
+    for (i, &(gap, s)) in gaps.iter().enumerate() {
+        let local = (i == 0 || gaps[i - 1].0 <= gap) && (i + 2 == n || gaps[i + 1].0 <= gap);
+        if !local || gap < EXACT_PEAK * top {
+            continue;
+        }
+        let t = samples.t[i] + (samples.t[i + 1] - samples.t[i]) * s;
+        let v = paired(i) + (paired(i + 1) - paired(i)) * s;
+        err = err.max(poly.project(spline.eval(t), v).1);
+        let q = poly.eval(v).to_point();
+        let mut t = t;
+        let mut nearest = spline.eval(t).distance(q);
+        for _ in 0..4 {
+            let (c, d) = spline.eval_deriv(t);
+            let dd = d.dot(d);
+            if dd <= 0.0 {
+                break;
+            }
+            t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
+            nearest = nearest.min(spline.eval(t).distance(q));
+        }
+        err = err.max(nearest);
+    }
+    err
+}
+
+/// An upper bound of `|g(s)|` on `[0, 1]` for a cubic `g`, and where it is reached.
+///
+/// On each of [`GAP_STEPS`] sub-steps of width `w`, with `|g|` equal to `a` and `b` at its
+/// ends and `|g''| <= m` inside (`g''` is linear, so `m` is the larger of its two end
+/// values), `|g|` at fraction `x` is at most `(1 - x) a + x b + x (1 - x) w^2 m / 2`: the
+/// chord of `g` (whose length is at most the chord of `|g|`, by convexity of the norm) plus
+/// the linear interpolation remainder. That concave quadratic's maximum is taken exactly.
+fn gap_bound(g: &Poly) -> (f64, f64) {
+    let w = 1.0 / GAP_STEPS as f64;
+    let second = |s: f64| (2.0 * g.c2 + 6.0 * s * g.c3).hypot();
+    let (mut a, mut ma) = (g.c0.hypot(), second(0.0));
+    let mut best = (a, 0.0);
+    for k in 1..=GAP_STEPS {
+        let s = k as f64 * w;
+        let (b, mb) = (g.eval(s).hypot(), second(s));
+        let m = ma.max(mb) * w * w;
+        let x = if m > 0.0 {
+            (0.5 + (b - a) / m).clamp(0.0, 1.0)
+        } else if b > a {
+            1.0
+        } else {
+            0.0
+        };
+        let bound = a + x * (b - a) + 0.5 * m * x * (1.0 - x);
+        if bound > best.0 {
+            best = (bound, s - w + x * w);
+        }
+        (a, ma) = (b, mb);
+    }
+    best
+}
+
 /// Two-sided distance between `cubic` and the sampled curve.
 ///
 /// Curve to cubic: every sample projected onto the cubic. Cubic to curve: cubic points at
@@ -778,8 +901,14 @@ impl Poly {
 fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
     let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
     let poly = Poly::new(cubic);
+    let (u, near) = project_samples(samples, &poly);
+    let pieces = hermite_pieces(samples);
+    measure_golden(spline, samples, &poly, &pieces, &u, &near)
+}
+
+/// Every sample projected onto the cubic: each one's cubic parameter and distance.
+fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
     let n = samples.len();
-    // Curve to cubic.
     let mut u = vec![0.0; n];
     let mut near = vec![0.0; n];
     let mut guess = 0.0;
@@ -800,8 +929,28 @@ fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
         largest = largest.max(d);
         guess = ui;
     }
-    // The Hermite pieces between samples, in power form, each built once.
-    let pieces: Vec<Poly> = (0..n - 1).map(|i| Poly::new(&samples.piece(i))).collect();
+    (u, near)
+}
+
+/// The Hermite pieces between samples, in power form, each built once.
+fn hermite_pieces(samples: &Samples) -> Vec<Poly> {
+    (0..samples.len() - 1)
+        .map(|i| Poly::new(&samples.piece(i)))
+        .collect()
+}
+
+/// The rest of [`measure`], from the samples' projections onto the cubic: the sampled
+/// distances, refined by golden sections at their peaks in both directions.
+fn measure_golden(
+    spline: &XSpline,
+    samples: &Samples,
+    poly: &Poly,
+    pieces: &[Poly],
+    u: &[f64],
+    near: &[f64],
+) -> f64 {
+    let n = samples.len();
+    let poly = *poly;
     let param =
         |piece: usize, s: f64| samples.t[piece] + (samples.t[piece + 1] - samples.t[piece]) * s;
     let start = |piece: usize, s: f64| u[piece] + (u[piece + 1] - u[piece]) * s;
@@ -813,9 +962,9 @@ fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
         poly.project(spline.eval(param(piece, s)), start(piece, s))
             .1
     };
-    let mut err = refine_peaks(&near, hermite_at, curve_at);
+    let mut err = refine_peaks(near, hermite_at, curve_at);
     // Cubic to curve. `rising` makes the samples' cubic parameters monotone for bracketing.
-    let mut rising = u.clone();
+    let mut rising = u.to_vec();
     for i in 1..n {
         rising[i] = rising[i].max(rising[i - 1]);
     }
