@@ -29,5 +29,6 @@ mod source_malformed;
 mod studio_browser;
 mod svg;
 mod terminal;
+mod variable;
 mod writes;
 mod xspline;
