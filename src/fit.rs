@@ -828,7 +828,16 @@ fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64)
     };
     // (bound, where) on each interval.
     let gaps: Vec<(f64, f64)> = (0..n - 1)
-        .map(|i| paired_gap(&pieces[i], &poly, paired(i), paired(i + 1), goal, GAP_SPLITS))
+        .map(|i| {
+            paired_gap(
+                &pieces[i],
+                &poly,
+                paired(i),
+                paired(i + 1),
+                goal,
+                GAP_SPLITS,
+            )
+        })
         .collect();
     let top = gaps.iter().map(|g| g.0).fold(0.0, f64::max);
     if top > goal {
@@ -869,7 +878,14 @@ fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64)
 /// `splits` times) and its midpoint paired with its projection onto the cubic: near a
 /// sharp point the curve's speed changes fast, and a linear pairing drifts along the cubic
 /// by more than the distance itself. Any pairing is a valid bound; a closer one is tighter.
-fn paired_gap(piece: &Poly, cubic: &Poly, u0: f64, u1: f64, goal: f64, splits: usize) -> (f64, f64) {
+fn paired_gap(
+    piece: &Poly,
+    cubic: &Poly,
+    u0: f64,
+    u1: f64,
+    goal: f64,
+    splits: usize,
+) -> (f64, f64) {
     let (gap, at) = gap_bound(&piece.minus(&cubic.along(u0, u1 - u0)));
     if gap <= goal || splits == 0 {
         return (gap, at);
@@ -1142,7 +1158,13 @@ mod tests {
     fn gap_bound_covers_the_peak_tightly() {
         let cases = [
             // A parabola peaking on a sub-step: the bound is exact.
-            (Vec2::ZERO, Vec2::new(0.0, 2.0), Vec2::new(0.0, -2.0), Vec2::ZERO, 0.5),
+            (
+                Vec2::ZERO,
+                Vec2::new(0.0, 2.0),
+                Vec2::new(0.0, -2.0),
+                Vec2::ZERO,
+                0.5,
+            ),
             // Peaks between sub-steps, in both coordinates.
             (
                 Vec2::new(0.1, -0.2),
@@ -1168,7 +1190,10 @@ mod tests {
             let allowance = (2.0 * c2).hypot().max((2.0 * c2 + 6.0 * c3).hypot())
                 / (8.0 * (GAP_STEPS * GAP_STEPS) as f64);
             assert!(bound >= dense - 1e-12, "{bound} < {dense}");
-            assert!(bound <= dense + allowance, "{bound} > {dense} + {allowance}");
+            assert!(
+                bound <= dense + allowance,
+                "{bound} > {dense} + {allowance}"
+            );
             assert!((0.0..=1.0).contains(&at));
             if !exact.is_nan() {
                 assert_eq!((bound, at), (exact, 0.5));
@@ -1218,6 +1243,9 @@ mod tests {
                 }
             }
         }
-        assert!(compared >= 12 && 2 * bounded > compared, "{bounded} of {compared}");
+        assert!(
+            compared >= 12 && 2 * bounded > compared,
+            "{bounded} of {compared}"
+        );
     }
 }
