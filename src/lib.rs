@@ -38,6 +38,7 @@ pub mod render;
 pub mod serve;
 pub mod source;
 pub mod svg;
+pub mod ufo;
 pub mod terminal;
 pub mod write;
 pub mod xspline;
