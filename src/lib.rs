@@ -38,8 +38,8 @@ pub mod render;
 pub mod serve;
 pub mod source;
 pub mod svg;
-pub mod ufo;
 pub mod terminal;
+pub mod ufo;
 pub mod write;
 pub mod xspline;
 

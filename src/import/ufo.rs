@@ -23,6 +23,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use kurbo::{Affine, BezPath};
 use rayon::prelude::*;
@@ -54,9 +55,16 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     // tolerance, or the exporting build's tolerance plus the 1/1000-unit rounding of the
     // .glif coordinates when that is larger.
     let bound = tolerance.max(info.tolerance + 0.01);
+    let done = AtomicUsize::new(0);
     let mut fitted = glyphs
         .par_iter()
-        .map(|g| import_one(layer, g, &names, (tolerance, bound), grid))
+        .map(|g| {
+            let one = import_one(layer, g, &names, (tolerance, bound), grid);
+            if let Some(tell) = &opts.progress.0 {
+                tell(done.fetch_add(1, Ordering::Relaxed) + 1, glyphs.len());
+            }
+            one
+        })
         .collect::<Result<Vec<_>, String>>()
         .map_err(|m| ImportError::at(path, m))?;
     fitted.sort_by(|a, b| crate::model::glyph_order(&a.fitted.glyph.name, &b.fitted.glyph.name));
@@ -125,10 +133,7 @@ fn chain(e: &dyn std::error::Error) -> String {
 }
 
 fn units_per_em(ufo: &norad::Font) -> Result<u16, String> {
-    let upm = ufo
-        .font_info
-        .units_per_em
-        .map_or(1000.0, |u| u.as_f64());
+    let upm = ufo.font_info.units_per_em.map_or(1000.0, |u| u.as_f64());
     if upm.fract() != 0.0 || !(16.0..=16384.0).contains(&upm) {
         return Err(format!(
             "fontinfo.plist: unitsPerEm {upm} is not a whole number in 16..16384"
@@ -140,12 +145,13 @@ fn units_per_em(ufo: &norad::Font) -> Result<u16, String> {
 fn font_info(ufo: &norad::Font, upm: u16, tolerance: f64, opts: &ImportOptions) -> FontInfo {
     let fi = &ufo.font_info;
     let defaults = FontInfo::with_em("Imported", upm);
-    let lib_string = |key: &str| ufo.lib.get(key).and_then(|v| v.as_string()).map(String::from);
-    let version = version_text(
-        fi.version_major,
-        fi.version_minor,
-        lib_string(VERSION_KEY),
-    );
+    let lib_string = |key: &str| {
+        ufo.lib
+            .get(key)
+            .and_then(|v| v.as_string())
+            .map(String::from)
+    };
+    let version = version_text(fi.version_major, fi.version_minor, lib_string(VERSION_KEY));
     FontInfo {
         family: opts
             .family
@@ -219,7 +225,8 @@ fn import_one(
     let mut drawn = own.clone();
     for c in &g.components {
         let t = c.transform;
-        let translation = t.x_scale == 1.0 && t.y_scale == 1.0 && t.xy_scale == 0.0 && t.yx_scale == 0.0;
+        let translation =
+            t.x_scale == 1.0 && t.y_scale == 1.0 && t.xy_scale == 0.0 && t.yx_scale == 0.0;
         match names.get(c.base.as_str()) {
             Some(base) if translation => components.push(Component {
                 base: base.clone(),
@@ -412,7 +419,7 @@ fn kerning(ufo: &norad::Font, names: &HashMap<String, String>) -> Vec<KernPair> 
         }
     }
     // Most general first, so that specific pairs overwrite them.
-    entries.sort_by(|a, b| b.0.cmp(&a.0));
+    entries.sort_by_key(|e| std::cmp::Reverse(e.0));
     let mut pairs: BTreeMap<(String, String), f64> = BTreeMap::new();
     for (_, left, right, value) in entries {
         for l in members("public.kern1.", left) {

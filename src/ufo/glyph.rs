@@ -145,7 +145,7 @@ mod tests {
         assert_eq!(subs.len(), 2);
         let first = contour(&subs[0]);
         let text: Vec<(f64, f64, PointType)> =
-            first.points.iter().map(|p| (p.x, p.y, p.typ.clone())).collect();
+            first.points.iter().map(|p| (p.x, p.y, p.typ)).collect();
         assert_eq!(
             text,
             [

@@ -10,7 +10,7 @@
 use norad::fontinfo::Os2Panose;
 use plist::Value;
 
-use super::lib::{kerning_order_value, TOLERANCE_KEY, VERSION_KEY, KERNING_ORDER_KEY};
+use super::lib::{kerning_order_value, KERNING_ORDER_KEY, TOLERANCE_KEY, VERSION_KEY};
 use crate::model::{FontInfo, DEFAULT_VENDOR};
 use crate::outline::OutlinedFont;
 

@@ -28,7 +28,7 @@ mod source_fmt;
 mod source_malformed;
 mod studio_browser;
 mod svg;
-mod ufo;
 mod terminal;
+mod ufo;
 mod writes;
 mod xspline;

@@ -51,7 +51,11 @@ fn export_then_import_gives_the_same_sources_byte_for_byte() {
     assert_eq!(imported.font, original);
     // Every glyph came from its lib; the measured distance to the .glif outline is the
     // build's fitting error (tolerance 0.5) plus the 1/1000-unit rounding.
-    let drawn = original.glyphs.iter().filter(|g| !g.contours.is_empty()).count();
+    let drawn = original
+        .glyphs
+        .iter()
+        .filter(|g| !g.contours.is_empty())
+        .count();
     let note = format!("{drawn} glyph(s) taken exactly");
     assert!(
         imported.report.notes.iter().any(|n| n.starts_with(&note)),
@@ -64,7 +68,11 @@ fn export_then_import_gives_the_same_sources_byte_for_byte() {
     // does not follow the UFO rule of src/names.rs (nor norad's): `uni00A0.toml`, which the
     // rule names `uni00A_0.toml`.
     for (name, _) in &got {
-        let bundled = if name == "uni00A_0.toml" { "uni00A0.toml" } else { name };
+        let bundled = if name == "uni00A_0.toml" {
+            "uni00A0.toml"
+        } else {
+            name
+        };
         assert!(glyphs_dir().join(bundled).is_file(), "{name}");
     }
 }
@@ -129,8 +137,14 @@ fn export_is_deterministic_and_holds_what_the_sources_say() {
         "{kerning}"
     );
     let lib = file("lib.plist");
-    assert!(lib.contains("<key>org.xglyph.tolerance</key>\n\t<real>0.5</real>"), "{lib}");
-    assert!(lib.contains("<key>public.glyphOrder</key>\n\t<array>\n\t\t<string>.notdef</string>"), "{lib}");
+    assert!(
+        lib.contains("<key>org.xglyph.tolerance</key>\n\t<real>0.5</real>"),
+        "{lib}"
+    );
+    assert!(
+        lib.contains("<key>public.glyphOrder</key>\n\t<array>\n\t\t<string>.notdef</string>"),
+        "{lib}"
+    );
 }
 
 /// The glyph's own outline as the UFO holds it (norad reading the written files).
@@ -207,8 +221,13 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
     }
     ufo.lib.clear();
     let o = ufo.get_glyph_mut("o").expect("o");
-    o.anchors
-        .push(norad::Anchor::new(270.0, 520.0, Some(norad::Name::new("top").expect("name")), None, None));
+    o.anchors.push(norad::Anchor::new(
+        270.0,
+        520.0,
+        Some(norad::Name::new("top").expect("name")),
+        None,
+        None,
+    ));
     let mut small = norad::Glyph::new("osmall");
     small.width = 300.0;
     small.components.push(norad::Component::new(
@@ -264,7 +283,11 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
             .sum()
     };
     let o_area = area(f.glyph("o").expect("o"));
-    assert!((area(osmall) / o_area - 0.25).abs() < 0.01, "{}", area(osmall) / o_area);
+    assert!(
+        (area(osmall) / o_area - 0.25).abs() < 0.01,
+        "{}",
+        area(osmall) / o_area
+    );
     // The group pair is expanded; a glyph pair of the original stays.
     assert_eq!(f.kern("o", "v"), -42.0);
     assert_eq!(f.kern("osmall", "v"), -42.0);
@@ -276,10 +299,17 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
 fn a_broken_ufo_is_an_error_naming_it() {
     let dir = tempfile::tempdir().expect("temp dir");
     let (_, path) = exported(dir.path());
-    std::fs::write(path.join("glyphs/a.glif"), "<glyph name=\"a\" format=\"2\"><advance").expect("write");
+    std::fs::write(
+        path.join("glyphs/a.glif"),
+        "<glyph name=\"a\" format=\"2\"><advance",
+    )
+    .expect("write");
     let err = import_ufo(&path, &ImportOptions::default()).unwrap_err();
     let text = err.to_string();
-    assert!(text.starts_with(&format!("{}: cannot read the UFO: ", path.display())), "{text}");
+    assert!(
+        text.starts_with(&format!("{}: cannot read the UFO: ", path.display())),
+        "{text}"
+    );
     assert!(text.contains("a.glif"), "{text}");
 }
 
@@ -356,7 +386,14 @@ fn fontbakery_ufo_checks_pass() {
     let dir = tempfile::tempdir().expect("temp dir");
     let (_, path) = exported(dir.path());
     let out = Command::new("fontbakery")
-        .args(["check-universal", "-c", "ufo", "--succinct", "--loglevel", "PASS"])
+        .args([
+            "check-universal",
+            "-c",
+            "ufo",
+            "--succinct",
+            "--loglevel",
+            "PASS",
+        ])
         .arg(&path)
         .output()
         .expect("runs");
@@ -373,8 +410,76 @@ fn fontbakery_ufo_checks_pass() {
         "ufo_recommended_fields",
         "ufo_unnecessary_fields",
     ] {
-        assert!(text.contains(&format!("{check}: PASS")), "{check} in {text}");
+        assert!(
+            text.contains(&format!("{check}: PASS")),
+            "{check} in {text}"
+        );
     }
     assert!(text.contains("FAIL: 0 WARN: 0"), "{text}");
     assert!(text.contains("ERROR: 0 FATAL: 0"), "{text}");
+}
+
+/// The files of a font directory: name -> text, leading comment lines dropped (the model
+/// has no comments, so an import cannot bring them back; `fmt` keeps them).
+fn sources_without_leading_comments(dir: &Path) -> std::collections::BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .expect("lists")
+        .map(|e| {
+            let path = e.expect("entry").path();
+            let text = std::fs::read_to_string(&path).expect("reads");
+            let body: String = text
+                .split_inclusive('\n')
+                .skip_while(|l| l.starts_with('#') || l.trim().is_empty())
+                .collect();
+            let name = path
+                .file_name()
+                .expect("a name")
+                .to_string_lossy()
+                .into_owned();
+            (name, body)
+        })
+        .collect()
+}
+
+#[test]
+fn cli_import_of_the_export_equals_the_formatted_sources() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (_, ufo_path) = exported(dir.path());
+    // The bundled sources as `fmt` leaves them.
+    let formatted = dir.path().join("formatted");
+    std::fs::create_dir(&formatted).expect("mkdir");
+    for e in std::fs::read_dir(glyphs_dir()).expect("lists") {
+        let path = e.expect("entry").path();
+        std::fs::copy(&path, formatted.join(path.file_name().expect("name"))).expect("copies");
+    }
+    let bin = env!("CARGO_BIN_EXE_xglyph");
+    run(Command::new(bin).arg("fmt").arg(&formatted));
+    let out = dir.path().join("imported");
+    let report = run(Command::new(bin)
+        .arg("import")
+        .arg(&ufo_path)
+        .arg("-o")
+        .arg(&out));
+    assert!(
+        report.contains("102 glyph(s) taken exactly from their org.xglyph.xspline lib"),
+        "{report}"
+    );
+    let mut want = sources_without_leading_comments(&formatted);
+    // The one bundled file whose name does not follow the file-name rule (see above).
+    let nbsp = want.remove("uni00A0.toml").expect("bundled");
+    want.insert("uni00A_0.toml".into(), nbsp);
+    assert_eq!(sources_without_leading_comments(&out), want);
+    // Flags that do not apply are refused, naming the flag.
+    let refused = Command::new(bin)
+        .arg("import")
+        .arg(&ufo_path)
+        .args(["--glyphs", "A-Z", "-o"])
+        .arg(dir.path().join("other"))
+        .output()
+        .expect("runs");
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains(
+        "--glyphs does not apply to a UFO (it imports every glyph of its default layer)"
+    ));
+    assert!(!dir.path().join("other").exists());
 }
