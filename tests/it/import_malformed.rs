@@ -258,7 +258,7 @@ fn command_line_errors_write_nothing() {
         (code, err.as_str()),
         (
             1,
-            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file\n"
+            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file or a .ufo folder\n"
         )
     );
 

@@ -105,6 +105,23 @@ fn export_is_deterministic_and_holds_what_the_sources_say() {
             "XglyphSans-Regular.ufo/metainfo.plist",
         ]
     );
+    // norad's UFO file names are the source files' stems (src/names.rs), glyph for glyph.
+    let mut glifs: Vec<String> = a
+        .iter()
+        .filter_map(|(p, _)| {
+            let name = p.strip_prefix("XglyphSans-Regular.ufo/glyphs").ok()?;
+            Some(name.to_string_lossy().strip_suffix(".glif")?.to_string())
+        })
+        .collect();
+    let (sources, _) = xglyph::load_font(&glyphs_dir()).expect("loads");
+    let mut stems: Vec<String> = font_sources(&sources)
+        .into_iter()
+        .filter_map(|(n, _)| Some(n.strip_suffix(".toml")?.to_string()))
+        .filter(|n| n != "font" && n != "kerning")
+        .collect();
+    glifs.sort();
+    stems.sort();
+    assert_eq!(glifs, stems);
     let aacute = file("glyphs/A_acute.glif");
     assert!(aacute.contains(r#"<advance width="620"/>"#), "{aacute}");
     assert!(aacute.contains(r#"<unicode hex="00C1"/>"#), "{aacute}");
