@@ -4,11 +4,14 @@
 //!
 //! Usage: `cargo run --release --example fit_corpus -- [ROUNDS]` (default 1).
 
-use kurbo::PathEl;
 use xglyph::fit::fit_contour;
 
 #[path = "../tests/it/common/corpus.rs"]
 mod corpus;
+#[path = "../tests/it/common/paths.rs"]
+mod paths;
+
+use paths::cubic_count;
 
 /// The bench's tolerance, in font units (1000 per em).
 const TOLERANCE: f64 = 0.5;
@@ -24,12 +27,7 @@ fn main() {
         cubics = 0;
         for spline in &splines {
             let fit = fit_contour(spline, TOLERANCE);
-            cubics += fit
-                .path
-                .elements()
-                .iter()
-                .filter(|e| matches!(e, PathEl::CurveTo(..)))
-                .count();
+            cubics += cubic_count(&fit.path);
             worst = worst.max(fit.max_error);
         }
     }

@@ -15,17 +15,18 @@
 use std::process::ExitCode;
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use kurbo::PathEl;
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use xglyph::fit::fit_contour;
 
-// The tests' helpers (the corpus module is unused here).
-#[allow(dead_code)]
-#[path = "../tests/it/common/mod.rs"]
-mod common;
+// The tests' helpers (`curves` finds `paths` as its sibling, as in `tests/it/common`).
+#[path = "../tests/it/common/curves.rs"]
+mod curves;
+#[path = "../tests/it/common/paths.rs"]
+mod paths;
 
-use common::curves::{hausdorff, random_contour};
+use curves::{hausdorff, random_contour};
+use paths::cubic_count;
 
 fn main() -> ExitCode {
     let mut args = std::env::args().skip(1);
@@ -63,12 +64,7 @@ fn main() -> ExitCode {
         let tolerance = 0.5 * scale / 1000.0;
         let fit = fit_contour(&spline, tolerance);
         let ratio = hausdorff(&spline, &fit.path, 200) / tolerance;
-        cubics += fit
-            .path
-            .elements()
-            .iter()
-            .filter(|e| matches!(e, PathEl::CurveTo(..)))
-            .count();
+        cubics += cubic_count(&fit.path);
         if ratio > 1.0 {
             over += 1;
             println!(

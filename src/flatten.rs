@@ -4,12 +4,12 @@
 //! its knot, is an exact vertex); each segment between knots is split in halves until every
 //! chord is within the tolerance of the curve. All vertices lie on the curve.
 //!
-//! The bound is checked on samples: a chord is accepted when [`PROBES`] curve points inside
-//! its parameter interval are within 90 % of the tolerance of it, and the curve's direction turns by
-//! less than [`MAX_TURN`] across the interval (so the piece is a graph over its chord and
-//! the sampled distance cannot hide a loop). Limit: a feature narrower than the probe
-//! spacing of the first, whole-segment interval can be missed; the tests check the bound by
-//! dense sampling on random contours.
+//! The bound is checked on samples: a chord is accepted when `PROBES` (8) curve points
+//! inside its parameter interval are within 90 % of the tolerance of it, and the curve's
+//! direction turns by less than `MAX_TURN` (0.5 radians) across the interval (so the piece
+//! is a graph over its chord and the sampled distance cannot hide a loop). Limit: a feature
+//! narrower than the probe spacing of the first, whole-segment interval can be missed; the
+//! tests check the bound by dense sampling on random contours.
 
 use kurbo::{Line, ParamCurveNearest, Point, Vec2};
 

@@ -506,39 +506,16 @@ pub fn write_all_atomic<P: AsRef<Path>>(files: &[(P, Vec<u8>)]) -> io::Result<()
     set.commit().map_err(io::Error::other)
 }
 
+// The folder snapshot the integration tests use too (unit tests cannot reach `tests/`).
+#[cfg(test)]
+#[path = "../tests/it/common/tree.rs"]
+mod test_tree;
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Every entry under `dir` (relative, sorted), with file contents; links as `-> target`.
-    fn tree(dir: &Path) -> Vec<(String, String)> {
-        fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
-            for entry in fs::read_dir(dir).unwrap() {
-                let path = entry.unwrap().path();
-                let rel = path.strip_prefix(root).unwrap().display().to_string();
-                let meta = fs::symlink_metadata(&path).unwrap();
-                if meta.file_type().is_symlink() {
-                    let target = fs::read_link(&path).unwrap();
-                    out.push((rel, format!("-> {}", target.display())));
-                } else if meta.is_dir() {
-                    out.push((rel.clone() + "/", String::new()));
-                    walk(root, &path, out);
-                } else {
-                    out.push((rel, fs::read_to_string(&path).unwrap()));
-                }
-            }
-        }
-        let mut out = Vec::new();
-        walk(dir, dir, &mut out);
-        out.sort();
-        out
-    }
-
-    fn entries(list: &[(&str, &str)]) -> Vec<(String, String)> {
-        list.iter()
-            .map(|(a, b)| (a.to_string(), b.to_string()))
-            .collect()
-    }
+    use super::test_tree::{entries, tree};
 
     #[test]
     fn commit_writes_every_file_and_creates_folders() {
@@ -552,8 +529,8 @@ mod tests {
             tree(&out),
             entries(&[
                 ("a.txt", "A"),
-                ("sub/", ""),
-                ("sub/deeper/", ""),
+                ("sub", "/"),
+                ("sub/deeper", "/"),
                 ("sub/deeper/b.txt", "B")
             ])
         );
@@ -636,60 +613,51 @@ mod tests {
         fs::write(out.join("svg"), "a file").unwrap();
         let before = tree(&out);
 
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("new/folder/x.svg"), "x");
-        set.add(out.join("proof.png"), "proof");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot write {}: a folder of that name is in the way",
-                out.join("proof.png").display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("svg/a.svg"), "a");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot create the folder {}: a file of that name is in the way",
-                out.join("svg").display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
         let long = "n".repeat(300) + ".svg";
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("glyphs").join(&long), "long");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot write {}: file name too long",
-                out.join("glyphs").join(&long).display()
-            )
-        );
-        assert_eq!(tree(&out), before);
-
-        // A folder name too long: the error names it as a folder.
-        let mut set = OutputSet::new();
-        set.add(out.join("sheet.png"), "sheet");
-        set.add(out.join("new").join(&long).join("x.svg"), "x");
-        let err = set.commit().unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            format!(
-                "cannot create the folder {}: file name too long",
-                out.join("new").join(&long).display()
-            )
-        );
-        assert_eq!(tree(&out), before);
+        // The files of each set after `sheet.png` (which could be written), and the error.
+        let cases = [
+            (
+                vec![
+                    (out.join("new/folder/x.svg"), "x"),
+                    (out.join("proof.png"), "proof"),
+                ],
+                format!(
+                    "cannot write {}: a folder of that name is in the way",
+                    out.join("proof.png").display()
+                ),
+            ),
+            (
+                vec![(out.join("svg/a.svg"), "a")],
+                format!(
+                    "cannot create the folder {}: a file of that name is in the way",
+                    out.join("svg").display()
+                ),
+            ),
+            (
+                vec![(out.join("glyphs").join(&long), "long")],
+                format!(
+                    "cannot write {}: file name too long",
+                    out.join("glyphs").join(&long).display()
+                ),
+            ),
+            // A folder name too long: the error names it as a folder.
+            (
+                vec![(out.join("new").join(&long).join("x.svg"), "x")],
+                format!(
+                    "cannot create the folder {}: file name too long",
+                    out.join("new").join(&long).display()
+                ),
+            ),
+        ];
+        for (files, message) in cases {
+            let mut set = OutputSet::new();
+            set.add(out.join("sheet.png"), "sheet");
+            for (file, bytes) in files {
+                set.add(file, bytes);
+            }
+            assert_eq!(set.commit().unwrap_err().to_string(), message);
+            assert_eq!(tree(&out), before, "{message}");
+        }
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! of the font, e.g. accents on capitals) fills the glyph area, narrowed if the widest
 //! advance would not fit. Ink beyond the cell sideways is clipped. The label (glyph name and
 //! `U+XXXX`) is set in the font's own glyphs when it has them all, else in the built-in
-//! [`labels`](super::labels) face; it is shrunk to fit the cell width.
+//! [`labels`] face; it is shrunk to fit the cell width.
 //!
 //! A large font is cut into pages ([`sheet_pages`]) of at most [`PAGE_ROWS`] rows, each
 //! page within the image limits, so thousands of glyphs give `sheet-1.png`, `sheet-2.png`, …
@@ -26,7 +26,7 @@ pub struct SheetOptions {
     /// Side of a square cell, pixels (32..=2048).
     pub cell_px: u32,
     /// Cells per row (at least 1; fewer when the font has fewer glyphs, more when the sheet
-    /// would be taller than [`MAX_SIDE`](super::MAX_SIDE)).
+    /// would be taller than [`MAX_SIDE`]).
     pub columns: u32,
     /// Draw the X-spline control polygons and points and the Bézier on-curve points.
     pub overlay: bool,

@@ -2,9 +2,9 @@
 //!
 //! The TOML files stay the only source of truth. A small synchronous HTTP server
 //! (`tiny_http`; a local tool needs no async runtime) serves an embedded page, a JSON API
-//! and a stream of Server-Sent Events. The folder is watched ([`watch`]); a change reloads
-//! the font, refits only the glyphs it touched ([`state`]) and tells every open page. An
-//! edit from the page rewrites only the numbers it changes ([`edit`]), is checked by the
+//! and a stream of Server-Sent Events. The folder is watched (`watch.rs`); a change reloads
+//! the font, refits only the glyphs it touched (`state.rs`) and tells every open page. An
+//! edit from the page rewrites only the numbers it changes (`edit.rs`), is checked by the
 //! normal loader and written atomically; an edit made against an older version of the file
 //! is refused (409). The API is documented in `docs/serve.md`.
 //!

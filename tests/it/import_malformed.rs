@@ -6,7 +6,8 @@
 //! UTF-8. The command line: exit code 1, the message on stderr, nothing written.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+use crate::common::cli::{import_fails, import_ok, xglyph};
 
 use xglyph::import::font::parse_glyph_list;
 use xglyph::import::{import_font, import_svgs, ImportOptions};
@@ -201,18 +202,6 @@ fn svg_name_and_code_point_conflicts() {
     );
 }
 
-fn xglyph(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn command_line_errors_write_nothing() {
     let dir = temp_dir("cli");
@@ -220,51 +209,37 @@ fn command_line_errors_write_nothing() {
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.ttf");
     std::fs::write(&bad, b"not a font at all").unwrap();
-    let (code, _, err) = xglyph(&["import", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-    assert_eq!(code, 1);
-    assert_eq!(
-        err,
-        format!(
-            "error: {}: not a readable TrueType/OpenType font (unknown magic)\n",
-            bad.display()
-        )
-    );
-    assert!(!out.exists(), "nothing written on error");
-
     let ring = format!("{FIXTURES}/ring.svg");
-    let (code, _, err) = xglyph(&["import", DEJAVU, &ring, "-o", out.to_str().unwrap()]);
-    assert_eq!(code, 1);
-    assert_eq!(
-        err,
-        "error: import one font at a time, and fonts and SVG drawings separately\n"
-    );
-    let (code, _, err) = xglyph(&[
-        "import",
-        DEJAVU,
-        "--glyphs",
-        "Z-A",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(
-        (code, err.as_str()),
+    // Each refused with exit code 1, its message on stderr and nothing written.
+    let refused: [(&[&str], String); 4] = [
         (
-            1,
-            "error: glyph list: range `Z-A` runs backwards (write `A-Z`)\n"
-        )
-    );
-    let (code, _, err) = xglyph(&["import", "notes.txt", "-o", out.to_str().unwrap()]);
-    assert_eq!(
-        (code, err.as_str()),
+            &[bad.to_str().unwrap()],
+            format!(
+                "error: {}: not a readable TrueType/OpenType font (unknown magic)\n",
+                bad.display()
+            ),
+        ),
         (
-            1,
-            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file or a .ufo folder\n"
-        )
-    );
+            &[DEJAVU, &ring],
+            "error: import one font at a time, and fonts and SVG drawings separately\n".into(),
+        ),
+        (
+            &[DEJAVU, "--glyphs", "Z-A"],
+            "error: glyph list: range `Z-A` runs backwards (write `A-Z`)\n".into(),
+        ),
+        (
+            &["notes.txt"],
+            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg \
+             file or a .ufo folder\n"
+                .into(),
+        ),
+    ];
+    for (args, message) in refused {
+        assert_eq!(import_fails(args, &out), message, "import {args:?}");
+    }
 
     // A good import, then the same into the now non-empty directory: refused, untouched.
-    let (code, stdout, err) = xglyph(&["import", &ring, "-o", out.to_str().unwrap()]);
-    assert_eq!((code, err.as_str()), (0, ""));
+    let stdout = import_ok(&[&ring], &out);
     assert!(
         stdout.starts_with("glyph  original   xspline  max error\nring         24        16  "),
         "{stdout}"
@@ -274,17 +249,8 @@ fn command_line_errors_write_nothing() {
         "{stdout}"
     );
     let before = std::fs::read(out.join("ring.toml")).unwrap();
-    let (code, _, err) = xglyph(&[
-        "import",
-        &ring,
-        "--tolerance",
-        "5",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 1);
     assert_eq!(
-        err,
+        import_fails(&[&ring, "--tolerance", "5"], &out),
         format!(
             "error: {}: the output directory is not empty; choose another or pass --force\n",
             out.display()
@@ -293,59 +259,24 @@ fn command_line_errors_write_nothing() {
     assert_eq!(std::fs::read(out.join("ring.toml")).unwrap(), before);
     let (code, stdout, _) = xglyph(&["check", out.to_str().unwrap()]);
     assert_eq!((code, stdout.as_str()), (0, "0 errors, 0 warnings\n"));
-    let (code, _, _) = xglyph(&[
-        "import",
-        &ring,
-        "--tolerance",
-        "5",
-        "--force",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0);
+    import_ok(&[&ring, "--tolerance", "5", "--force"], &out);
     assert_ne!(std::fs::read(out.join("ring.toml")).unwrap(), before);
-    let (code, _, err) = xglyph(&[
-        "import",
-        &ring,
-        "--tolerance=-1",
-        "-o",
-        dir.join("o2").to_str().unwrap(),
-    ]);
     assert_eq!(
-        (code, err.as_str()),
-        (
-            1,
-            "error: --tolerance must be a number of at least 0.0001 font units, got -1\n"
-        )
+        import_fails(&[&ring, "--tolerance=-1"], &dir.join("o2")),
+        "error: --tolerance must be a number of at least 0.0001 font units, got -1\n"
     );
     let map = dir.join("map.toml");
+    let with_map = [ring.as_str(), "--codepoints", map.to_str().unwrap()];
     std::fs::write(&map, "ring = 0xE001\nhouse = [1, 2]\n").unwrap();
-    let (code, _, err) = xglyph(&[
-        "import",
-        &ring,
-        "--codepoints",
-        map.to_str().unwrap(),
-        "-o",
-        dir.join("o3").to_str().unwrap(),
-    ]);
-    assert_eq!(code, 1);
     assert_eq!(
-        err,
+        import_fails(&with_map, &dir.join("o3")),
         format!(
             "error: {}: `house`: expected a code point (0xE001) or one character (\"h\")\n",
             map.display()
         )
     );
     std::fs::write(&map, "ring = 0xE001\nhouse = \n").unwrap();
-    let (code, _, err) = xglyph(&[
-        "import",
-        &ring,
-        "--codepoints",
-        map.to_str().unwrap(),
-        "-o",
-        dir.join("o3").to_str().unwrap(),
-    ]);
-    assert_eq!(code, 1);
+    let err = import_fails(&with_map, &dir.join("o3"));
     assert!(
         err.starts_with(&format!("error: {}:2:9: invalid TOML: ", map.display())),
         "{err}"

@@ -5,6 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use crate::common::cli::{import, import_ok, xglyph, xglyph_env};
+
 const DEJAVU: &str = "tests/fixtures/import/DejaVuSans.ttf";
 const RING: &str = "tests/fixtures/import/ring.svg";
 /// Debian fonts-wqy-zenhei: a collection of three fonts (Zen Hei, Zen Hei Mono, Sharp).
@@ -15,23 +17,6 @@ fn temp_dir(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn xglyph_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
-        .args(args)
-        .envs(env.iter().copied())
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn xglyph(args: &[&str]) -> (i32, String, String) {
-    xglyph_env(args, &[])
 }
 
 /// File names in `dir`, sorted.
@@ -52,14 +37,13 @@ fn glyph_files_never_take_reserved_names() {
         std::fs::copy(RING, dir.join(name)).unwrap();
     }
     let out = dir.join("icons");
-    let (code, stdout, err) = xglyph(&[
-        "import",
-        dir.join("font.svg").to_str().unwrap(),
-        dir.join("kerning.svg").to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!((code, err.as_str()), (0, ""));
+    let stdout = import_ok(
+        &[
+            dir.join("font.svg").to_str().unwrap(),
+            dir.join("kerning.svg").to_str().unwrap(),
+        ],
+        &out,
+    );
     assert!(
         stdout.ends_with(&format!("wrote 3 files to {}\n", out.display())),
         "{stdout}"
@@ -93,15 +77,7 @@ fn glyph_files_never_take_reserved_names() {
     let renamed = dir.join("renamed.ttf");
     std::fs::write(&renamed, data).unwrap();
     let out = dir.join("font");
-    let (code, stdout, err) = xglyph(&[
-        "import",
-        renamed.to_str().unwrap(),
-        "--glyphs",
-        "ħ,ā,a",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!((code, err.as_str()), (0, ""));
+    let stdout = import_ok(&[renamed.to_str().unwrap(), "--glyphs", "ħ,ā,a"], &out);
     assert!(
         stdout.ends_with(&format!("wrote 4 files to {}\n", out.display())),
         "{stdout}"
@@ -142,14 +118,7 @@ fn a_full_disk_leaves_nothing_and_the_rerun_works() {
     let _guard = Unmount(&mnt);
     // 63 files of at least one 4 KB page each do not fit in 40 KB.
     let out = mnt.join("dejavu");
-    let (code, stdout, err) = xglyph(&[
-        "import",
-        DEJAVU,
-        "--glyphs",
-        "A-Z,a-z,0-9",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let (code, stdout, err) = import(&[DEJAVU, "--glyphs", "A-Z,a-z,0-9"], &out);
     assert_eq!((code, stdout.as_str()), (1, ""));
     assert!(
         err.starts_with(&format!("error: {}/", out.display()))
@@ -159,15 +128,7 @@ fn a_full_disk_leaves_nothing_and_the_rerun_works() {
     assert!(err.contains(".toml: cannot write: "), "{err}");
     assert!(listing(&mnt).is_empty(), "left behind: {:?}", listing(&mnt));
     // The rerun into the same place with fewer glyphs works.
-    let (code, stdout, err) = xglyph(&[
-        "import",
-        DEJAVU,
-        "--glyphs",
-        "A-C",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!((code, err.as_str()), (0, ""));
+    let stdout = import_ok(&[DEJAVU, "--glyphs", "A-C"], &out);
     assert!(
         stdout.ends_with(&format!("wrote 4 files to {}\n", out.display())),
         "{stdout}"
@@ -183,15 +144,7 @@ fn a_full_disk_leaves_nothing_and_the_rerun_works() {
 fn progress_only_on_a_terminal() {
     let dir = temp_dir("progress");
     // Not a terminal (a pipe): nothing on stderr.
-    let (code, _, err) = xglyph(&[
-        "import",
-        DEJAVU,
-        "--glyphs",
-        "a-c",
-        "-o",
-        dir.join("piped").to_str().unwrap(),
-    ]);
-    assert_eq!((code, err.as_str()), (0, ""));
+    import_ok(&[DEJAVU, "--glyphs", "a-c"], &dir.join("piped"));
     // A terminal: util-linux `script` runs the command on a pseudo-terminal.
     if Command::new("script").arg("--version").output().is_err() {
         eprintln!("skipped the terminal half: `script` (util-linux) is not installed");
@@ -255,17 +208,7 @@ fn fonts_from_a_collection() {
     // The family is the font's first Unicode name record: the Chinese one here.
     for (face, family) in [("0", "文泉驛正黑"), ("1", "文泉驛等寬正黑")] {
         let out = dir.join(format!("face{face}"));
-        let (code, _, err) = xglyph(&[
-            "import",
-            WQY,
-            "--face",
-            face,
-            "--glyphs",
-            "一",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!((code, err.as_str()), (0, ""));
+        import_ok(&[WQY, "--face", face, "--glyphs", "一"], &out);
         let info = std::fs::read_to_string(out.join("font.toml")).unwrap();
         assert!(
             info.starts_with(&format!("family = \"{family}\"\n")),
@@ -273,37 +216,24 @@ fn fonts_from_a_collection() {
         );
         assert_eq!(listing(&out), ["font.toml", "uni4E_00.toml"]);
     }
-    let (code, _, err) = xglyph(&[
-        "import",
-        WQY,
-        "--face",
-        "3",
-        "-o",
-        dir.join("none").to_str().unwrap(),
-    ]);
-    assert_eq!(
-        (code, err.as_str()),
+    // A face the file does not have: exit 1, the message, nothing on stdout, nothing written.
+    let wrong_faces = [
         (
-            1,
-            format!("error: {WQY}: --face 3: this collection has 3 fonts (--face 0 to 2)\n")
-                .as_str()
-        )
-    );
-    let (code, _, err) = xglyph(&[
-        "import",
-        DEJAVU,
-        "--face",
-        "1",
-        "-o",
-        dir.join("single").to_str().unwrap(),
-    ]);
-    assert_eq!(
-        (code, err.as_str()),
+            WQY,
+            "3",
+            "none",
+            format!("error: {WQY}: --face 3: this collection has 3 fonts (--face 0 to 2)\n"),
+        ),
         (
-            1,
-            format!("error: {DEJAVU}: --face 1: this is a single font, not a collection\n")
-                .as_str()
-        )
-    );
+            DEJAVU,
+            "1",
+            "single",
+            format!("error: {DEJAVU}: --face 1: this is a single font, not a collection\n"),
+        ),
+    ];
+    for (font, face, out, message) in wrong_faces {
+        let (code, stdout, err) = import(&[font, "--face", face], &dir.join(out));
+        assert_eq!((code, stdout.as_str(), err), (1, "", message));
+    }
     assert!(!dir.join("none").exists() && !dir.join("single").exists());
 }

@@ -94,65 +94,67 @@ fn check_reference(name: &str, actual: &Pixmap) {
     }
 }
 
+/// The sheet of `outlines` in cells of `cell_px` and `columns` columns.
+fn sheet(
+    outlines: &OutlinedFont,
+    cell_px: u32,
+    columns: u32,
+    overlay: bool,
+) -> Result<Pixmap, RenderError> {
+    let opts = SheetOptions {
+        cell_px,
+        columns,
+        overlay,
+    };
+    render_sheet(outlines, &opts)
+}
+
+/// Renders mini's sheet at `cell_px` in four columns, checks its size and compares it with
+/// the reference `name`.
+fn check_sheet(name: &str, cell_px: u32, overlay: bool, size: (u32, u32)) {
+    let (_, outlines) = mini();
+    let img = sheet(&outlines, cell_px, 4, overlay).unwrap();
+    assert_eq!((img.width(), img.height()), size, "{name}");
+    check_reference(name, &img);
+}
+
+/// Renders mini's proof of `text` (the default text for `None`) at `sizes`, 200 px wide, and
+/// compares it with the reference `name`.
+fn check_proof(name: &str, text: Option<&str>, sizes: &[f64]) {
+    let (_, outlines) = mini();
+    let opts = ProofOptions {
+        text: text.map(str::to_owned),
+        sizes: sizes.to_vec(),
+        width_px: 200,
+    };
+    let img = render_proof(&outlines, &opts).unwrap();
+    check_reference(name, &img);
+}
+
 #[test]
 fn sheet_matches_reference() {
-    let (_, outlines) = mini();
-    let opts = SheetOptions {
-        cell_px: 96,
-        columns: 4,
-        overlay: false,
-    };
-    let img = render_sheet(&outlines, &opts).unwrap();
-    assert_eq!((img.width(), img.height()), (384, 192));
-    check_reference("sheet", &img);
+    check_sheet("sheet", 96, false, (384, 192));
 }
 
 #[test]
 fn overlay_sheet_matches_reference() {
-    let (_, outlines) = mini();
-    let opts = SheetOptions {
-        cell_px: 128,
-        columns: 4,
-        overlay: true,
-    };
-    let img = render_sheet(&outlines, &opts).unwrap();
-    assert_eq!((img.width(), img.height()), (512, 256));
-    check_reference("sheet-overlay", &img);
+    check_sheet("sheet-overlay", 128, true, (512, 256));
 }
 
 #[test]
 fn proof_matches_reference() {
-    let (_, outlines) = mini();
-    let opts = ProofOptions {
-        text: None,
-        sizes: vec![12.0, 20.0, 36.0],
-        width_px: 200,
-    };
-    let img = render_proof(&outlines, &opts).unwrap();
-    check_reference("proof", &img);
+    check_proof("proof", None, &[12.0, 20.0, 36.0]);
 }
 
 #[test]
 fn proof_with_missing_characters_matches_reference() {
-    let (_, outlines) = mini();
-    let opts = ProofOptions {
-        text: Some("AVo?.\nVo AV x".into()),
-        sizes: vec![24.0],
-        width_px: 200,
-    };
-    let img = render_proof(&outlines, &opts).unwrap();
-    check_reference("proof-fallback", &img);
+    check_proof("proof-fallback", Some("AVo?.\nVo AV x"), &[24.0]);
 }
 
 #[test]
 fn the_comparison_catches_a_changed_pixel() {
     let (_, outlines) = mini();
-    let opts = SheetOptions {
-        cell_px: 96,
-        columns: 4,
-        overlay: false,
-    };
-    let img = render_sheet(&outlines, &opts).unwrap();
+    let img = sheet(&outlines, 96, 4, false).unwrap();
     let mut changed = img.clone();
     // Four pixels in the A's cell turned blue.
     for x in 240..244 {
@@ -207,15 +209,7 @@ fn a_tall_sheet_gets_more_columns() {
         .collect();
     font.kerning.clear();
     let outlines = outline_font(&font, 0.5);
-    let err = render_sheet(
-        &outlines,
-        &SheetOptions {
-            cell_px: 2048,
-            columns: 1,
-            overlay: false,
-        },
-    )
-    .unwrap_err();
+    let err = sheet(&outlines, 2048, 1, false).unwrap_err();
     // 400 / 14 = 29 columns: too wide as well, so a clear size error instead of a panic.
     assert_eq!(
         err,
@@ -224,15 +218,7 @@ fn a_tall_sheet_gets_more_columns() {
             height: 14 * 2048
         }
     );
-    let img = render_sheet(
-        &outlines,
-        &SheetOptions {
-            cell_px: 256,
-            columns: 1,
-            overlay: false,
-        },
-    )
-    .unwrap();
+    let img = sheet(&outlines, 256, 1, false).unwrap();
     // 117 rows of 256 px fit in 30,000 px: 4 columns of 100 rows.
     assert_eq!((img.width(), img.height()), (4 * 256, 100 * 256));
 }
@@ -240,25 +226,14 @@ fn a_tall_sheet_gets_more_columns() {
 #[test]
 fn bad_options_are_errors_not_panics() {
     let (_, outlines) = mini();
-    let sheet = |cell_px, columns| {
-        render_sheet(
-            &outlines,
-            &SheetOptions {
-                cell_px,
-                columns,
-                overlay: false,
-            },
-        )
-        .err()
-    };
     assert_eq!(
-        sheet(8, 4),
+        sheet(&outlines, 8, 4, false).err(),
         Some(RenderError::Option(
             "cell size 8 px is out of range 32..=2048".into()
         ))
     );
     assert_eq!(
-        sheet(64, 0),
+        sheet(&outlines, 64, 0, false).err(),
         Some(RenderError::Option("columns must be at least 1".into()))
     );
     let proof = |sizes: Vec<f64>, width_px| {

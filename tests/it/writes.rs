@@ -7,6 +7,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Instant;
 
+use crate::common::tree::tree;
+
 fn mini_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini")
 }
@@ -31,33 +33,6 @@ fn build(font: &Path, out: &Path) -> Output {
         .arg(out)
         .output()
         .expect("xglyph runs")
-}
-
-/// Everything under `dir`, hidden files included: relative path, then the bytes of a
-/// file, `-> target` for a link, `/` for a folder.
-fn tree(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, Vec<u8>)>) {
-        for entry in fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            let rel = path.strip_prefix(root).unwrap().display().to_string();
-            let meta = fs::symlink_metadata(&path).unwrap();
-            if meta.file_type().is_symlink() {
-                let target = fs::read_link(&path).unwrap();
-                out.push((rel, format!("-> {}", target.display()).into_bytes()));
-            } else if meta.is_dir() {
-                out.push((rel, b"/".to_vec()));
-                walk(root, &path, out);
-            } else {
-                out.push((rel, fs::read(&path).unwrap()));
-            }
-        }
-    }
-    let mut out = Vec::new();
-    if dir.exists() {
-        walk(dir, dir, &mut out);
-    }
-    out.sort();
-    out
 }
 
 fn names(tree: &[(String, Vec<u8>)]) -> Vec<&str> {

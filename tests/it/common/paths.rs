@@ -3,7 +3,17 @@
 // Each test crate uses a different subset.
 #![allow(dead_code)]
 
-use kurbo::{BezPath, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathSeg, Point, Rect};
+use kurbo::{
+    BezPath, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathEl, PathSeg, Point, Rect,
+};
+
+/// The number of cubic segments in `path`.
+pub fn cubic_count(path: &BezPath) -> usize {
+    path.elements()
+        .iter()
+        .filter(|e| matches!(e, PathEl::CurveTo(..)))
+        .count()
+}
 
 /// A path's segments with their bounding boxes, without zero-length lines (a closing line
 /// onto the start point, or a single-point contour, which encloses nothing).
