@@ -86,6 +86,17 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
             refitted.join(", ")
         ));
     }
+    if ufo
+        .lib
+        .get(TOLERANCE_KEY)
+        .and_then(number)
+        .is_some_and(|t| t > 0.0)
+    {
+        notes.push(format!(
+            "font.toml tolerance {} taken from the UFO's {TOLERANCE_KEY}",
+            crate::source::emit::number(info.tolerance)
+        ));
+    }
     let from_lib = fitted.iter().filter(|f| f.from_lib).count();
     if from_lib > 0 {
         notes.push(format!(
