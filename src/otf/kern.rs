@@ -64,6 +64,12 @@ pub fn gpos(pairs: &KernPairs) -> Option<Gpos> {
             )
         })
         .collect();
+    Some(kern_gpos(coverage, pair_sets))
+}
+
+/// A GPOS with one `kern` lookup (DFLT and latn): pair adjustment format 1, one pair set
+/// per first glyph of `coverage`.
+pub fn kern_gpos(coverage: Vec<GlyphId16>, pair_sets: Vec<PairSet>) -> Gpos {
     let subtable = PairPos::format_1(
         CoverageTable::Format1(CoverageFormat1::new(coverage)),
         pair_sets,
@@ -78,11 +84,7 @@ pub fn gpos(pairs: &KernPairs) -> Option<Gpos> {
         Tag::new(b"kern"),
         Feature::new(None, vec![0]),
     )]);
-    Some(Gpos::new(
-        scripts,
-        features,
-        PositionLookupList::new(vec![lookup]),
-    ))
+    Gpos::new(scripts, features, PositionLookupList::new(vec![lookup]))
 }
 
 /// The legacy `kern` table (Apple/Microsoft version 0, one horizontal format 0 subtable),

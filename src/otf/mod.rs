@@ -16,6 +16,12 @@
 //!
 //! The WOFF2 (`woff2.rs`) is the TTF compressed for the web.
 //!
+//! The variable TTF ([`variable_ttf`], `variable/`) reads an [`OutlinedFamily`]
+//! (`crate::family`): the default master through the same tables as the static TTF, plus
+//! `gvar`, `HVAR`, `fvar`, `STAT` and kerning with variations (GPOS + GDEF).
+//!
+//! [`OutlinedFamily`]: crate::family::OutlinedFamily
+//!
 //! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
 //! `kern` table (`kern.rs`). Components are already resolved into the outlines; no
 //! composite glyphs.
@@ -38,6 +44,7 @@ mod quadratic;
 mod specimen;
 mod tables;
 mod truetype;
+mod variable;
 mod woff2;
 
 use std::collections::BTreeMap;
@@ -47,6 +54,7 @@ use kurbo::BezPath;
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
+pub use variable::variable_ttf;
 
 /// Something the model holds that an OpenType font cannot.
 #[derive(Debug)]

@@ -95,7 +95,7 @@ fn parse_version(version: Option<&str>) -> (f64, String) {
 
 /// PostScript font name: `Family-Style` without spaces, printable ASCII other than
 /// `[](){}<>/%`, at most 63 characters.
-fn ps_font_name(family: &str, style: &str) -> String {
+pub(crate) fn ps_font_name(family: &str, style: &str) -> String {
     let clean = |s: &str| -> String {
         s.chars()
             .filter(|c| c.is_ascii_graphic() && !"[](){}<>/%".contains(*c))

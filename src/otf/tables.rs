@@ -13,7 +13,8 @@
 //! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
 use kurbo::{BezPath, Shape};
-use write_fonts::types::Tag;
+use write_fonts::tables::name::NameRecord;
+use write_fonts::types::{NameId, Tag};
 use write_fonts::{BuilderError, FontBuilder};
 
 use super::cff::{cff_table, CffInfo};
@@ -149,6 +150,26 @@ pub fn build_font(
     set: &GlyphSet,
     outlines: Outlines,
 ) -> Result<Vec<u8>, OtfError> {
+    Ok(font_builder(font, set, outlines, None)?.build())
+}
+
+/// What a variable font changes in the shared tables (see `super::variable`).
+pub(crate) struct VariableShared {
+    /// `OS/2.usWeightClass`: the default master's weight on the `wght` axis.
+    pub weight_class: Option<u16>,
+    /// Extra `name` records (axis, instance and STAT names, IDs from 256).
+    pub names: Vec<(u16, String)>,
+}
+
+/// [`build_font`]'s tables, not yet assembled. With `variable`, kerning is left out (the
+/// variable backend adds a GPOS with variations, and the legacy `kern` table cannot vary)
+/// and the weight class and names are the variable font's.
+pub(crate) fn font_builder(
+    font: &OutlinedFont,
+    set: &GlyphSet,
+    outlines: Outlines,
+    variable: Option<&VariableShared>,
+) -> Result<FontBuilder<'static>, OtfError> {
     let info = &font.info;
     let naming = Naming::new(info);
     let boxes = glyph_boxes(&outlines);
@@ -193,27 +214,36 @@ pub fn build_font(
         .add_table(&hmtx(&advances, &boxes))
         .map_err(table_err)?;
     builder.add_table(&cmap(&set.glyphs)?).map_err(table_err)?;
-    if let Some(gpos) = gpos(&pairs) {
+    if let Some(gpos) = gpos(&pairs).filter(|_| variable.is_none()) {
         builder.add_table(&gpos).map_err(table_err)?;
     }
     // The legacy table only in the TTF: OTS (the sanitizer in Chrome and Firefox) drops
     // `kern` from fonts without `glyf` ("this table is not for CFF fonts"), and GPOS
     // carries the same pairs.
-    if truetype {
+    if truetype && variable.is_none() {
         if let Some(kern) = legacy_kern(&pairs) {
             builder.add_raw(Tag::new(b"kern"), kern);
         }
     }
-    builder
-        .add_table(&os2_table(&naming, &metrics, set, !pairs.is_empty()))
-        .map_err(table_err)?;
-    builder
-        .add_table(&name_table(info, &naming))
-        .map_err(table_err)?;
+    let mut os2 = os2_table(&naming, &metrics, set, !pairs.is_empty());
+    let mut name = name_table(info, &naming);
+    if let Some(variable) = variable {
+        if let Some(weight) = variable.weight_class {
+            os2.us_weight_class = weight;
+        }
+        name.name_record.extend(
+            variable.names.iter().map(|(id, text)| {
+                NameRecord::new(3, 1, 0x409, NameId::new(*id), text.clone().into())
+            }),
+        );
+        name.name_record.sort();
+    }
+    builder.add_table(&os2).map_err(table_err)?;
+    builder.add_table(&name).map_err(table_err)?;
     builder
         .add_table(&post(&set.glyphs, info.units_per_em, truetype))
         .map_err(table_err)?;
-    Ok(builder.build())
+    Ok(builder)
 }
 
 #[cfg(test)]

@@ -30,5 +30,6 @@ mod studio_browser;
 mod svg;
 mod terminal;
 mod ufo;
+mod variable;
 mod writes;
 mod xspline;

@@ -30,7 +30,17 @@ impl Studio {
         let bundled = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
         for entry in fs::read_dir(bundled).unwrap() {
             let path = entry.unwrap().path();
-            fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
+            let to = dir.join(path.file_name().unwrap());
+            if path.is_dir() {
+                // A master's folder (glyphs/bold/): its files, one level deep.
+                fs::create_dir(&to).unwrap();
+                for file in fs::read_dir(&path).unwrap() {
+                    let file = file.unwrap().path();
+                    fs::copy(&file, to.join(file.file_name().unwrap())).unwrap();
+                }
+            } else {
+                fs::copy(&path, to).unwrap();
+            }
         }
         prepare(&dir);
         let mut child = Command::new(env!("CARGO_BIN_EXE_xglyph"))

@@ -22,7 +22,7 @@ const WIDTH: u32 = 1400;
 const HEIGHT: u32 = 860;
 
 /// A headless Chromium with one page, attached over the DevTools protocol.
-struct Browser {
+pub(crate) struct Browser {
     child: Child,
     ws: WebSocket<MaybeTlsStream<TcpStream>>,
     session: String,
@@ -32,7 +32,7 @@ struct Browser {
 
 impl Browser {
     /// Starts Chromium, or `None` (with a notice) when it is not installed.
-    fn start() -> Option<Browser> {
+    pub(crate) fn start() -> Option<Browser> {
         if !Path::new(CHROMIUM).exists() {
             if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
                 panic!("XGLYPH_REQUIRE_TOOLS=1 but {CHROMIUM} is missing; install chromium");
@@ -119,7 +119,7 @@ impl Browser {
     }
 
     /// Evaluates `expr` in the page (promises awaited); its value.
-    fn eval(&mut self, expr: &str) -> Value {
+    pub(crate) fn eval(&mut self, expr: &str) -> Value {
         let r = self.call(
             "Runtime.evaluate",
             json!({"expression": expr, "returnByValue": true, "awaitPromise": true}),
@@ -140,7 +140,7 @@ impl Browser {
         }
     }
 
-    fn open(&mut self, url: &str) {
+    pub(crate) fn open(&mut self, url: &str) {
         self.call("Page.navigate", json!({"url": url}));
         self.wait_for(
             "document.body && document.body.dataset.ready === '1'",

@@ -1,0 +1,69 @@
+//! The variable TTF backend (issue 16, item 4): `otf::variable_ttf` on the bundled typeface
+//! with a second master against the static `otf::ttf` of the default master alone, in the
+//! same run. Run: `cargo bench --bench variable`.
+//!
+//! The second master is the default with every point through one affine map (wider,
+//! slanted), so it is compatible by construction, as in `tests/it/variable.rs`.
+
+use std::hint::black_box;
+use std::path::Path;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use kurbo::Affine;
+use xglyph::designspace::{Axis, Designspace, Location};
+use xglyph::family::{MasterGlyph, OutlinedFamily, OutlinedMaster};
+
+fn family() -> OutlinedFamily {
+    let font = xglyph::pipeline::load(Path::new("glyphs"), None)
+        .expect("glyphs/ loads")
+        .font;
+    let designspace = Designspace {
+        axes: vec![Axis {
+            tag: "wght".into(),
+            name: "Weight".into(),
+            min: 400.0,
+            default: 400.0,
+            max: 700.0,
+        }],
+        instances: vec![],
+    };
+    let bold = Location([("wght".to_string(), 700.0)].into_iter().collect());
+    let region = designspace
+        .regions(std::slice::from_ref(&bold))
+        .expect("valid")[0];
+    let map = Affine::new([1.15, 0.0, 0.05, 0.98, 0.0, 4.0]);
+    let glyphs = font
+        .glyphs
+        .iter()
+        .map(|g| MasterGlyph {
+            advance: g.advance * 1.15,
+            path: map * g.path.clone(),
+        })
+        .collect();
+    OutlinedFamily {
+        designspace,
+        masters: vec![OutlinedMaster {
+            name: "Bold".into(),
+            location: bold,
+            region,
+            glyphs,
+            kerning: font.kerning.clone(),
+        }],
+        default: font,
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let family = family();
+    let mut group = c.benchmark_group("variable");
+    group.bench_function("static ttf (default master)", |b| {
+        b.iter(|| xglyph::otf::ttf(black_box(&family.default)).expect("builds"))
+    });
+    group.bench_function("variable ttf (2 masters)", |b| {
+        b.iter(|| xglyph::otf::variable_ttf(black_box(&family)).expect("builds"))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

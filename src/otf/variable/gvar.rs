@@ -1,0 +1,52 @@
+//! `gvar`: per glyph and master, the point deltas (phantom points last).
+
+use write_fonts::tables::gvar::{GlyphDelta, GlyphDeltas, GlyphVariations, Gvar, Tent};
+use write_fonts::types::{F2Dot14, GlyphId};
+
+use super::MasterDeltas;
+use crate::designspace::Region;
+use crate::otf::OtfError;
+
+/// A region as one tent per axis: peak 0 (no effect) on the axes it does not use.
+fn tents(region: &Region, axis_count: usize) -> Vec<Tent> {
+    (0..axis_count)
+        .map(|axis| {
+            if axis == region.axis {
+                let f = |v: f64| F2Dot14::from_f32(v as f32);
+                let (min, max) = (region.start.min(region.end), region.start.max(region.end));
+                Tent::new(f(region.peak), Some((f(min), f(max))))
+            } else {
+                Tent::new(F2Dot14::ZERO, None)
+            }
+        })
+        .collect()
+}
+
+/// The `gvar` table: `deltas[glyph][master]` are the glyph's point deltas (outline points,
+/// then the four phantom points) for the master of `regions[master]`. A master whose
+/// deltas are all zero for a glyph adds no tuple.
+pub fn gvar(
+    regions: &[Region],
+    axis_count: u16,
+    deltas: &[MasterDeltas],
+) -> Result<Gvar, OtfError> {
+    let variations = deltas
+        .iter()
+        .enumerate()
+        .map(|(gid, masters)| {
+            let tuples = masters
+                .iter()
+                .zip(regions)
+                .filter(|(d, _)| d.iter().any(|&(x, y)| x != 0 || y != 0))
+                .map(|(d, region)| {
+                    GlyphDeltas::new(
+                        tents(region, usize::from(axis_count)),
+                        d.iter().map(|&(x, y)| GlyphDelta::required(x, y)).collect(),
+                    )
+                })
+                .collect();
+            GlyphVariations::new(GlyphId::new(gid as u32), tuples)
+        })
+        .collect();
+    Gvar::new(variations, axis_count).map_err(|e| OtfError::Table(format!("gvar: {e}")))
+}

@@ -1,0 +1,70 @@
+//! `HVAR`: advance-width deltas per glyph, glyph ids as implicit indices (no mapping).
+//!
+//! The same deltas as the phantom points of `gvar`; HVAR lets a consumer get advances
+//! without reading outlines.
+
+use write_fonts::tables::hvar::Hvar;
+use write_fonts::tables::variations::ivs_builder::VariationStoreBuilder;
+use write_fonts::tables::variations::{RegionAxisCoordinates, VariationRegion};
+use write_fonts::types::F2Dot14;
+
+use crate::designspace::Region;
+use crate::otf::OtfError;
+
+/// A region as an item-variation-store region (0, 0, 0 on the axes it does not use).
+pub fn variation_region(region: &Region, axis_count: usize) -> VariationRegion {
+    let f = |v: f64| F2Dot14::from_f32(v as f32);
+    VariationRegion::new(
+        (0..axis_count)
+            .map(|axis| {
+                if axis == region.axis {
+                    RegionAxisCoordinates::new(
+                        f(region.start.min(region.end)),
+                        f(region.peak),
+                        f(region.start.max(region.end)),
+                    )
+                } else {
+                    RegionAxisCoordinates::new(F2Dot14::ZERO, F2Dot14::ZERO, F2Dot14::ZERO)
+                }
+            })
+            .collect(),
+    )
+}
+
+/// The `HVAR` table: `advance_deltas[glyph][master]` for the masters of `regions`.
+pub fn hvar(
+    regions: &[Region],
+    axis_count: u16,
+    advance_deltas: &[Vec<i16>],
+) -> Result<Hvar, OtfError> {
+    let mut builder = VariationStoreBuilder::new_with_implicit_indices(axis_count);
+    let ids: Vec<_> = advance_deltas
+        .iter()
+        .map(|deltas| {
+            builder.add_deltas(
+                regions
+                    .iter()
+                    .zip(deltas)
+                    .map(|(r, &d)| (variation_region(r, usize::from(axis_count)), d))
+                    .collect(),
+            )
+        })
+        .collect();
+    let (store, map) = builder.build();
+    // Implicit indices: the builder keeps one row per glyph, in glyph order.
+    for (gid, id) in ids.into_iter().enumerate() {
+        let index = map.get(id);
+        if index.map(|v| {
+            (
+                v.delta_set_outer_index,
+                usize::from(v.delta_set_inner_index),
+            )
+        }) != Some((0, gid))
+        {
+            return Err(OtfError::Table(format!(
+                "HVAR: glyph {gid} is not at its implicit index"
+            )));
+        }
+    }
+    Ok(Hvar::new(store, None, None, None))
+}

@@ -1,0 +1,235 @@
+//! The variable TTF: the default master as a static TrueType font (the shared tables of
+//! `otf/tables.rs`), plus the variation tables, one module each:
+//!
+//! - `glyf` from the compatible quadratics of all masters ([`quadratic`]), `gvar`
+//!   ([`gvar`]) with the point deltas of each master and the phantom-point deltas of its
+//!   advances;
+//! - `HVAR` ([`hvar`]) with the same advance deltas;
+//! - `fvar` ([`fvar`]) with the axes and named instances, `STAT` ([`stat`]) and their names
+//!   ([`naming`]) in `name`;
+//! - kerning in GPOS with VariationIndex devices into `GDEF`'s item variation store
+//!   ([`gpos`]).
+//!
+//! Grid rounding as fontmake does it: the default master's points are rounded, and each
+//! master's deltas are its rounded points minus the rounded default's, so every master
+//! comes out exactly as its own rounded outline. Between the masters a consumer blends
+//! those; the result is within grid rounding (√2/2 units) plus the quadratic accuracy of the
+//! blended cubic outline.
+//!
+//! Limits: axis maps are linear (no `avar`); deltas are all written (no IUP optimisation);
+//! no legacy `kern` table (it cannot vary); the OS/2 weight class is the default's `wght`.
+
+mod fvar;
+mod gpos;
+mod gvar;
+mod hvar;
+mod naming;
+mod quadratic;
+mod stat;
+
+use kurbo::BezPath;
+use read_fonts::tables::glyf::CurvePoint;
+use write_fonts::tables::glyf::{Contour, SimpleGlyph};
+use write_fonts::types::Tag;
+use write_fonts::BuilderError;
+
+use super::kern::kern_pairs;
+use super::tables::{font_builder, Outlines, VariableShared};
+use super::truetype::TtGlyph;
+use super::{grid, GlyphSet, OtfError};
+use crate::family::OutlinedFamily;
+use naming::VariableNames;
+
+/// Per non-default master, one glyph's deltas (outline points then 4 phantom points).
+pub(crate) type MasterDeltas = Vec<Vec<(i16, i16)>>;
+
+/// An axis tag as OpenType wants it: 1 to 4 printable ASCII characters, space-padded.
+fn tag(text: &str) -> Result<Tag, OtfError> {
+    Tag::new_checked(text.as_bytes())
+        .map_err(|_| OtfError::Table(format!("axis tag '{text}' is not 1 to 4 ASCII letters")))
+}
+
+/// The family as a variable TrueType font: the default master's tables, its outlines and
+/// the variations of every other master (see the module documentation).
+pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
+    let font = &family.default;
+    let designspace = &family.designspace;
+    if designspace.axes.is_empty() {
+        return Err(OtfError::Table("variable font: no axes".into()));
+    }
+    let axis_count = u16::try_from(designspace.axes.len())
+        .map_err(|_| OtfError::Table("variable font: too many axes".into()))?;
+    for master in &family.masters {
+        if master.glyphs.len() != font.glyphs.len() {
+            return Err(OtfError::Table(format!(
+                "variable font: master '{}' has {} glyphs, the default {}",
+                master.name,
+                master.glyphs.len(),
+                font.glyphs.len()
+            )));
+        }
+    }
+    let regions: Vec<_> = family.masters.iter().map(|m| m.region).collect();
+    let set = GlyphSet::new(font)?;
+    // A synthesised .notdef comes first and is the same in every master.
+    let synthesised = set.glyphs.len() - font.glyphs.len();
+
+    let mut tt_glyphs = Vec::with_capacity(set.glyphs.len());
+    let mut point_deltas = Vec::with_capacity(set.glyphs.len());
+    let mut advance_deltas = Vec::with_capacity(set.glyphs.len());
+    for (gid, glyph) in set.glyphs.iter().enumerate() {
+        let source = gid.checked_sub(synthesised);
+        let mut paths: Vec<&BezPath> = vec![&glyph.path];
+        let mut advances = vec![glyph.advance];
+        for master in &family.masters {
+            let Some(g) = source.map(|i| &master.glyphs[i]) else {
+                paths.push(&glyph.path);
+                advances.push(glyph.advance);
+                continue;
+            };
+            paths.push(&g.path);
+            advances.push(grid::to_u16(g.advance, || {
+                format!(
+                    "advance of '{}' in master '{}'",
+                    glyph.model_name, master.name
+                )
+            })?);
+        }
+        let (tt, deltas) =
+            glyph_variations(&paths, &advances, font.tolerance, glyph).map_err(|e| match e {
+                Incompatible::Master(m) => OtfError::Table(format!(
+                    "variable font: glyph '{}' has other path elements in master '{}' than in \
+                     the default master",
+                    glyph.model_name,
+                    family.masters[m - 1].name
+                )),
+                Incompatible::Otf(e) => e,
+            })?;
+        tt_glyphs.push(tt);
+        point_deltas.push(deltas);
+        advance_deltas.push(
+            advances[1..]
+                .iter()
+                .map(|&a| (i32::from(a) - i32::from(advances[0])) as i16)
+                .collect::<Vec<i16>>(),
+        );
+    }
+
+    let names = VariableNames::new(designspace, &font.info.family);
+    let weight_class = designspace
+        .axes
+        .iter()
+        .find(|a| a.tag == "wght")
+        .map(|a| a.default.round().clamp(1.0, 1000.0) as u16);
+    let shared = VariableShared {
+        weight_class,
+        names: names.records.clone(),
+    };
+    let mut builder = font_builder(font, &set, Outlines::TrueType(tt_glyphs), Some(&shared))?;
+    let table_err = |e: BuilderError| OtfError::Table(e.to_string());
+    builder
+        .add_table(&fvar::fvar(designspace, &names)?)
+        .map_err(table_err)?;
+    builder
+        .add_table(&stat::stat(designspace, &names)?)
+        .map_err(table_err)?;
+    builder
+        .add_table(&gvar::gvar(&regions, axis_count, &point_deltas)?)
+        .map_err(table_err)?;
+    builder
+        .add_table(&hvar::hvar(&regions, axis_count, &advance_deltas)?)
+        .map_err(table_err)?;
+    let mut pairs = vec![kern_pairs(&font.kerning, &set)?];
+    for master in &family.masters {
+        pairs.push(kern_pairs(&master.kerning, &set)?);
+    }
+    if let Some((gpos, gdef)) = gpos::gpos_gdef(&pairs, &regions, axis_count)? {
+        builder.add_table(&gpos).map_err(table_err)?;
+        builder.add_table(&gdef).map_err(table_err)?;
+    }
+    Ok(builder.build())
+}
+
+/// Why one glyph has no variations.
+enum Incompatible {
+    /// The path of this master (1 = the first non-default one) has other elements.
+    Master(usize),
+    /// A value out of the OpenType range.
+    Otf(OtfError),
+}
+
+impl From<OtfError> for Incompatible {
+    fn from(e: OtfError) -> Self {
+        Incompatible::Otf(e)
+    }
+}
+
+/// One glyph's default outline for `glyf` and, per other master, its deltas: rounded
+/// master points minus rounded default points, then the phantom points (only the advance
+/// point moves, by the difference of the rounded advances).
+fn glyph_variations(
+    paths: &[&BezPath],
+    advances: &[u16],
+    accuracy: f64,
+    glyph: &super::OtGlyph,
+) -> Result<(TtGlyph, MasterDeltas), Incompatible> {
+    let name = &glyph.model_name;
+    let masters = quadratic::compatible_contours(paths, accuracy).map_err(Incompatible::Master)?;
+    let mut rounded: Vec<Vec<Vec<CurvePoint>>> = Vec::with_capacity(masters.len());
+    for contours in &masters {
+        let mut out = Vec::with_capacity(contours.len());
+        for contour in contours {
+            let points = contour
+                .iter()
+                .map(|p| {
+                    let q = grid::round_point(p.point, name)?;
+                    Ok(CurvePoint::new(q.x as i16, q.y as i16, p.on_curve))
+                })
+                .collect::<Result<Vec<_>, OtfError>>()?;
+            out.push(points);
+        }
+        rounded.push(out);
+    }
+    let default = &rounded[0];
+    let points: usize = default.iter().map(Vec::len).sum();
+    if points > usize::from(u16::MAX) || default.len() >= i16::MAX as usize {
+        return Err(Incompatible::Otf(OtfError::OutOfRange {
+            what: format!(
+                "glyph '{name}' as TrueType ({} contours): its point count",
+                default.len()
+            ),
+            value: points as f64,
+            range: "0..=65535 points, at most 32766 contours",
+        }));
+    }
+    let deltas = rounded[1..]
+        .iter()
+        .zip(&advances[1..])
+        .map(|(master, &advance)| {
+            let mut d: Vec<(i16, i16)> = master
+                .iter()
+                .flatten()
+                .zip(default.iter().flatten())
+                .map(|(m, p)| (m.x.wrapping_sub(p.x), m.y.wrapping_sub(p.y)))
+                .collect();
+            let advance_delta = (i32::from(advance) - i32::from(advances[0])) as i16;
+            d.extend([(0, 0), (advance_delta, 0), (0, 0), (0, 0)]);
+            d
+        })
+        .collect();
+    let tt = if points == 0 {
+        TtGlyph { glyph: None }
+    } else {
+        let contours: Vec<Contour> = default.iter().map(|c| c.clone().into()).collect();
+        let mut simple = SimpleGlyph {
+            contours,
+            overlaps: glyph.from_components,
+            ..Default::default()
+        };
+        simple.recompute_bounding_box();
+        TtGlyph {
+            glyph: Some(simple),
+        }
+    };
+    Ok((tt, deltas))
+}
