@@ -465,9 +465,12 @@ fn cli_import_of_the_export_equals_the_formatted_sources() {
     // The bundled sources as `fmt` leaves them.
     let formatted = dir.path().join("formatted");
     std::fs::create_dir(&formatted).expect("mkdir");
+    // The default master's files (master folders such as bold/ are a designspace's job).
     for e in std::fs::read_dir(glyphs_dir()).expect("lists") {
         let path = e.expect("entry").path();
-        std::fs::copy(&path, formatted.join(path.file_name().expect("name"))).expect("copies");
+        if path.is_file() {
+            std::fs::copy(&path, formatted.join(path.file_name().expect("name"))).expect("copies");
+        }
     }
     let bin = env!("CARGO_BIN_EXE_xglyph");
     run(Command::new(bin).arg("fmt").arg(&formatted));
