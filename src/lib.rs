@@ -33,6 +33,7 @@ mod names;
 pub mod orient;
 pub mod otf;
 pub mod outline;
+pub mod overlap;
 pub mod pipeline;
 pub mod render;
 pub mod serve;

@@ -2,7 +2,7 @@
 //!
 //! Fonts: garbage, truncations of DejaVu Sans at many lengths, and deterministic byte
 //! corruptions; each import either fails with a message naming the file or succeeds with
-//! sources that load without errors. SVGs: truncated XML, no filled path, zero size, not
+//! sources that load without errors. SVGs: truncated XML, no filled or stroked path, zero size, not
 //! UTF-8. The command line: exit code 1, the message on stderr, nothing written.
 
 use std::path::{Path, PathBuf};
@@ -149,8 +149,8 @@ fn broken_svgs_exact_messages() {
     );
     assert_eq!(
         svg_error("nofill.svg", &fixture("nofill.svg")),
-        "tests/fixtures/import/nofill.svg: the drawing has no filled path (stroke-only paths, \
-         text and images are not imported)"
+        "tests/fixtures/import/nofill.svg: the drawing has no filled or stroked path (text and \
+         images are not imported)"
     );
     assert_eq!(
         svg_error(

@@ -18,6 +18,7 @@ mod limits;
 mod ocr;
 mod otf;
 mod otf_random;
+mod overlap;
 mod production;
 mod render;
 mod scale;
