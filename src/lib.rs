@@ -42,6 +42,7 @@ pub mod serve;
 pub mod source;
 pub mod svg;
 pub mod terminal;
+pub mod ufo;
 pub mod write;
 pub mod xspline;
 

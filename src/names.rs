@@ -4,23 +4,15 @@
 //! any other name, so every output (the `post` table, the CFF charset, the SVG font's
 //! kerning lists, file names) can carry each name unchanged.
 //!
-//! File names are safe on case-insensitive file systems and on Windows.
-//! The rule is the UFO 3 "user name to file name" convention: every uppercase letter is
-//! followed by `_` (so `A` -> `A_` and `a` -> `a`, which never collide when case is folded),
-//! characters illegal in file names are replaced by `_`, a leading `.` becomes `_`, and
-//! reserved device names (`con`, `nul`, `com1`, ...) and the font directory's own file
-//! stems (`font`, `kerning`) get a `_` prefix. Glyph sources and the
-//! SVG glyph set use the same stems. Written here rather than taken from a crate: no
-//! maintained Rust crate implements the UFO rule.
-
-/// Characters that are illegal in a file name on at least one common file system.
-const ILLEGAL: &[char] = &['"', '*', '+', '/', ':', '<', '>', '?', '[', '\\', ']', '|'];
-
-/// Windows device names, reserved with any extension (compared case-insensitively).
-const RESERVED: &[&str] = &[
-    "con", "prn", "aux", "clock$", "nul", "com1", "com2", "com3", "com4", "com5", "com6", "com7",
-    "com8", "com9", "lpt1", "lpt2", "lpt3", "lpt4", "lpt5", "lpt6", "lpt7", "lpt8", "lpt9",
-];
+//! File names are safe on case-insensitive file systems and on Windows: the UFO 3 "user
+//! name to file name" rule, as norad implements it ([`norad::user_name_to_file_name`]), so
+//! glyph sources, the SVG glyph set and an exported UFO's `.glif` files share their stems.
+//! Every uppercase letter is followed by `_` (so `A` -> `A_` and `a` -> `a`, which never
+//! collide when case is folded), characters illegal in file names become `_`, a leading `.`
+//! becomes `_`, reserved device names (`con`, `nul`, `com1`, ...) get a `_` prefix, and a
+//! clash gets a two-digit counter (`a_b01`). Two additions of ours: the font directory's own
+//! file stems (`font`, `kerning`) get a `_` prefix, and past norad's 99 counters a clash
+//! gets `.100`, `.101`, ... instead of norad's panic.
 
 /// Stems of a font directory's own files (`font.toml`, `kerning.toml`), which a glyph file
 /// must never take (compared case-insensitively).
@@ -101,41 +93,54 @@ fn describe(c: char) -> String {
 /// Distinct names can still map to one stem (`a/b` and `a:b` both give `a_b`); use
 /// [`file_stems`] for a whole glyph set.
 pub fn file_stem(name: &str) -> String {
-    let mut stem = String::with_capacity(name.len() + 4);
-    for (i, c) in name.chars().enumerate() {
-        if (i == 0 && c == '.') || c.is_control() || ILLEGAL.contains(&c) {
-            stem.push('_');
-        } else {
-            stem.push(c);
-            if c.is_uppercase() {
-                stem.push('_');
-            }
-        }
+    stem_with(name, |_| true)
+}
+
+/// [`file_stem`] with norad's clash counter, asking `accept` (given the lowercased
+/// candidate, font-file prefix applied) whether a candidate is free.
+fn stem_with(name: &str, mut accept: impl FnMut(&str) -> bool) -> String {
+    // Control characters cannot be in a UFO name; norad leaves them, so replace them first.
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_control() { '_' } else { c })
+        .collect();
+    let stem = norad::user_name_to_file_name(&clean, "", "", |candidate| {
+        accept(&font_file_safe(candidate))
+    });
+    font_file_safe(&stem.to_string_lossy())
+}
+
+/// `stem` with a `_` in front when it is a font directory's own file stem.
+fn font_file_safe(stem: &str) -> String {
+    if FONT_FILE_STEMS.contains(&stem.to_lowercase().as_str()) {
+        format!("_{stem}")
+    } else {
+        stem.to_string()
     }
-    let head = stem.split('.').next().unwrap_or("");
-    if RESERVED.contains(&head.to_lowercase().as_str())
-        || FONT_FILE_STEMS.contains(&stem.to_lowercase().as_str())
-    {
-        stem.insert(0, '_');
-    }
-    stem
 }
 
 /// File stems for a whole glyph set, in the same order as `names`, unique even when
-/// compared case-insensitively (a clash gets a numeric suffix: `a_b`, `a_b.1`, ...).
+/// compared case-insensitively (a clash gets norad's counter: `a_b`, `a_b01`, ...).
 pub fn file_stems<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<String> {
     let mut taken = std::collections::HashSet::new();
     names
         .into_iter()
         .map(|name| {
-            let base = file_stem(name);
-            let mut stem = base.clone();
-            let mut n = 1;
-            while !taken.insert(stem.to_lowercase()) {
-                stem = format!("{base}.{n}");
-                n += 1;
+            let mut tries = 0;
+            // Accepting the 100th candidate stops norad before its panic; a clash left
+            // then gets a counter of ours.
+            let base = stem_with(name, |candidate| {
+                tries += 1;
+                !taken.contains(&candidate.to_lowercase()) || tries == 100
+            });
+            if taken.insert(base.to_lowercase()) {
+                return base;
             }
-            stem
+            let plain = file_stem(name);
+            (100..)
+                .map(|n| format!("{plain}.{n}"))
+                .find(|stem| taken.insert(stem.to_lowercase()))
+                .unwrap_or(plain)
         })
         .collect()
 }
@@ -159,7 +164,7 @@ mod tests {
         assert_eq!(file_stem("font"), "_font");
         assert_eq!(file_stem("kerning"), "_kerning");
         assert_eq!(file_stem("font.alt"), "font.alt");
-        assert_eq!(file_stems(["font", "_font"]), ["_font", "_font.1"]);
+        assert_eq!(file_stems(["font", "_font"]), ["_font", "_font01"]);
     }
 
     #[test]
@@ -210,6 +215,32 @@ mod tests {
     #[test]
     fn stems_unique_case_insensitively() {
         let stems = file_stems(["a/b", "a:b", "A", "a"]);
-        assert_eq!(stems, ["a_b", "a_b.1", "A_", "a"]);
+        assert_eq!(stems, ["a_b", "a_b01", "A_", "a"]);
+        // Past norad's 99 counters: ours, never a panic. Each of these 128 names spells
+        // `abcdefg` with a capital or a lowercase letter plus `_`, so all share one stem
+        // when case is folded.
+        let names: Vec<String> = (0..128u32)
+            .map(|bits| {
+                "abcdefg"
+                    .chars()
+                    .enumerate()
+                    .map(|(i, c)| {
+                        if bits & (1 << i) != 0 {
+                            c.to_ascii_uppercase().to_string()
+                        } else {
+                            format!("{c}_")
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let stems = file_stems(names.iter().map(String::as_str));
+        let folded: std::collections::HashSet<String> =
+            stems.iter().map(|s| s.to_lowercase()).collect();
+        assert_eq!(folded.len(), 128);
+        assert_eq!(stems[1], "A_b_c_d_e_f_g_01");
+        assert_eq!(stems[99], "A_B_c_d_e_F_G_99");
+        assert_eq!(stems[100], "a_b_C_d_e_F_G_.100");
+        assert_eq!(stems[127], "A_B_C_D_E_F_G_.127");
     }
 }

@@ -1,4 +1,4 @@
-//! `xglyph import`: a font file or SVG drawings -> a font directory of X-spline sources.
+//! `xglyph import`: a font file, a UFO or SVG drawings -> a font directory of X-spline sources.
 //!
 //! Everything is fitted in memory first (glyphs in parallel); the files are then written
 //! into a new temporary folder next to the output, which is renamed into place only when
@@ -19,8 +19,8 @@ use crate::terminal::{out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// One font (.ttf, .otf, or a collection .ttc, .otc) or one or more SVG drawings
-    /// (.svg, one glyph each).
+    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), or one or
+    /// more SVG drawings (.svg, one glyph each).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
     /// Output font directory (must be empty or absent unless --force).
@@ -57,6 +57,7 @@ pub struct ImportArgs {
 enum Kind {
     Font,
     Svg,
+    Ufo,
 }
 
 fn kind(path: &Path) -> Result<Kind, ImportError> {
@@ -67,9 +68,10 @@ fn kind(path: &Path) -> Result<Kind, ImportError> {
     match ext.as_str() {
         "ttf" | "otf" | "ttc" | "otc" => Ok(Kind::Font),
         "svg" => Ok(Kind::Svg),
+        "ufo" => Ok(Kind::Ufo),
         _ => Err(ImportError::at(
             path,
-            "unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file",
+            "unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file or a .ufo folder",
         )),
     }
 }
@@ -155,6 +157,9 @@ pub fn import_inputs(
         .map(|p| kind(p))
         .collect::<Result<Vec<_>, _>>()?;
     let fonts = kinds.iter().filter(|k| matches!(k, Kind::Font)).count();
+    if kinds.iter().any(|k| matches!(k, Kind::Ufo)) {
+        return import_ufo(args, progress);
+    }
     let mut opts = ImportOptions {
         tolerance: args.tolerance,
         family: args.family.clone(),
@@ -210,6 +215,35 @@ pub fn import_inputs(
         .map(|p| read(p).map(|d| (p.clone(), d)))
         .collect::<Result<Vec<_>, _>>()?;
     import::import_svgs(&files, &opts)
+}
+
+/// A UFO: alone, with only the flags that apply to it.
+fn import_ufo(args: &ImportArgs, progress: Progress) -> Result<import::Imported, ImportError> {
+    if args.inputs.len() > 1 {
+        return Err(ImportError::plain(
+            "import one UFO at a time, and UFOs, fonts and SVG drawings separately",
+        ));
+    }
+    for (given, flag) in [
+        (args.glyphs.is_some(), "--glyphs"),
+        (args.face.is_some(), "--face"),
+        (args.codepoints.is_some(), "--codepoints"),
+        (args.first_codepoint.is_some(), "--first-codepoint"),
+        (args.units_per_em.is_some(), "--units-per-em"),
+    ] {
+        if given {
+            return Err(ImportError::plain(format!(
+                "{flag} does not apply to a UFO (it imports every glyph of its default layer)"
+            )));
+        }
+    }
+    let opts = ImportOptions {
+        tolerance: args.tolerance,
+        family: args.family.clone(),
+        progress,
+        ..ImportOptions::default()
+    };
+    import::import_ufo(&args.inputs[0], &opts)
 }
 
 fn parse_hex_char(s: &str) -> Option<char> {

@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! font.rs (ttf-parser) | svg.rs (usvg)  ->  original BezPath per glyph
+//! ufo.rs (norad): X-splines from the lib when an xglyph export wrote them, else as above
 //!   -> contour.rs (closed contours, corners, edges, smooth stretches)
 //!   -> fit.rs (X-spline control points within the fit target)
 //!   -> a model::Font (emitted by source::emit) and a report.rs summary
@@ -23,6 +24,9 @@ pub mod fit;
 pub mod font;
 pub mod report;
 pub mod svg;
+pub mod ufo;
+
+pub use ufo::import_ufo;
 
 use std::collections::BTreeMap;
 use std::fmt;

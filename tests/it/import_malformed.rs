@@ -230,7 +230,7 @@ fn command_line_errors_write_nothing() {
         (
             &["notes.txt"],
             "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg \
-             file\n"
+             file or a .ufo folder\n"
                 .into(),
         ),
     ];

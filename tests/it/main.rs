@@ -32,6 +32,7 @@ mod source_malformed;
 mod studio_browser;
 mod svg;
 mod terminal;
+mod ufo;
 mod variable;
 mod writes;
 mod xspline;

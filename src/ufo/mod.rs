@@ -1,0 +1,184 @@
+//! UFO 3 export: an [`OutlinedFont`] as a Unified Font Object, written with norad.
+//!
+//! ```text
+//! OutlinedFont -> info.rs (fontinfo.plist, font lib) + glyph.rs (one .glif per glyph)
+//!              -> norad::Font -> files in memory (norad's FontSink), or a directory
+//! ```
+//!
+//! What goes where:
+//! - Each glyph's own contours are the build's fitted cubics (the same subpaths, in the
+//!   same direction, as the TTF/OTF/SVG outputs), coordinates rounded to 1/1000 font unit;
+//!   components stay components, placed by their offsets; code points and advance as in
+//!   the sources.
+//! - `kerning.plist` holds the pairs by glyph name (no groups); `fontinfo.plist` the names,
+//!   metrics and licence of `font.toml` plus the underline, vendor and version fields font
+//!   compilers and checkers read.
+//! - The X-spline sources ride along in the libs ([`lib`]), so
+//!   [`crate::import::import_ufo`] gives back the same model: export then import is exact.
+//!
+//! One call per master: [`export`] reads one outlined font, so a family exports each
+//! master's [`OutlinedFont`] in turn.
+//!
+//! Glyph file names are norad's (the UFO 3 user-name-to-file-name rule); glyph names follow
+//! the OpenType `post` rule already, so every name is a valid UFO name. The output is
+//! deterministic: fixed key order in every plist, glyphs in the font's order.
+//!
+//! Limits: no anchors or guidelines (the model has none); a font without a `.notdef` gets
+//! none in the UFO (compilers then make their own); the files are meant for a fresh
+//! `<Family>-<Style>.ufo` folder: glyph files of an older export that are no longer in the
+//! font are not removed by writing into the same folder (they are not in
+//! `contents.plist`, so UFO readers ignore them).
+
+mod glyph;
+mod info;
+pub mod lib;
+
+pub(crate) use info::version_numbers;
+
+use std::collections::{HashMap, HashSet};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use crate::outline::OutlinedFont;
+use crate::svg::output_stem;
+
+/// Why a font could not be exported as UFO.
+#[derive(Debug)]
+pub enum UfoError {
+    /// A glyph name that UFO does not allow (empty, or with control characters); only a
+    /// model built in code can have one, the loader refuses them.
+    GlyphName(String),
+    /// More than 99 glyph names share one file name once case is folded (norad's limit).
+    FileNameClash(String),
+    /// norad refused to write the font.
+    Write(String),
+}
+
+impl fmt::Display for UfoError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UfoError::GlyphName(name) => {
+                write!(f, "UFO export: glyph name {name:?} is not a valid UFO name")
+            }
+            UfoError::FileNameClash(name) => write!(
+                f,
+                "UFO export: too many glyph names share the file name of `{name}` when case is \
+                 ignored; rename some of them"
+            ),
+            UfoError::Write(e) => write!(f, "UFO export: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for UfoError {}
+
+/// The UFO's folder name among the build outputs: `<Family>-<Style>.ufo`, the stem of
+/// the other font files.
+pub fn ufo_dir_name(font: &OutlinedFont) -> String {
+    format!("{}.ufo", output_stem(&font.info))
+}
+
+/// The font as a norad UFO: fontinfo, font lib, kerning and one glyph per outlined glyph,
+/// in the font's glyph order.
+pub fn export(font: &OutlinedFont) -> Result<norad::Font, UfoError> {
+    check_file_names(font)?;
+    let mut ufo = norad::Font::new();
+    ufo.font_info = info::font_info(&font.info);
+    ufo.lib = info::font_lib(font);
+    let contours: HashMap<&str, usize> = font
+        .glyphs
+        .iter()
+        .map(|g| (g.name.as_str(), g.contours.len()))
+        .collect();
+    let layer = ufo.default_layer_mut();
+    for g in &font.glyphs {
+        // The glyph's own contours come first, then every component's (recursively placed).
+        let placed: usize = g
+            .components
+            .iter()
+            .map(|c| contours.get(c.base.as_str()).copied().unwrap_or(0))
+            .sum();
+        let own = g.contours.len().saturating_sub(placed);
+        layer.insert_glyph(glyph::glyph(g, own)?);
+    }
+    for k in &font.kerning {
+        let (left, right) = (name(&k.left)?, name(&k.right)?);
+        ufo.kerning
+            .entry(left)
+            .or_default()
+            .insert(right, k.value + 0.0);
+    }
+    Ok(ufo)
+}
+
+/// Every file of the UFO in memory, paths relative to the build's output folder
+/// (`<Family>-<Style>.ufo/metainfo.plist`, …), sorted by path: what `build` writes.
+pub fn output_files(font: &OutlinedFont) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    let dir = PathBuf::from(ufo_dir_name(font));
+    Ok(files(&export(font)?)?
+        .into_iter()
+        .map(|(path, bytes)| (dir.join(path), bytes))
+        .collect())
+}
+
+/// Every file of `ufo`, paths relative to the `.ufo` folder, sorted by path.
+pub fn files(ufo: &norad::Font) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    let out = Mutex::new(Vec::new());
+    let sink = |path: &Path, data: &[u8]| {
+        out.lock()
+            .map_err(|_| std::io::Error::other("a writer thread panicked"))?
+            .push((path.to_path_buf(), data.to_vec()));
+        Ok(())
+    };
+    ufo.save_to_sink(&sink, &norad::WriteOptions::default())
+        .map_err(|e| UfoError::Write(error_chain(&e)))?;
+    let mut files = out
+        .into_inner()
+        .map_err(|_| UfoError::Write("a writer thread panicked".into()))?;
+    files.sort();
+    Ok(files)
+}
+
+/// Writes the UFO of `font` as the folder `path` (replacing a folder already there).
+pub fn save(font: &OutlinedFont, path: &Path) -> Result<(), UfoError> {
+    export(font)?
+        .save(path)
+        .map_err(|e| UfoError::Write(format!("{}: {}", path.display(), error_chain(&e))))
+}
+
+fn name(text: &str) -> Result<norad::Name, UfoError> {
+    norad::Name::new(text).map_err(|_| UfoError::GlyphName(text.to_string()))
+}
+
+/// An error and its sources on one line (norad's errors nest).
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        source = s.source();
+    }
+    text
+}
+
+/// Runs norad's file-name rule over the glyph names in the order norad will, so that a
+/// set norad cannot name (it panics after 99 case-folded clashes) is an error instead.
+fn check_file_names(font: &OutlinedFont) -> Result<(), UfoError> {
+    let mut taken: HashSet<String> = HashSet::new();
+    for g in &font.glyphs {
+        name(&g.name)?;
+        let mut tries = 0;
+        let file = norad::user_name_to_file_name(&g.name, "", ".glif", |candidate| {
+            tries += 1;
+            // Accepting the 100th candidate stops norad before its panic.
+            !taken.contains(candidate) || tries == 100
+        });
+        let file = file.to_string_lossy().to_lowercase();
+        if !taken.insert(file) {
+            return Err(UfoError::FileNameClash(g.name.clone()));
+        }
+    }
+    Ok(())
+}
