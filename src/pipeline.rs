@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 
 use crate::designspace::Location;
 use crate::family::{outline_family, FamilyError, FamilySummary};
-use crate::overlap::remove_overlaps_font;
 use crate::instance::InstanceError;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
+use crate::overlap::remove_overlaps_font;
 use crate::render::{
     encode_png, render_instances_proof, render_proof, sheet_png_files, ProofOptions, RenderError,
     SheetOptions,
@@ -56,6 +56,8 @@ pub enum PipelineError {
     Instance(String),
     /// The masters could not be fitted compatibly.
     Family(FamilyError),
+    /// The UFO export failed.
+    Ufo(crate::ufo::UfoError),
     /// Writing the outputs failed; the output directory is as it was.
     Write {
         /// The output directory.
@@ -92,6 +94,7 @@ impl fmt::Display for PipelineError {
             PipelineError::Otf(e) => write!(f, "{e}"),
             PipelineError::Instance(msg) => write!(f, "{msg}"),
             PipelineError::Family(e) => write!(f, "{e}"),
+            PipelineError::Ufo(e) => write!(f, "{e}"),
             PipelineError::Write { dir, error } => {
                 write!(f, "{error}; {} is unchanged", dir.display())
             }
@@ -141,6 +144,12 @@ pub fn load_with(
         family,
         warnings,
     })
+}
+
+impl From<crate::ufo::UfoError> for PipelineError {
+    fn from(e: crate::ufo::UfoError) -> Self {
+        PipelineError::Ufo(e)
+    }
 }
 
 impl From<InstanceError> for PipelineError {
@@ -340,6 +349,7 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
     files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
     files.push((PathBuf::from(format!("{stem}.woff2")), woff2));
+    files.extend(crate::ufo::output_files(font)?);
     let (woff2_name, otf_name) = (format!("{stem}.woff2"), format!("{stem}.otf"));
     files.push((
         PathBuf::from("specimen.html"),

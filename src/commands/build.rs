@@ -148,10 +148,27 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
         top
     };
     let in_svg = files.iter().filter(|(p, _)| p.starts_with("svg")).count();
+    // UFO folders as one item each: `XglyphSans-Regular.ufo/ (158 files)`.
+    let mut ufos: Vec<(String, usize)> = Vec::new();
+    for (p, _) in files {
+        if let Some(first) = p.components().next() {
+            let first = first.as_os_str().to_string_lossy();
+            if first.ends_with(".ufo") && p.parent() != Some(Path::new("")) {
+                match ufos.iter_mut().find(|(n, _)| *n == first) {
+                    Some((_, count)) => *count += 1,
+                    None => ufos.push((first.into_owned(), 1)),
+                }
+            }
+        }
+    }
+    let ufos: String = ufos
+        .iter()
+        .map(|(n, count)| format!(", {n}/ ({count} files)"))
+        .collect();
     format!(
         "built {family}: {} glyphs, {} contours, {} segments\n\
          worst error against the X-splines: {worst}, tolerance {}\n\
-         wrote {} files to {}: {}, svg/ ({in_svg} glyph SVGs)\n",
+         wrote {} files to {}: {}{ufos}, svg/ ({in_svg} glyph SVGs)\n",
         summary.glyphs,
         summary.contours,
         summary.segments,
@@ -264,7 +281,10 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         outln!("{}", masters_line(&loaded.family));
     }
     if let Some((_, fs)) = &variable {
-        outln!("{}", variable_line(fs, &loaded.family, loaded.font.tolerance));
+        outln!(
+            "{}",
+            variable_line(fs, &loaded.family, loaded.font.tolerance)
+        );
     }
     if cache.hits() > 0 {
         outln!(

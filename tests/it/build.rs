@@ -70,6 +70,20 @@ fn build_writes_every_output_and_a_summary() {
             "MiniTest-Regular.otf",
             "MiniTest-Regular.svg",
             "MiniTest-Regular.ttf",
+            "MiniTest-Regular.ufo/fontinfo.plist",
+            "MiniTest-Regular.ufo/glyphs/A_.glif",
+            "MiniTest-Regular.ufo/glyphs/V_.glif",
+            "MiniTest-Regular.ufo/glyphs/_notdef.glif",
+            "MiniTest-Regular.ufo/glyphs/acutecomb.glif",
+            "MiniTest-Regular.ufo/glyphs/contents.plist",
+            "MiniTest-Regular.ufo/glyphs/o.glif",
+            "MiniTest-Regular.ufo/glyphs/oacute.glif",
+            "MiniTest-Regular.ufo/glyphs/period.glif",
+            "MiniTest-Regular.ufo/glyphs/space.glif",
+            "MiniTest-Regular.ufo/kerning.plist",
+            "MiniTest-Regular.ufo/layercontents.plist",
+            "MiniTest-Regular.ufo/lib.plist",
+            "MiniTest-Regular.ufo/metainfo.plist",
             "MiniTest-Regular.woff2",
             "proof.png",
             "sheet.png",
@@ -89,7 +103,7 @@ fn build_writes_every_output_and_a_summary() {
     let expected = format!(
         "built Mini Test Regular: 8 glyphs, 12 contours, 71 segments\n\
          worst error against the X-splines: 0.427 font units (glyph `oacute`), tolerance 0.5\n\
-         wrote 15 files to {}: MiniTest-Regular.svg, sheet.png, proof.png, MiniTest-Regular.ttf, MiniTest-Regular.otf, MiniTest-Regular.woff2, specimen.html, svg/ (8 glyph SVGs)\n",
+         wrote 29 files to {}: MiniTest-Regular.svg, sheet.png, proof.png, MiniTest-Regular.ttf, MiniTest-Regular.otf, MiniTest-Regular.woff2, specimen.html, MiniTest-Regular.ufo/ (14 files), svg/ (8 glyph SVGs)\n",
         out.display()
     );
     assert_eq!(stdout, expected);
@@ -157,8 +171,8 @@ fn two_builds_are_byte_identical() {
     assert_eq!(build(&mini_dir(), &a).status.code(), Some(0));
     assert_eq!(build(&mini_dir(), &b).status.code(), Some(0));
     let (fa, fb) = (files(&a), files(&b));
-    // 15 outputs (WOFF2 included) and the fit cache.
-    assert_eq!(fa.len(), 16);
+    // 29 outputs (WOFF2 and the 14 files of the UFO included) and the fit cache.
+    assert_eq!(fa.len(), 30);
     assert_eq!(fa.keys().collect::<Vec<_>>(), fb.keys().collect::<Vec<_>>());
     for (name, bytes) in &fa {
         assert!(bytes == &fb[name], "{name} differs between builds");

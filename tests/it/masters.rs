@@ -594,6 +594,7 @@ fn build_writes_each_named_instance_and_their_proof() {
             "MastersTest-Regular.otf",
             "MastersTest-Regular.svg",
             "MastersTest-Regular.ttf",
+            "MastersTest-Regular.ufo",
             "MastersTest-Regular.woff2",
             "MastersTest-SemiBold.otf",
             "MastersTest-SemiBold.svg",
@@ -602,6 +603,9 @@ fn build_writes_each_named_instance_and_their_proof() {
             "proof.png",
         ]
     );
+    // And the variable font, for the web too.
+    assert!(out.join("MastersTest[wght].ttf").is_file());
+    assert!(out.join("MastersTest[wght].woff2").is_file());
     // Each static instance carries the instance's advances: read hmtx back with read-fonts.
     use read_fonts::{FontRef, TableProvider};
     let (family, _) = xglyph::source::load_family(&fixture()).unwrap();

@@ -187,6 +187,8 @@ points = [ [200, 100, 0], [300, 100, 0.25], [300, 200, 1], [200, 200, 0] ]
 
 fn with_commented(dir: &Path) {
     fs::write(dir.join("tri.toml"), COMMENTED).unwrap();
+    // Every master has every glyph: the Bold master gets the same triangle.
+    fs::write(dir.join("bold").join("tri.toml"), COMMENTED).unwrap();
 }
 
 #[test]
