@@ -6,7 +6,7 @@
 //!   advances;
 //! - `HVAR` ([`hvar`]) with the same advance deltas;
 //! - `fvar` ([`fvar`]) with the axes and named instances, `STAT` ([`stat`]) and their names
-//!   ([`naming`]) in `name`;
+//!   ([`naming`]) in `name`; an identity `avar` ([`avar`]);
 //! - kerning in GPOS with VariationIndex devices into `GDEF`'s item variation store
 //!   ([`gpos`]).
 //!
@@ -16,9 +16,10 @@
 //! those; the result is within grid rounding (√2/2 units) plus the quadratic accuracy of the
 //! blended cubic outline.
 //!
-//! Limits: axis maps are linear (no `avar`); deltas are all written (no IUP optimisation);
+//! Limits: axis maps are linear (`avar` is the identity); deltas are all written (no IUP optimisation);
 //! no legacy `kern` table (it cannot vary); the OS/2 weight class is the default's `wght`.
 
+mod avar;
 mod fvar;
 mod gpos;
 mod gvar;
@@ -132,6 +133,9 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
         .map_err(table_err)?;
     builder
         .add_table(&stat::stat(designspace, &names)?)
+        .map_err(table_err)?;
+    builder
+        .add_table(&avar::avar(usize::from(axis_count)))
         .map_err(table_err)?;
     builder
         .add_table(&gvar::gvar(&regions, axis_count, &point_deltas)?)
