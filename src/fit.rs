@@ -862,20 +862,26 @@ fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64)
         let v = paired(i) + (paired(i + 1) - paired(i)) * s;
         err = err.max(poly.project(spline.eval(t), v).1);
         let q = poly.eval(v).to_point();
-        let mut t = t;
-        let mut nearest = spline.eval(t).distance(q);
-        for _ in 0..4 {
-            let (c, d) = spline.eval_deriv(t);
-            let dd = d.dot(d);
-            if dd <= 0.0 {
-                break;
-            }
-            t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
-            nearest = nearest.min(spline.eval(t).distance(q));
-        }
-        err = err.max(nearest);
+        err = err.max(distance_to_curve(spline, q, t, (lo, hi)));
     }
     err
+}
+
+/// The distance from `q` to the true curve near parameter `t`: four Newton steps on the
+/// curve parameter within `[lo, hi]`, keeping the nearest point seen. Every distance taken
+/// is to a real curve point, so the result never underestimates the distance there.
+fn distance_to_curve(spline: &XSpline, q: Point, mut t: f64, (lo, hi): (f64, f64)) -> f64 {
+    let mut nearest = spline.eval(t).distance(q);
+    for _ in 0..4 {
+        let (c, d) = spline.eval_deriv(t);
+        let dd = d.dot(d);
+        if dd <= 0.0 {
+            break;
+        }
+        t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
+        nearest = nearest.min(spline.eval(t).distance(q));
+    }
+    nearest
 }
 
 /// [`gap_bound`] of the Hermite piece `piece` paired with `cubic` on `[u0, u1]` (both
@@ -1057,18 +1063,8 @@ fn measure_golden(
     // Every distance taken is to a real curve point, so the result never underestimates.
     let (lo, hi) = (samples.t[0], samples.t[n - 1]);
     let to_curve = |v: f64| {
-        let (q, (_, mut t)) = to_pieces(v);
-        let mut best = spline.eval(t).distance(q);
-        for _ in 0..4 {
-            let (c, d) = spline.eval_deriv(t);
-            let dd = d.dot(d);
-            if dd <= 0.0 {
-                break;
-            }
-            t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
-            best = best.min(spline.eval(t).distance(q));
-        }
-        best
+        let (q, (_, t)) = to_pieces(v);
+        distance_to_curve(spline, q, t, (lo, hi))
     };
     let steps = 2 * (n - 1);
     let back: Vec<f64> = (0..=steps)

@@ -5,6 +5,7 @@
 //! Nothing here prints: warnings and errors come back as [`Diagnostic`]s for the caller
 //! (the command line prints them; a server would send them).
 
+use std::borrow::Cow;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -227,13 +228,8 @@ pub fn instance_outputs(
                  `style`"
             )));
         }
-        let unioned;
-        let ot = if opts.keep_overlaps {
-            font
-        } else {
-            unioned = remove_overlaps_font(font);
-            &unioned
-        };
+        let ot = for_opentype(font, opts);
+        let ot = ot.as_ref();
         files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(ot)?));
         files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
         files.push((
@@ -337,13 +333,8 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
         encode_png(&render_proof(font, &opts.proof)?)?,
     ));
     let stem = output_stem(&font.info);
-    let unioned;
-    let ot = if opts.keep_overlaps {
-        font
-    } else {
-        unioned = remove_overlaps_font(font);
-        &unioned
-    };
+    let ot = for_opentype(font, opts);
+    let ot = ot.as_ref();
     let ttf = otf::ttf(ot)?;
     let woff2 = otf::woff2_from_ttf(&ttf)?;
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
@@ -356,6 +347,16 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
         otf::specimen_html_sources(font, &[&woff2_name, &otf_name]).into_bytes(),
     ));
     Ok(files)
+}
+
+/// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
+/// `opts.keep_overlaps`.
+fn for_opentype<'a>(font: &'a OutlinedFont, opts: &BuildOptions) -> Cow<'a, OutlinedFont> {
+    if opts.keep_overlaps {
+        Cow::Borrowed(font)
+    } else {
+        Cow::Owned(remove_overlaps_font(font))
+    }
 }
 
 /// The SVG font and the SVG glyph set (`svg/<glyph>.svg`).

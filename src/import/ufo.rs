@@ -42,8 +42,12 @@ const MAX_DEPTH: usize = 64;
 
 /// Imports the UFO folder at `path`.
 pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportError> {
-    let ufo = norad::Font::load(path)
-        .map_err(|e| ImportError::at(path, format!("cannot read the UFO: {}", chain(&e))))?;
+    let ufo = norad::Font::load(path).map_err(|e| {
+        ImportError::at(
+            path,
+            format!("cannot read the UFO: {}", crate::ufo::error_chain(&e)),
+        )
+    })?;
     let upm = units_per_em(&ufo).map_err(|m| ImportError::at(path, m))?;
     let tolerance = super::check_tolerance(opts.tolerance, upm)?;
     let info = font_info(&ufo, upm, tolerance, opts);
@@ -130,17 +134,6 @@ struct UfoGlyph {
     fitted: FittedGlyph,
     from_lib: bool,
     stale_lib: bool,
-}
-
-fn chain(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut source = e.source();
-    while let Some(s) = source {
-        text.push_str(": ");
-        text.push_str(&s.to_string());
-        source = s.source();
-    }
-    text
 }
 
 fn units_per_em(ufo: &norad::Font) -> Result<u16, String> {

@@ -190,56 +190,26 @@ pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
     if let (Some((f, off)), Some(style)) = (&family, &style) {
         ok &= limits::family_style(ctx, f, style.as_deref().unwrap_or("Regular"), *off);
     }
-    let (
-        Some((family, _)),
-        Some(units_per_em),
-        Some((ascender, _)),
-        Some((descender, _)),
-        Some((x_height, _)),
-        Some((cap_height, _)),
-        Some(tolerance),
-        Some(style),
-        Some(copyright),
-        Some(designer),
-        Some(version),
-        Some(license),
-        Some(license_url),
-        Some(vendor),
-    ) = (
-        family,
-        upm,
-        ascender,
-        descender,
-        x_height,
-        cap_height,
-        tolerance,
-        style,
-        copyright,
-        designer,
-        version,
-        license,
-        license_url,
-        vendor,
-    )
-    else {
-        return None;
+    // Every field that loaded, or nothing (each failure is already reported).
+    let info = || {
+        Some(FontInfo {
+            family: family?.0,
+            style: style?.unwrap_or_else(|| "Regular".to_string()),
+            units_per_em: upm?,
+            ascender: ascender?.0,
+            descender: descender?.0,
+            x_height: x_height?.0,
+            cap_height: cap_height?.0,
+            tolerance: tolerance?,
+            copyright: copyright?,
+            designer: designer?,
+            version: version?,
+            license: license?,
+            license_url: license_url?,
+            vendor: vendor?,
+        })
     };
-    ok.then(|| FontInfo {
-        family,
-        style: style.unwrap_or_else(|| "Regular".to_string()),
-        units_per_em,
-        ascender,
-        descender,
-        x_height,
-        cap_height,
-        tolerance,
-        copyright,
-        designer,
-        version,
-        license,
-        license_url,
-        vendor,
-    })
+    ok.then(info).flatten()
 }
 
 /// An OS/2 vendor ID: 1 to 4 printable ASCII characters (space included; the table pads

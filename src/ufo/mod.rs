@@ -152,7 +152,7 @@ fn name(text: &str) -> Result<norad::Name, UfoError> {
 }
 
 /// An error and its sources on one line (norad's errors nest).
-fn error_chain(e: &dyn std::error::Error) -> String {
+pub(crate) fn error_chain(e: &dyn std::error::Error) -> String {
     let mut text = e.to_string();
     let mut source = e.source();
     while let Some(s) = source {

@@ -501,3 +501,51 @@ fn hand_made_overlaps() {
             >= 8
     );
 }
+
+/// `build` unions the TTF and OTF outlines; `--keep-overlaps` writes them as drawn. An
+/// oacute whose accent is lowered into the o crosses it: 3 contours as drawn, 2 unioned.
+#[test]
+fn build_unions_unless_keep_overlaps() {
+    use read_fonts::{FontRef, TableProvider};
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("font");
+    std::fs::create_dir(&src).unwrap();
+    let mini = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
+    for e in std::fs::read_dir(&mini).unwrap() {
+        let p = e.unwrap().path();
+        std::fs::copy(&p, src.join(p.file_name().unwrap())).unwrap();
+    }
+    let oacute = std::fs::read_to_string(src.join("oacute.toml")).unwrap();
+    let lowered = oacute.replace(LOWERED_FROM, LOWERED_TO);
+    assert_ne!(lowered, oacute, "the fixture's accent offset moved");
+    std::fs::write(src.join("oacute.toml"), lowered).unwrap();
+    let contours = |keep: bool| -> usize {
+        let out = dir.path().join(if keep { "kept" } else { "unioned" });
+        let mut args = vec!["build", src.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        if keep {
+            args.push("--keep-overlaps");
+        }
+        let (code, _, err) = crate::common::cli::xglyph(&args);
+        assert_eq!(code, 0, "{err}");
+        let bytes = std::fs::read(out.join("MiniTest-Regular.ttf")).unwrap();
+        let font = FontRef::new(&bytes).unwrap();
+        let gid = font
+            .cmap()
+            .unwrap()
+            .map_codepoint(0xF3u32)
+            .expect("oacute is mapped");
+        let loca = font.loca(None).unwrap();
+        let glyf = font.glyf().unwrap();
+        match loca.get_glyf(gid, &glyf).unwrap() {
+            Some(read_fonts::tables::glyf::Glyph::Simple(g)) => g.end_pts_of_contours().len(),
+            _ => panic!("oacute is not a simple glyph"),
+        }
+    };
+    assert_eq!(contours(true), 3);
+    assert_eq!(contours(false), 2);
+}
+
+/// The mini fixture's acute, placed 100 units lower: its foot (y 460) lands in the o's
+/// ink (422 to 512), so the two cross.
+const LOWERED_FROM: &str = "base = \"acutecomb\"\noffset = [0, 0]";
+const LOWERED_TO: &str = "base = \"acutecomb\"\noffset = [0, -100]";
