@@ -18,7 +18,7 @@
 //! specific pair winning, as UFO kerning defines. Limits: anchors, guidelines, images,
 //! other layers and `features.fea` are not imported (the model has no place for them;
 //! the report counts dropped anchors); a glyph name outside the OpenType `post` rule is
-//! renamed as SVG file names are ([`crate::names::glyph_name_from`]), in components and
+//! renamed as SVG file names are (`names::glyph_name_from`), in components and
 //! kerning too.
 
 use std::collections::{BTreeMap, HashMap};

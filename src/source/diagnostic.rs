@@ -99,7 +99,7 @@ impl fmt::Display for Diagnostic {
 
 /// 1-based line and column (in characters) of a byte offset.
 ///
-/// Scans `text` up to `offset`; for many offsets into one text use a [`LineIndex`].
+/// Scans `text` up to `offset`; for many offsets into one text use a `LineIndex`.
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     LineIndex::new(text).line_col(text, offset)
 }

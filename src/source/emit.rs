@@ -13,7 +13,7 @@ use crate::model::{Font, FontInfo, Glyph, KernPair, Master};
 use crate::names::file_stems;
 
 /// Every source file of `font` as `(file name, text)`: `font.toml`, one `<stem>.toml` per
-/// glyph (stems by [`crate::names::file_stems`]), and `kerning.toml` when there is kerning.
+/// glyph (stems by `names::file_stems`), and `kerning.toml` when there is kerning.
 pub fn font_sources(font: &Font) -> Vec<(String, String)> {
     let mut files = vec![("font.toml".to_string(), font_toml(&font.info))];
     let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));

@@ -1,9 +1,9 @@
 //! The limits of the outputs, checked at the source with file:line:col, so that a font
 //! that passes `check` builds: no late failure, no silently corrupt table.
 //!
-//! Values are checked where they are read ([`coordinate`], [`advance`], [`metric`],
-//! [`kern_value`], [`text`]); what needs the whole font (glyph names, the glyph count, and
-//! each glyph's size and extent with its components placed) is checked by [`check_font`],
+//! Values are checked where they are read (`coordinate`, `advance`, `metric`,
+//! `kern_value`, `text`); what needs the whole font (glyph names, the glyph count, and
+//! each glyph's size and extent with its components placed) is checked by `check_font`,
 //! which computes every glyph's expanded size once, bases before the glyphs that use them,
 //! so that components that double at each level cost one addition per component.
 //!
@@ -12,7 +12,7 @@
 //!   and advances as unsigned 16-bit numbers that several readers take as signed.
 //! - A TrueType glyph holds at most 65,535 points and 32,766 contours; a font at most
 //!   65,535 glyphs (`.notdef` included).
-//! - Glyph names follow the OpenType `post` rule ([`crate::names::glyph_name_problem`]).
+//! - Glyph names follow the OpenType `post` rule (`names::glyph_name_problem`).
 //! - `<family>-<style>.ttf` must fit the 255-byte file-name limit of common file systems.
 //! - The `name` table addresses its strings with 16-bit offsets.
 //!

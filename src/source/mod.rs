@@ -1,11 +1,11 @@
 //! Sources: TOML text -> typed [`crate::model::Font`], with spans and diagnostics; and the
 //! canonical text back ([`emit`]) for `fmt` and `import`.
 //!
-//! The format is documented in `docs/format.md`. One file per job: [`load`] reads a
+//! The format is documented in `docs/format.md`. One file per job: `load` reads a
 //! directory and runs the checks across files; `info`, `glyph` and `kerning` read one file
 //! each; `value` reads typed TOML values; `geometry` holds the point checks; [`limits`]
 //! holds the limits of the outputs; `components` resolves the component graph (bases,
-//! cycles, an order for sizes computed once per glyph); [`format`] plans the rewrite that
+//! cycles, an order for sizes computed once per glyph); `format` plans the rewrite that
 //! `xglyph fmt` performs. For a font with masters, `designspace` reads `font.toml`'s
 //! `[[axis]]`, `[[master]]` and `[[instance]]` tables, and `compat` compares each master
 //! folder's glyphs with the default master's.
