@@ -698,24 +698,15 @@ fn blend_gap(masters: &[&XSpline], probe: &Probe) -> f64 {
     let steps = GAP_SAMPLES_PER_SEGMENT * spline.segment_count();
     let mut gap: f64 = 0.0;
     for i in 0..steps {
-        let mut t = i as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
+        let t = i as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
         let q = masters
             .iter()
             .zip(&probe.weights)
             .fold(Vec2::ZERO, |acc, (m, w)| acc + *w * m.eval(t).to_vec2())
             .to_point();
         // Newton on the curve parameter towards the nearest point, from the same `T`.
-        let mut best = spline.eval(t).distance(q);
-        for _ in 0..3 {
-            let (c, d) = spline.eval_deriv(t);
-            let dd = d.dot(d);
-            if dd <= 0.0 {
-                break;
-            }
-            t += (q - c).dot(d) / dd;
-            best = best.min(spline.eval(t).distance(q));
-        }
-        gap = gap.max(best);
+        let unbounded = (f64::NEG_INFINITY, f64::INFINITY);
+        gap = gap.max(fit::distance_to_curve(spline, q, t, unbounded, 3));
     }
     gap
 }

@@ -862,17 +862,23 @@ fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64)
         let v = paired(i) + (paired(i + 1) - paired(i)) * s;
         err = err.max(poly.project(spline.eval(t), v).1);
         let q = poly.eval(v).to_point();
-        err = err.max(distance_to_curve(spline, q, t, (lo, hi)));
+        err = err.max(distance_to_curve(spline, q, t, (lo, hi), 4));
     }
     err
 }
 
-/// The distance from `q` to the true curve near parameter `t`: four Newton steps on the
+/// The distance from `q` to the true curve near parameter `t`: `steps` Newton steps on the
 /// curve parameter within `[lo, hi]`, keeping the nearest point seen. Every distance taken
 /// is to a real curve point, so the result never underestimates the distance there.
-fn distance_to_curve(spline: &XSpline, q: Point, mut t: f64, (lo, hi): (f64, f64)) -> f64 {
+pub(crate) fn distance_to_curve(
+    spline: &XSpline,
+    q: Point,
+    mut t: f64,
+    (lo, hi): (f64, f64),
+    steps: usize,
+) -> f64 {
     let mut nearest = spline.eval(t).distance(q);
-    for _ in 0..4 {
+    for _ in 0..steps {
         let (c, d) = spline.eval_deriv(t);
         let dd = d.dot(d);
         if dd <= 0.0 {
@@ -1064,7 +1070,7 @@ fn measure_golden(
     let (lo, hi) = (samples.t[0], samples.t[n - 1]);
     let to_curve = |v: f64| {
         let (q, (_, t)) = to_pieces(v);
-        distance_to_curve(spline, q, t, (lo, hi))
+        distance_to_curve(spline, q, t, (lo, hi), 4)
     };
     let steps = 2 * (n - 1);
     let back: Vec<f64> = (0..=steps)
