@@ -317,6 +317,7 @@ fn fit_glyph(
         unicodes: glyph.unicodes.clone(),
         advance: glyph.advance,
         components: glyph.components.clone(),
+        anchors: glyph.anchors.clone(),
         contours: placed[0]
             .iter()
             .map(|(c, (dx, dy))| PlacedContour {

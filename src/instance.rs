@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use crate::designspace::{Designspace, Location, RegionError};
-use crate::model::{Component, Contour, Family, Font, Glyph, KernPair};
+use crate::model::{Anchor, Component, Contour, Family, Font, Glyph, KernPair};
 use crate::source::emit;
 use crate::xspline::{ControlPoint, XSplineError};
 
@@ -106,6 +106,27 @@ impl Family {
                 advance: blend(&w, masters.iter().map(|g| g.advance)),
                 contours,
                 components,
+                anchors: d
+                    .anchors
+                    .iter()
+                    .map(|a| {
+                        // The same anchor in each master (by name); `check` requires it,
+                        // and a master without it holds the default's position.
+                        let at = |g: &Glyph| {
+                            g.anchors
+                                .iter()
+                                .find(|b| b.name == a.name)
+                                .map_or(a.position, |b| b.position)
+                        };
+                        Anchor {
+                            name: a.name.clone(),
+                            position: (
+                                blend(&w, masters.iter().map(|g| at(g).0)),
+                                blend(&w, masters.iter().map(|g| at(g).1)),
+                            ),
+                        }
+                    })
+                    .collect(),
             });
         }
         Ok(Font {

@@ -136,6 +136,7 @@ mod tests {
             advance,
             contours: vec![],
             components: vec![],
+            anchors: vec![],
         }
     }
 

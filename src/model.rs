@@ -134,6 +134,35 @@ pub struct Glyph {
     pub contours: Vec<Contour>,
     /// Other glyphs placed into this one.
     pub components: Vec<Component>,
+    /// Named attachment points (`[[anchor]]`), in source order. A name starting with `_`
+    /// makes the glyph a mark that attaches by it (`_top` to a base's `top`).
+    pub anchors: Vec<Anchor>,
+}
+
+/// A named attachment point of a glyph, font units (`[[anchor]]` in the glyph file).
+///
+/// Bases carry `top`, `bottom`, …; marks carry `_top`, … (where they attach), and may carry
+/// `top` too, for a mark stacked on them (`mkmk`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Anchor {
+    /// Anchor name, e.g. `"top"` or `"_top"`.
+    pub name: String,
+    /// Position `(x, y)`, font units.
+    pub position: (f64, f64),
+}
+
+impl Anchor {
+    /// For a mark's anchor (`_top`), the base anchor it attaches to (`top`).
+    pub fn attaches_to(&self) -> Option<&str> {
+        self.name.strip_prefix('_')
+    }
+}
+
+impl Glyph {
+    /// Whether the glyph is a mark: it has an anchor whose name starts with `_`.
+    pub fn is_mark(&self) -> bool {
+        self.anchors.iter().any(|a| a.attaches_to().is_some())
+    }
 }
 
 /// One closed X-spline contour, as written (direction is fixed on output).

@@ -31,7 +31,7 @@ use rayon::prelude::*;
 
 use crate::cache::FitCache;
 use crate::fit::fit_contour;
-use crate::model::{Component, Font, FontInfo, Glyph, GlyphIndex, KernPair};
+use crate::model::{Anchor, Component, Font, FontInfo, Glyph, GlyphIndex, KernPair};
 use crate::orient::orient_contours;
 use crate::xspline::{ControlPoint, XSpline};
 
@@ -59,6 +59,8 @@ pub struct OutlinedGlyph {
     pub advance: f64,
     /// The components the glyph places (their contours are in `contours` and `path`).
     pub components: Vec<Component>,
+    /// The glyph's own anchors, as in the source (see [`crate::model::Anchor`]).
+    pub anchors: Vec<Anchor>,
     /// The X-spline contours the path was fitted to: the glyph's own, then its components'.
     pub contours: Vec<PlacedContour>,
     /// Closed subpaths (MoveTo … ClosePath), components resolved, oriented.
@@ -231,6 +233,7 @@ fn outline_glyph_with<'a>(
         unicodes: glyph.unicodes.clone(),
         advance: glyph.advance,
         components: glyph.components.clone(),
+        anchors: glyph.anchors.clone(),
         contours,
         path,
         max_error,
@@ -285,6 +288,7 @@ pub fn notdef_box(info: &FontInfo) -> OutlinedGlyph {
         unicodes: Vec::new(),
         advance,
         components: Vec::new(),
+        anchors: Vec::new(),
         contours: Vec::new(),
         path,
         max_error: 0.0,
@@ -331,6 +335,7 @@ mod tests {
             advance: 500.0,
             contours,
             components,
+            anchors: Vec::new(),
         }
     }
 

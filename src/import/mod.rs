@@ -378,6 +378,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
         advance: round_to(source.advance, grid),
         contours,
         components: Vec::new(),
+        anchors: Vec::new(),
     };
     FittedGlyph { glyph, report: row }
 }

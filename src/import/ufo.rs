@@ -279,6 +279,7 @@ fn import_one(
                     advance: g.width,
                     contours: splines,
                     components,
+                    anchors: Vec::new(),
                 };
                 return Ok(UfoGlyph {
                     fitted: FittedGlyph { glyph, report },

@@ -421,6 +421,7 @@ impl Studio {
             unicodes: glyph.unicodes.clone(),
             advance: glyph.advance,
             components: glyph.components.clone(),
+            anchors: glyph.anchors.clone(),
             contours: self
                 .font
                 .placed_contours(glyph)

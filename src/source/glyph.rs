@@ -157,6 +157,7 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
         advance,
         contours,
         components,
+        anchors: Vec::new(),
     };
     Some(Loaded {
         glyph,

@@ -405,6 +405,7 @@ mod tests {
                 advance: 0.0,
                 contours: Vec::new(),
                 components: Vec::new(),
+                anchors: Vec::new(),
             },
             complete: true,
             spans: GlyphSpans::default(),

@@ -238,6 +238,7 @@ fn glyph(name: &str, unicodes: &[char], advance: f64, contours: Vec<Contour>) ->
         advance,
         contours,
         components: Vec::new(),
+        anchors: Vec::new(),
     }
 }
 

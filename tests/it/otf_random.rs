@@ -47,6 +47,7 @@ proptest! {
             advance: f64::from(advance),
             contours: vec![Contour::new(points).expect("a valid contour")],
             components: Vec::new(),
+            anchors: Vec::new(),
         };
         let font = font_with(glyph, tolerance);
         let outlines = outline_font(&font, tolerance);

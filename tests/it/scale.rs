@@ -104,6 +104,7 @@ fn cjk_like(n: u32) -> Font {
                 advance: 1000.0,
                 contours: vec![square.clone()],
                 components: vec![],
+                anchors: Vec::new(),
             }
         })
         .collect();

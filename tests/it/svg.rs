@@ -272,6 +272,7 @@ fn triangle(name: &str, c: Option<char>) -> Glyph {
         ])
         .expect("a valid contour")],
         components: vec![],
+        anchors: Vec::new(),
     }
 }
 

@@ -186,6 +186,7 @@ fn outlined(name: &str, c: char, advance: f64, path: BezPath) -> OutlinedGlyph {
         unicodes: vec![c],
         advance,
         components: vec![],
+        anchors: Vec::new(),
         contours: vec![],
         path,
         max_error: 0.0,
