@@ -164,6 +164,7 @@ pub fn outline_family(
             info: family.default.info.clone(),
             glyphs: m.glyphs.clone(),
             kerning: m.kerning.clone(),
+            features: None,
         }))
         .collect();
     let indexes: Vec<_> = fonts.iter().map(Font::index).collect();
@@ -203,6 +204,7 @@ pub fn outline_family(
     let default = OutlinedFont {
         info: family.default.info.clone(),
         kerning: family.default.kerning.clone(),
+        features: family.default.features.clone(),
         tolerance,
         glyphs: glyphs.iter().map(|g| g.default.clone()).collect(),
     };

@@ -133,6 +133,7 @@ impl Family {
             info: self.default.info.clone(),
             glyphs,
             kerning: self.kerning_at(&w),
+            features: self.default.features.clone(),
         })
     }
 

@@ -151,6 +151,7 @@ mod tests {
         }
         Font {
             info: test_info(),
+            features: None,
             glyphs,
             kerning: vec![KernPair {
                 left: "A".into(),

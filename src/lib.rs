@@ -46,7 +46,7 @@ pub mod ufo;
 pub mod write;
 pub mod xspline;
 
-pub use model::{Anchor, Component, Contour, Font, FontInfo, Glyph, KernPair};
+pub use model::{Anchor, Component, Contour, FeatureFile, Font, FontInfo, Glyph, KernPair};
 pub use outline::{
     outline_font, outline_font_with, outline_glyph, OutlineOptions, OutlinedFont, OutlinedGlyph,
     PlacedContour, Progress,

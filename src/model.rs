@@ -21,6 +21,18 @@ pub struct Font {
     pub glyphs: Vec<Glyph>,
     /// `kerning.toml`.
     pub kerning: Vec<KernPair>,
+    /// `features.fea`, when the font folder has one.
+    pub features: Option<FeatureFile>,
+}
+
+/// The font's own OpenType feature code (`features.fea` in the font folder), compiled
+/// together with the features generated from the sources (kerning, anchors).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FeatureFile {
+    /// The file, for diagnostics at file:line:col.
+    pub path: PathBuf,
+    /// Its text, as read.
+    pub text: String,
 }
 
 /// A font with masters: the default master (an ordinary [`Font`]), the design space, and

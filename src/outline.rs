@@ -31,7 +31,7 @@ use rayon::prelude::*;
 
 use crate::cache::FitCache;
 use crate::fit::fit_contour;
-use crate::model::{Anchor, Component, Font, FontInfo, Glyph, GlyphIndex, KernPair};
+use crate::model::{Anchor, Component, FeatureFile, Font, FontInfo, Glyph, GlyphIndex, KernPair};
 use crate::orient::orient_contours;
 use crate::xspline::{ControlPoint, XSpline};
 
@@ -42,6 +42,8 @@ pub struct OutlinedFont {
     pub info: FontInfo,
     /// Kerning pairs by glyph name.
     pub kerning: Vec<KernPair>,
+    /// The font's own feature code (`features.fea`), if any.
+    pub features: Option<FeatureFile>,
     /// The tolerance the outlines were fitted to (font units).
     pub tolerance: f64,
     /// Every glyph: `.notdef` first when the font has one, then the model's order.
@@ -174,6 +176,7 @@ pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) 
     OutlinedFont {
         info: font.info.clone(),
         kerning: font.kerning.clone(),
+        features: font.features.clone(),
         tolerance,
         glyphs: order
             .par_iter()
@@ -354,6 +357,7 @@ mod tests {
     fn notdef_first_components_placed_and_counted() {
         let font = Font {
             info: info(),
+            features: None,
             glyphs: vec![
                 glyph("dot", vec![square(0.0, 0.0, 100.0)], vec![]),
                 glyph(
@@ -396,6 +400,7 @@ mod tests {
         .expect("distinct points");
         let font = Font {
             info: info(),
+            features: None,
             glyphs: vec![
                 glyph("base", vec![tiny], vec![]),
                 glyph(

@@ -285,6 +285,7 @@ fn import_glyphs(
             info,
             glyphs,
             kerning: Vec::new(),
+            features: None,
         },
         report: Report {
             rows,

@@ -120,6 +120,7 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
             info,
             glyphs,
             kerning,
+            features: None,
         },
         report: Report {
             rows,

@@ -28,6 +28,7 @@ mod tests {
             tolerance: 0.5,
             glyphs: Vec::new(),
             kerning: Vec::new(),
+            features: None,
         };
         let ttf = crate::otf::ttf(&font).expect("ttf");
         let w = woff2(&ttf).expect("woff2");

@@ -19,7 +19,7 @@ use super::info::load_info;
 use super::kerning::load_kerning;
 use super::limits;
 use crate::designspace::Designspace;
-use crate::model::{glyph_order, Family, Font, FontInfo, Glyph, Master};
+use crate::model::{glyph_order, Family, FeatureFile, Font, FontInfo, Glyph, Master};
 
 /// What a source file holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -176,6 +176,25 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         }
     };
 
+    // `features.fea` is read here and compiled by the OpenType backend, which reports its
+    // errors at file:line:col (`check` runs that compiler too).
+    let fea_path = dir.join("features.fea");
+    let features = match regular_file(&fea_path) {
+        Ok(true) => read(&fea_path, &mut out).map(|text| FeatureFile {
+            path: fea_path,
+            text,
+        }),
+        Ok(false) => None,
+        Err(what) => {
+            out.push(Diagnostic::whole(
+                &fea_path,
+                Severity::Error,
+                format!("`features.fea` is {what}, not a regular file"),
+            ));
+            None
+        }
+    };
+
     // The masters: each folder's glyphs and kerning, compared with the default's.
     let spec = spec.unwrap_or_default();
     let mut masters = Vec::new();
@@ -279,6 +298,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             info,
             glyphs: model_glyphs,
             kerning,
+            features,
         },
         warnings: out,
         files,

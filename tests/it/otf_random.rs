@@ -22,6 +22,7 @@ fn font_with(glyph: Glyph, tolerance: f64) -> Font {
         },
         glyphs: vec![glyph],
         kerning: Vec::new(),
+        features: None,
     }
 }
 

@@ -308,6 +308,7 @@ fn hostile_names_make_valid_xml_and_round_trip() {
             right: "]]>".into(),
             value: -25.5,
         }],
+        features: None,
     };
     let outlines = outline_font(&font, 0.5);
     let text = svg_font(&outlines);

@@ -218,6 +218,7 @@ fn tiny() -> OutlinedFamily {
     };
     let default = OutlinedFont {
         info: FontInfo::with_em("Tiny Var", 1000),
+        features: None,
         // `l l` is the same in every master: its deltas are all 0.
         kerning: vec![
             kern("l", "o", -12.0),
