@@ -35,9 +35,10 @@
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
 //!   refitted as long as that helps.
 
+use std::cell::OnceCell;
 use std::fmt;
 
-use kurbo::{BezPath, CubicBez, Vec2};
+use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 
 use crate::fit::{self, Stretch};
 use crate::xspline::{ControlPoint, XSpline, XSplineError};
@@ -263,9 +264,12 @@ fn blend_cubic(cubics: &[CubicBez], weights: &[f64]) -> CubicBez {
 /// The cuts every master shares: master 0's stretches, each smooth one cut again at every
 /// other master's cusps (sharp points are the same in all, so edges coincide).
 fn joint_stretches(masters: &[&XSpline]) -> Vec<Stretch> {
-    let mut cuts: Vec<f64> = masters
+    let first = fit::stretches(masters[0]);
+    let others = masters[1..].iter().flat_map(|spline| fit::stretches(spline));
+    let mut cuts: Vec<f64> = first
         .iter()
-        .flat_map(|spline| fit::stretches(spline))
+        .copied()
+        .chain(others)
         .filter_map(|piece| match piece {
             Stretch::Smooth { start, .. } => Some(start),
             Stretch::Edge { .. } => None,
@@ -273,7 +277,7 @@ fn joint_stretches(masters: &[&XSpline]) -> Vec<Stretch> {
         .collect();
     cuts.sort_by(f64::total_cmp);
     let mut out = Vec::new();
-    for piece in fit::stretches(masters[0]) {
+    for piece in first {
         let Stretch::Smooth { start, end } = piece else {
             out.push(piece);
             continue;
@@ -302,6 +306,10 @@ struct Span {
     stretch: (f64, f64),
     cubics: Vec<CubicBez>,
     errors: Vec<f64>,
+    /// The span sampled in every master (taken when it is first measured).
+    samples: Option<JointSamples>,
+    /// Its [`JointSamples::hull_bound`], once computed (masters with the same `s` only).
+    hull: Option<f64>,
 }
 
 /// A contour at which fits are measured: its blend weights and blended X-spline.
@@ -320,10 +328,11 @@ struct Fitter<'a> {
     /// For every position, its probe.
     position_probe: Vec<usize>,
     goal: f64,
-    /// The goal at each probe: `goal`, or at a blend whose curve lies farther than that from
-    /// the blend of the masters' curves (`s` interpolates non-linearly), that distance with
-    /// a margin: no structure with vertices on the masters' curves gets closer.
-    goals: Vec<f64>,
+    /// The goal at each probe, computed when first needed ([`Fitter::goal_at`]).
+    goals: Vec<OnceCell<f64>>,
+    /// Every master has the same `s` at every point: every blend is the blend of the
+    /// masters' curves, and [`JointSamples::hull_bound`] applies.
+    same_shape: bool,
 }
 
 impl<'a> Fitter<'a> {
@@ -365,17 +374,13 @@ impl<'a> Fitter<'a> {
             .map(|p| p.spline.min_tolerance())
             .fold(0.0, f64::max);
         let goal = tolerance.max(floor) * fit::SAFETY;
-        let goals = probes
-            .iter()
-            .enumerate()
-            .map(|(k, probe)| {
-                if k < count {
-                    goal
-                } else {
-                    goal.max(VERTEX_MARGIN * blend_gap(masters, probe))
-                }
-            })
-            .collect();
+        let goals = probes.iter().map(|_| OnceCell::new()).collect();
+        let same_shape = masters.iter().all(|m| {
+            m.points()
+                .iter()
+                .zip(masters[0].points())
+                .all(|(p, q)| p.s == q.s)
+        });
         Fitter {
             masters,
             probes,
@@ -383,13 +388,20 @@ impl<'a> Fitter<'a> {
             position_probe,
             goal,
             goals,
+            same_shape,
         }
     }
 
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sampled
     /// (lower-bound) error over the masters: the search's cheap error. The other probes are
     /// only measured (their sampled error costs nearly a measure and saved no trials).
-    fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
+    fn trial(&self, a: f64, b: f64, t01: (f64, f64)) -> (Vec<CubicBez>, f64) {
+        let clock = std::time::Instant::now();
+        let r = self.trial_(a, b, t01);
+        NANOS[2].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
+        r
+    }
+    fn trial_(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
         let mut worst: f64 = 0.0;
         let cubics: Vec<CubicBez> = self
             .masters
@@ -407,14 +419,74 @@ impl<'a> Fitter<'a> {
     /// Measures the span's blended cubic at each probe in `probes`; the largest error as a
     /// multiple of [`Fitter::goal`] relative to each probe's own goal (at most `goal` when
     /// the span meets every probe's goal).
+    ///
+    /// Each probe's error is the cheapest bound that meets its goal: the span's
+    /// [`JointSamples::hull_bound`] (every position between the masters at once, when all
+    /// masters have the same `s`), else [`JointSamples::bound`] at the probe, else
+    /// [`fit`]'s two-sided measure. A bound within the goal proves what the measure would
+    /// accept, so the decisions are the measure's and only the cost differs.
+    /// The goal at probe `k`: `goal`, or at a blend whose curve lies farther than that from
+    /// the blend of the masters' curves (`s` interpolates non-linearly), that distance with
+    /// a margin: no structure with vertices on the masters' curves gets closer. (Computed
+    /// only for a probe where a span misses `goal`: it costs a pass over the contour.)
+    fn goal_at(&self, k: usize) -> f64 {
+        if k < self.masters.len() || self.same_shape {
+            return self.goal;
+        }
+        *self.goals[k].get_or_init(|| {
+            self.goal
+                .max(VERTEX_MARGIN * blend_gap(self.masters, &self.probes[k]))
+        })
+    }
+
     fn measure(&self, span: &mut Span, probes: impl IntoIterator<Item = usize>) -> f64 {
+        let clock = std::time::Instant::now();
+        let r = self.measure_(span, probes);
+        NANOS[0].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
+        r
+    }
+    fn measure_(&self, span: &mut Span, probes: impl IntoIterator<Item = usize>) -> f64 {
         let mut worst: f64 = 0.0;
         for k in probes {
             let probe = &self.probes[k];
-            let cubic = blend_cubic(&span.cubics, &probe.weights);
-            let err = fit::measure(&probe.spline, span.a, span.b, &cubic);
+            let goal = self.goal;
+            let samples = span
+                .samples
+                .get_or_insert_with(|| JointSamples::new(self.masters, span.a, span.b, &span.cubics));
+            let hull = if self.same_shape {
+                *span
+                    .hull
+                    .get_or_insert_with(|| samples.hull_bound(&span.cubics, self.goal))
+            } else {
+                f64::INFINITY
+            };
+            let convex = probe.weights.iter().all(|w| *w >= 0.0);
+            let err = if convex && hull <= goal {
+                COUNT[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                hull
+            } else {
+                let bound = samples.bound(&span.cubics, probe, self.same_shape, goal);
+                if bound <= goal {
+                    COUNT[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    bound
+                } else {
+                    let c = COUNT[2].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let cubic = blend_cubic(&span.cubics, &probe.weights);
+                    let clock = std::time::Instant::now();
+                    let m = fit::measure(&probe.spline, span.a, span.b, &cubic);
+                    NANOS[1].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
+                    if c % 20 == 0 && std::env::var("PROBE").is_ok() {
+                        eprintln!("k={k} w={:?} bound={bound:.3} hull={hull:.3} measure={m:.3} goal={goal:.3} h={:.3} n={}", probe.weights, span.b - span.a, samples.t.len());
+                    }
+                    m
+                }
+            };
             span.errors[k] = err;
-            worst = worst.max(err * self.goal / self.goals[k]);
+            if err > goal {
+                worst = worst.max(err * goal / self.goal_at(k));
+            } else {
+                worst = worst.max(err);
+            }
         }
         worst
     }
@@ -426,6 +498,8 @@ impl<'a> Fitter<'a> {
             stretch,
             cubics,
             errors: vec![f64::NAN; self.probes.len()],
+            samples: None,
+            hull: None,
         }
     }
 
@@ -598,7 +672,7 @@ impl<'a> Fitter<'a> {
             return;
         }
         let failing: Vec<usize> = (self.searched..count)
-            .filter(|&k| span.errors[k] > self.goals[k])
+            .filter(|&k| span.errors[k] > self.goal_at(k))
             .collect();
         let checks: Vec<usize> = (0..self.searched).chain(failing.iter().copied()).collect();
         let mut pieces = Vec::new();
@@ -614,7 +688,7 @@ impl<'a> Fitter<'a> {
         let worst = |s: &Span| {
             failing
                 .iter()
-                .map(|&k| s.errors[k] / self.goals[k])
+                .map(|&k| s.errors[k] / self.goal_at(k))
                 .fold(0.0, f64::max)
         };
         let after = pieces.iter().map(worst).fold(0.0, f64::max);
@@ -679,6 +753,402 @@ impl<'a> Fitter<'a> {
             segments,
         }
     }
+}
+
+/// TEMP counters: hull, bound, measure.
+pub static COUNT: [std::sync::atomic::AtomicUsize; 3] = [
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+];
+/// TEMP
+pub static NANOS: [std::sync::atomic::AtomicUsize; 3] = [
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+    std::sync::atomic::AtomicUsize::new(0),
+];
+/// Curve samples per unit of parameter in [`JointSamples`] (as [`fit`]'s measure).
+const SAMPLES_PER_SEGMENT: f64 = 20.0;
+/// Fewest samples per span in [`JointSamples`].
+const MIN_SAMPLES: usize = 12;
+/// Most any master's curve may turn (radians) between two joint samples before one is
+/// added between them.
+const MAX_TURN: f64 = 0.35;
+/// Most bisections of one sample step where a curve turns fast.
+const MAX_REFINE: usize = 8;
+/// Most halvings of a gap polynomial when its control points bound it above the goal.
+const GAP_HALVINGS: usize = 2;
+/// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
+const PAIR_SPLITS: usize = 3;
+/// Newton steps when projecting a sample onto a master's cubic (from the previous one's
+/// parameter; any pairing gives a valid bound, a closer one a tighter bound).
+const PROJECT_STEPS: usize = 4;
+
+/// One span sampled in every master at common curve parameters, each sample paired with
+/// a parameter of its master's cubic: what bounds the span's error at every position
+/// without measuring each.
+///
+/// # The bound
+///
+/// Between samples `i` and `i + 1` take each master's curve as its cubic Hermite
+/// interpolant `H_j(s)` (from the samples' points and derivatives; the curve [`fit`]'s
+/// measure works on), and pair it with the cubic run linearly between two parameters,
+/// `B_j(u_i + s (u_{i+1} - u_i))`, with `u_0 = 0` and `u_n = 1`. At a position with blend
+/// weights `w`:
+/// - The blended cubic is `B_w = Σ w_j B_j`. When every master has the same `s`, the
+///   X-spline's blending functions are the same in every master (they depend on `s` and the
+///   parameter only), so the blended curve is `X_w(t) = Σ w_j X_j(t)` with the same
+///   derivatives, and its Hermite interpolant on the same samples is `Σ w_j H_j`
+///   (interpolation is linear in the data). With the pairing shared by the masters, the
+///   gap of the blend is `g_w(s) = Σ w_j g_j(s)`: affine in the weights.
+/// - Each `g_j` is a cubic polynomial in `s`; as a cubic Bézier its control points `c_jk`
+///   bound it (convex hull): `|g_w(s)| ≤ max_k |Σ_j w_j c_jk| ≤ max_{j,k} |c_jk|` when the
+///   weights are non-negative (they sum to 1). Halving by de Casteljau tightens it.
+/// - As in [`fit`]'s bound, the largest `|g_w|` over the intervals bounds the two-sided
+///   distance: every curve point `H_w(s)` is that close to the cubic point it is paired with,
+///   and the paired cubic parameters run continuously from 0 to 1, so every cubic point is
+///   paired with a curve point that close (a Fréchet bound, stronger than the Hausdorff
+///   distance the measure estimates).
+///
+/// So [`JointSamples::hull_bound`], computed from the masters alone, bounds the error at
+/// every position between them, not only the sampled ones. Where `s` differs the blend is
+/// not affine in the weights; [`JointSamples::bound`] then takes the blended contour's own
+/// samples at one position (same bound, one position).
+///
+/// Limits: as in [`fit`], the bound is proven against the samples' Hermite interpolants,
+/// whose own error (O(h^4) at 20 samples per segment, refined where a curve turns fast) is
+/// not bounded here. The pairing is the masters' projections averaged, so where the masters'
+/// cubics run at different speeds along their curves the bound is loose (the cost of a
+/// loose bound is a measure, never a wrong answer).
+struct JointSamples {
+    t: Vec<f64>,
+    /// Per master: the curve point, derivative and cubic parameter at each sample.
+    p: Vec<Vec<Point>>,
+    d: Vec<Vec<Vec2>>,
+    u: Vec<Vec<f64>>,
+}
+
+impl JointSamples {
+    /// Samples `[a, b]` in every master (uniform, refined where any master turns fast) and
+    /// projects each master's samples onto its cubic.
+    fn new(masters: &[&XSpline], a: f64, b: f64, cubics: &[CubicBez]) -> JointSamples {
+        let n = (((b - a) * SAMPLES_PER_SEGMENT).ceil() as usize).max(MIN_SAMPLES);
+        let count = masters.len();
+        let mut out = JointSamples {
+            t: Vec::with_capacity(n + 1),
+            p: vec![Vec::with_capacity(n + 1); count],
+            d: vec![Vec::with_capacity(n + 1); count],
+            u: vec![Vec::with_capacity(n + 1); count],
+        };
+        let row = |t: f64| -> Vec<(Point, Vec2)> { masters.iter().map(|m| m.eval_deriv(t)).collect() };
+        let mut previous: Option<(f64, Vec<(Point, Vec2)>)> = None;
+        for i in 0..=n {
+            let t = if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            };
+            let here = row(t);
+            if let Some(start) = previous.take() {
+                out.refine(&row, &start, (t, &here), MAX_REFINE);
+            }
+            out.push(t, &here);
+            previous = Some((t, here));
+        }
+        let last = out.t.len() - 1;
+        for (j, cubic) in cubics.iter().enumerate() {
+            let mut guess = 0.0;
+            for i in 0..=last {
+                let u = if i == 0 {
+                    0.0
+                } else if i == last {
+                    1.0
+                } else {
+                    let point = out.p[j][i];
+                    let near = project(cubic, point, guess);
+                    // A poor start can stall at a clamp or a far branch: retry from the
+                    // sample's share of the span.
+                    let share = (out.t[i] - a) / (b - a);
+                    let alt = project(cubic, point, share);
+                    if cubic.eval(alt).distance(point) < cubic.eval(near).distance(point) {
+                        alt
+                    } else {
+                        near
+                    }
+                };
+                out.u[j].push(u);
+                guess = u;
+            }
+        }
+        out
+    }
+
+    fn push(&mut self, t: f64, row: &[(Point, Vec2)]) {
+        self.t.push(t);
+        for (j, (p, d)) in row.iter().enumerate() {
+            self.p[j].push(*p);
+            self.d[j].push(*d);
+        }
+    }
+
+    /// Adds the samples strictly between `start` and `end` that keep every master's turn
+    /// between neighbours below [`MAX_TURN`], bisecting at most `depth` times.
+    fn refine(
+        &mut self,
+        row: &impl Fn(f64) -> Vec<(Point, Vec2)>,
+        start: &(f64, Vec<(Point, Vec2)>),
+        end: (f64, &[(Point, Vec2)]),
+        depth: usize,
+    ) {
+        let fast = start
+            .1
+            .iter()
+            .zip(end.1)
+            .any(|(&(p0, d0), &(p1, d1))| turns_fast(p0, d0, p1, d1));
+        if depth == 0 || !fast {
+            return;
+        }
+        let t = 0.5 * (start.0 + end.0);
+        let mid = (t, row(t));
+        self.refine(row, start, (t, &mid.1), depth - 1);
+        self.push(t, &mid.1);
+        self.refine(row, &mid, end, depth - 1);
+    }
+
+    /// The Hermite piece of interval `i` from its end points and derivatives, as Bézier
+    /// control points.
+    fn hermite(&self, i: usize, points: [Point; 2], derivs: [Vec2; 2]) -> [Vec2; 4] {
+        let third = (self.t[i + 1] - self.t[i]) / 3.0;
+        [
+            points[0].to_vec2(),
+            points[0].to_vec2() + derivs[0] * third,
+            points[1].to_vec2() - derivs[1] * third,
+            points[1].to_vec2(),
+        ]
+    }
+
+    /// An upper bound of the two-sided distance between the blend of `cubics` at every
+    /// position with non-negative weights and the X-spline blended there, when every master
+    /// has the same `s` (see the type's docs).
+    fn hull_bound(&self, cubics: &[CubicBez], goal: f64) -> f64 {
+        let count = cubics.len();
+        let n = self.t.len();
+        let u: Vec<f64> = (0..n)
+            .map(|i| {
+                let mean = self.u.iter().map(|u| u[i]).sum::<f64>() / count as f64;
+                if i == 0 || i == n - 1 {
+                    mean
+                } else {
+                    let points: Vec<Point> = self.p.iter().map(|p| p[i]).collect();
+                    project_jointly(cubics, &points, mean)
+                }
+            })
+            .collect();
+        let mut worst: f64 = 0.0;
+        for i in 0..n - 1 {
+            let pieces: Vec<[Vec2; 4]> = (0..count)
+                .map(|j| {
+                    let points = [self.p[j][i], self.p[j][i + 1]];
+                    let derivs = [self.d[j][i], self.d[j][i + 1]];
+                    self.hermite(i, points, derivs)
+                })
+                .collect();
+            let bound = paired_bound(&pieces, cubics, (u[i], u[i + 1]), goal, PAIR_SPLITS);
+            worst = worst.max(bound);
+            if worst > goal {
+                // Over the goal is all the caller needs to know (it measures instead).
+                break;
+            }
+        }
+        worst
+    }
+
+    /// The same bound at one position (`probe`), with the pairing blended by its weights.
+    /// `linear`: every master has the same `s`, so the probe's curve samples are the blend
+    /// of the masters'; otherwise they are taken from its own X-spline.
+    fn bound(&self, cubics: &[CubicBez], probe: &Probe, linear: bool, goal: f64) -> f64 {
+        let w = &probe.weights;
+        let n = self.t.len();
+        let u: Vec<f64> = (0..n)
+            .map(|i| match i {
+                0 => 0.0,
+                i if i == n - 1 => 1.0,
+                i => w
+                    .iter()
+                    .zip(&self.u)
+                    .map(|(w, u)| w * u[i])
+                    .sum::<f64>()
+                    .clamp(0.0, 1.0),
+            })
+            .collect();
+        let sample = |i: usize| -> (Point, Vec2) {
+            if linear {
+                let mut p = Vec2::ZERO;
+                let mut d = Vec2::ZERO;
+                for (j, wj) in w.iter().enumerate() {
+                    p += *wj * self.p[j][i].to_vec2();
+                    d += *wj * self.d[j][i];
+                }
+                (p.to_point(), d)
+            } else {
+                probe.spline.eval_deriv(self.t[i])
+            }
+        };
+        let cubic = blend_cubic(cubics, w);
+        let samples: Vec<(Point, Vec2)> = (0..n).map(sample).collect();
+        // The blended pairing, moved to the blended cubic's nearest points (from there the
+        // Newton steps are few).
+        let u: Vec<f64> = u
+            .iter()
+            .enumerate()
+            .map(|(i, &u)| {
+                if i == 0 || i == n - 1 {
+                    u
+                } else {
+                    project(&cubic, samples[i].0, u)
+                }
+            })
+            .collect();
+        let mut worst: f64 = 0.0;
+        for i in 0..n - 1 {
+            let (left, right) = (samples[i], samples[i + 1]);
+            let piece = self.hermite(i, [left.0, right.0], [left.1, right.1]);
+            let bound = paired_bound(&[piece], &[cubic], (u[i], u[i + 1]), goal, PAIR_SPLITS);
+            worst = worst.max(bound);
+            if worst > goal {
+                break;
+            }
+        }
+        worst
+    }
+}
+
+/// Bounds the gaps between the curve pieces `pieces` (one per cubic, Bézier control
+/// points) and `cubics` run from `u0` to `u1`, for every convex combination of the pairs
+/// ([`hull_of_gaps`]). Over `goal`, each piece is halved and its midpoint paired with the
+/// cubics' parameter nearest it (averaged over the cubics), at most `splits` times: where a
+/// curve's speed changes fast, a linear pairing drifts along the cubic by more than the
+/// distance itself. Any pairing gives a valid bound; a closer one a tighter bound.
+fn paired_bound(
+    pieces: &[[Vec2; 4]],
+    cubics: &[CubicBez],
+    (u0, u1): (f64, f64),
+    goal: f64,
+    splits: usize,
+) -> f64 {
+    let gaps: Vec<[Vec2; 4]> = pieces
+        .iter()
+        .zip(cubics)
+        .map(|(piece, cubic)| {
+            let run = cubic.subsegment(u0..u1);
+            let paired = [run.p0, run.p1, run.p2, run.p3];
+            std::array::from_fn(|k| piece[k] - paired[k].to_vec2())
+        })
+        .collect();
+    let bound = hull_of_gaps(&gaps, goal, GAP_HALVINGS);
+    if bound <= goal || splits == 0 {
+        return bound;
+    }
+    let (left, right): (Vec<_>, Vec<_>) = pieces.iter().map(halve).unzip();
+    let um = left
+        .iter()
+        .zip(cubics)
+        .map(|(half, cubic)| project(cubic, half[3].to_point(), 0.5 * (u0 + u1)))
+        .sum::<f64>()
+        / cubics.len() as f64;
+    paired_bound(&left, cubics, (u0, um), goal, splits - 1).max(paired_bound(
+        &right,
+        cubics,
+        (um, u1),
+        goal,
+        splits - 1,
+    ))
+}
+
+/// The largest control-point length of the cubic Béziers `gaps` (which bounds every convex
+/// combination of them, at every parameter), halved by de Casteljau up to `halvings` times
+/// while it exceeds `goal`.
+fn hull_of_gaps(gaps: &[[Vec2; 4]], goal: f64, halvings: usize) -> f64 {
+    let bound = gaps
+        .iter()
+        .flatten()
+        .map(|c| c.hypot())
+        .fold(0.0, f64::max);
+    if bound <= goal || halvings == 0 {
+        return bound;
+    }
+    let (left, right): (Vec<_>, Vec<_>) = gaps.iter().map(halve).unzip();
+    hull_of_gaps(&left, goal, halvings - 1).max(hull_of_gaps(&right, goal, halvings - 1))
+}
+
+/// De Casteljau at one half.
+fn halve(c: &[Vec2; 4]) -> ([Vec2; 4], [Vec2; 4]) {
+    let m01 = (c[0] + c[1]) * 0.5;
+    let m12 = (c[1] + c[2]) * 0.5;
+    let m23 = (c[2] + c[3]) * 0.5;
+    let a = (m01 + m12) * 0.5;
+    let b = (m12 + m23) * 0.5;
+    let mid = (a + b) * 0.5;
+    ([c[0], m01, a, mid], [mid, b, m23, c[3]])
+}
+
+/// Whether a curve between two samples (points and derivatives) may turn by more than
+/// [`MAX_TURN`]: either derivative against the chord, or the two derivatives.
+fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
+    let chord = p1 - p0;
+    let cos = MAX_TURN.cos();
+    let apart = |u: Vec2, v: Vec2| {
+        let norms = u.hypot() * v.hypot();
+        norms > 0.0 && u.dot(v) < cos * norms
+    };
+    apart(d0, chord) || apart(chord, d1) || apart(d0, d1)
+}
+
+/// The parameter at which `cubics` come nearest `points` in the least-squares sense (one
+/// point per cubic), by Newton's method from `guess` within `[0, 1]`.
+fn project_jointly(cubics: &[CubicBez], points: &[Point], guess: f64) -> f64 {
+    let mut u = guess;
+    for _ in 0..PROJECT_STEPS {
+        let (mut slope, mut curvature) = (0.0, 0.0);
+        for (cubic, p) in cubics.iter().zip(points) {
+            let r = cubic.eval(u) - *p;
+            let v = cubic.deriv().eval(u).to_vec2();
+            let a = cubic.deriv().deriv().eval(u).to_vec2();
+            slope += r.dot(v);
+            curvature += v.dot(v) + r.dot(a);
+        }
+        if curvature <= 1e-300 {
+            break;
+        }
+        let next = (u - slope / curvature).clamp(0.0, 1.0);
+        let done = (next - u).abs() < 1e-10;
+        u = next;
+        if done {
+            break;
+        }
+    }
+    u
+}
+
+/// The parameter of `cubic` nearest `p`, by Newton's method from `guess` within `[0, 1]`.
+fn project(cubic: &CubicBez, p: Point, guess: f64) -> f64 {
+    let (d1, d2) = (cubic.deriv(), cubic.deriv().deriv());
+    let mut u = guess;
+    for _ in 0..PROJECT_STEPS {
+        let r = cubic.eval(u) - p;
+        let (v, a) = (d1.eval(u).to_vec2(), d2.eval(u).to_vec2());
+        let denom = v.dot(v) + r.dot(a);
+        if denom <= 1e-300 {
+            break;
+        }
+        let next = (u - r.dot(v) / denom).clamp(0.0, 1.0);
+        let done = (next - u).abs() < 1e-10;
+        u = next;
+        if done {
+            break;
+        }
+    }
+    u
 }
 
 /// How far the blend of the masters' curve points, `Σ w_i C_i(T)`, strays from the blended
