@@ -18,9 +18,18 @@
 //! covered, every span is measured at every other position; a span that fails anywhere is
 //! covered again by the same search with the failing positions added to its checks.
 //!
+//! Measuring is mostly bounding: each span is sampled once in every master at common
+//! parameters ([`JointSamples`]). When all masters have the same `s`, the X-spline is
+//! linear in its points, and one bound from the masters alone covers every position
+//! between them; otherwise each position gets a bound from its own samples. Only where a
+//! bound misses the goal does the two-sided measure decide (a bound within the goal proves
+//! what the measure would accept, so the decisions are the measure's).
+//!
 //! Limits:
-//! - The bound holds at the positions given, by the static fitter's sampled measure; between
-//!   them it is not checked (callers pass the masters, the instances and a grid).
+//! - The guarantee holds at the positions given, and at every position between the masters
+//!   where [`CompatibleFit::between_masters`] says so (same `s` everywhere and the bound for
+//!   all of them within the goal on every span); otherwise between the positions given it
+//!   is not checked (callers pass the masters, the instances and a grid).
 //! - Where `s` differs between masters, the blended X-spline is not the blend of the
 //!   masters' curves (the blending functions depend on `s`), and every vertex of the blended
 //!   Béziers lies on that blend. Where the two are farther apart than the tolerance, no
@@ -41,7 +50,7 @@ use std::fmt;
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 
 use crate::fit::{self, Stretch};
-use crate::xspline::{ControlPoint, XSpline, XSplineError};
+use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
@@ -66,8 +75,15 @@ pub struct CompatibleFit {
     /// One closed path per master (same order as the input), all with the same elements:
     /// the same MoveTo start, and LineTo / CurveTo at the same places.
     pub paths: Vec<BezPath>,
-    /// Largest two-sided distance at each checked position (same order as `positions`).
+    /// Largest two-sided distance at each checked position (same order as `positions`):
+    /// the smallest of the span's bounds that meets the goal ([`JointSamples`]), else the
+    /// two-sided measure. Never below the measure, up to the bounds' limits.
     pub max_error: Vec<f64>,
+    /// When every master has the same `s` at every point and the span bound for all
+    /// positions between the masters meets the goal on every span: that bound (font units),
+    /// which holds at **every** position with non-negative weights, not only the checked
+    /// ones. `None` otherwise (the guarantee is then at the checked positions).
+    pub between_masters: Option<f64>,
     /// Segments per path.
     pub segments: usize,
 }
@@ -395,13 +411,7 @@ impl<'a> Fitter<'a> {
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sampled
     /// (lower-bound) error over the masters: the search's cheap error. The other probes are
     /// only measured (their sampled error costs nearly a measure and saved no trials).
-    fn trial(&self, a: f64, b: f64, t01: (f64, f64)) -> (Vec<CubicBez>, f64) {
-        let clock = std::time::Instant::now();
-        let r = self.trial_(a, b, t01);
-        NANOS[2].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
-        r
-    }
-    fn trial_(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
+    fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
         let mut worst: f64 = 0.0;
         let cubics: Vec<CubicBez> = self
             .masters
@@ -440,19 +450,13 @@ impl<'a> Fitter<'a> {
     }
 
     fn measure(&self, span: &mut Span, probes: impl IntoIterator<Item = usize>) -> f64 {
-        let clock = std::time::Instant::now();
-        let r = self.measure_(span, probes);
-        NANOS[0].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
-        r
-    }
-    fn measure_(&self, span: &mut Span, probes: impl IntoIterator<Item = usize>) -> f64 {
         let mut worst: f64 = 0.0;
         for k in probes {
             let probe = &self.probes[k];
             let goal = self.goal;
             let samples = span
                 .samples
-                .get_or_insert_with(|| JointSamples::new(self.masters, span.a, span.b, &span.cubics));
+                .get_or_insert_with(|| JointSamples::new(self.masters, (span.a, span.b), &span.cubics, goal));
             let hull = if self.same_shape {
                 *span
                     .hull
@@ -462,23 +466,14 @@ impl<'a> Fitter<'a> {
             };
             let convex = probe.weights.iter().all(|w| *w >= 0.0);
             let err = if convex && hull <= goal {
-                COUNT[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 hull
             } else {
                 let bound = samples.bound(&span.cubics, probe, self.same_shape, goal);
                 if bound <= goal {
-                    COUNT[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                     bound
                 } else {
-                    let c = COUNT[2].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                     let cubic = blend_cubic(&span.cubics, &probe.weights);
-                    let clock = std::time::Instant::now();
-                    let m = fit::measure(&probe.spline, span.a, span.b, &cubic);
-                    NANOS[1].fetch_add(clock.elapsed().as_nanos() as usize, std::sync::atomic::Ordering::Relaxed);
-                    if c % 20 == 0 && std::env::var("PROBE").is_ok() {
-                        eprintln!("k={k} w={:?} bound={bound:.3} hull={hull:.3} measure={m:.3} goal={goal:.3} h={:.3} n={}", probe.weights, span.b - span.a, samples.t.len());
-                    }
-                    m
+                    fit::measure(&probe.spline, span.a, span.b, &cubic)
                 }
             };
             span.errors[k] = err;
@@ -747,26 +742,21 @@ impl<'a> Fitter<'a> {
                 spans.iter().map(|s| s.errors[probe]).fold(0.0, f64::max)
             })
             .collect();
+        let hulls = spans.iter().map(|s| s.hull.filter(|h| *h <= self.goal));
+        let between_masters = if self.same_shape {
+            hulls.fold(Some(0.0), |acc: Option<f64>, h| Some(acc?.max(h?)))
+        } else {
+            None
+        };
         CompatibleFit {
             paths,
             max_error,
             segments,
+            between_masters,
         }
     }
 }
 
-/// TEMP counters: hull, bound, measure.
-pub static COUNT: [std::sync::atomic::AtomicUsize; 3] = [
-    std::sync::atomic::AtomicUsize::new(0),
-    std::sync::atomic::AtomicUsize::new(0),
-    std::sync::atomic::AtomicUsize::new(0),
-];
-/// TEMP
-pub static NANOS: [std::sync::atomic::AtomicUsize; 3] = [
-    std::sync::atomic::AtomicUsize::new(0),
-    std::sync::atomic::AtomicUsize::new(0),
-    std::sync::atomic::AtomicUsize::new(0),
-];
 /// Curve samples per unit of parameter in [`JointSamples`] (as [`fit`]'s measure).
 const SAMPLES_PER_SEGMENT: f64 = 20.0;
 /// Fewest samples per span in [`JointSamples`].
@@ -778,6 +768,8 @@ const MAX_TURN: f64 = 0.35;
 const MAX_REFINE: usize = 8;
 /// Most halvings of a gap polynomial when its control points bound it above the goal.
 const GAP_HALVINGS: usize = 2;
+/// Newton steps when moving a blended pairing to a blended cubic's nearest points.
+const REPROJECT_STEPS: usize = 2;
 /// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
 const PAIR_SPLITS: usize = 3;
 /// Newton steps when projecting a sample onto a master's cubic (from the previous one's
@@ -831,7 +823,12 @@ struct JointSamples {
 impl JointSamples {
     /// Samples `[a, b]` in every master (uniform, refined where any master turns fast) and
     /// projects each master's samples onto its cubic.
-    fn new(masters: &[&XSpline], a: f64, b: f64, cubics: &[CubicBez]) -> JointSamples {
+    fn new(
+        masters: &[&XSpline],
+        (a, b): (f64, f64),
+        cubics: &[CubicBez],
+        goal: f64,
+    ) -> JointSamples {
         let n = (((b - a) * SAMPLES_PER_SEGMENT).ceil() as usize).max(MIN_SAMPLES);
         let count = masters.len();
         let mut out = JointSamples {
@@ -840,7 +837,9 @@ impl JointSamples {
             d: vec![Vec::with_capacity(n + 1); count],
             u: vec![Vec::with_capacity(n + 1); count],
         };
-        let row = |t: f64| -> Vec<(Point, Vec2)> { masters.iter().map(|m| m.eval_deriv(t)).collect() };
+        let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
+        let mut row =
+            |t: f64| -> Vec<(Point, Vec2)> { runs.iter_mut().map(|r| r.eval_deriv(t)).collect() };
         let mut previous: Option<(f64, Vec<(Point, Vec2)>)> = None;
         for i in 0..=n {
             let t = if i == n {
@@ -850,7 +849,7 @@ impl JointSamples {
             };
             let here = row(t);
             if let Some(start) = previous.take() {
-                out.refine(&row, &start, (t, &here), MAX_REFINE);
+                out.refine(&mut row, &start, (t, &here), MAX_REFINE);
             }
             out.push(t, &here);
             previous = Some((t, here));
@@ -865,15 +864,20 @@ impl JointSamples {
                     1.0
                 } else {
                     let point = out.p[j][i];
-                    let near = project(cubic, point, guess);
-                    // A poor start can stall at a clamp or a far branch: retry from the
-                    // sample's share of the span.
-                    let share = (out.t[i] - a) / (b - a);
-                    let alt = project(cubic, point, share);
-                    if cubic.eval(alt).distance(point) < cubic.eval(near).distance(point) {
-                        alt
-                    } else {
+                    let near = project(cubic, point, guess, PROJECT_STEPS);
+                    let far = cubic.eval(near).distance(point);
+                    if far <= goal {
                         near
+                    } else {
+                        // A poor start can stall at a clamp or a far branch: retry from
+                        // the sample's share of the span.
+                        let share = (out.t[i] - a) / (b - a);
+                        let alt = project(cubic, point, share, PROJECT_STEPS);
+                        if cubic.eval(alt).distance(point) < far {
+                            alt
+                        } else {
+                            near
+                        }
                     }
                 };
                 out.u[j].push(u);
@@ -895,7 +899,7 @@ impl JointSamples {
     /// between neighbours below [`MAX_TURN`], bisecting at most `depth` times.
     fn refine(
         &mut self,
-        row: &impl Fn(f64) -> Vec<(Point, Vec2)>,
+        row: &mut impl FnMut(f64) -> Vec<(Point, Vec2)>,
         start: &(f64, Vec<(Point, Vec2)>),
         end: (f64, &[(Point, Vec2)]),
         depth: usize,
@@ -929,8 +933,12 @@ impl JointSamples {
 
     /// An upper bound of the two-sided distance between the blend of `cubics` at every
     /// position with non-negative weights and the X-spline blended there, when every master
-    /// has the same `s` (see the type's docs).
+    /// has the same `s` (see the type's docs). Above `goal` it stops at the first interval
+    /// that exceeds it: the value then only says "over the goal".
     fn hull_bound(&self, cubics: &[CubicBez], goal: f64) -> f64 {
+        if let [first, second] = cubics {
+            return self.segment_bound([first, second], goal);
+        }
         let count = cubics.len();
         let n = self.t.len();
         let u: Vec<f64> = (0..n)
@@ -963,9 +971,60 @@ impl JointSamples {
         worst
     }
 
+    /// [`JointSamples::hull_bound`] for two masters, with a pairing that moves with the
+    /// position: at weights `(1 - λ, λ)` sample `i` pairs with `(1 - λ) u_0i + λ u_1i`,
+    /// each master's own projection at its end of the axis. Then the gap of interval `i` is
+    /// a polynomial of degree 3 in `s` and 4 in `λ` (the cubics are cubic in the pairing,
+    /// which is linear in `λ`, and the blend multiplies by `λ` once more); its Bernstein
+    /// coefficients on `[0, 1]²`, found from its values at five positions, bound it at every
+    /// position between the masters (convex hull again), and the pairing suits both ends.
+    fn segment_bound(&self, cubics: [&CubicBez; 2], goal: f64) -> f64 {
+        let n = self.t.len();
+        let mut worst: f64 = 0.0;
+        for i in 0..n - 1 {
+            let pieces: Vec<[Vec2; 4]> = (0..2)
+                .map(|j| {
+                    let points = [self.p[j][i], self.p[j][i + 1]];
+                    let derivs = [self.d[j][i], self.d[j][i + 1]];
+                    self.hermite(i, points, derivs)
+                })
+                .collect();
+            // The gap's control points in `s` at λ = 0, 1/4, ..., 1.
+            let mut values = [[Vec2::ZERO; 5]; 4];
+            for (m, column) in (0..5).map(|m| (m, m as f64 / 4.0)) {
+                let w = [1.0 - column, column];
+                let pair = |k: usize| w[0] * self.u[0][k] + w[1] * self.u[1][k];
+                let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &w);
+                let run = cubic.subsegment(pair(i)..pair(i + 1));
+                let paired = [run.p0, run.p1, run.p2, run.p3];
+                for k in 0..4 {
+                    let curve = w[0] * pieces[0][k] + w[1] * pieces[1][k];
+                    values[k][m] = curve - paired[k].to_vec2();
+                }
+            }
+            let net = values.map(|row| {
+                let mut out = [Vec2::ZERO; 5];
+                for (o, weights) in out.iter_mut().zip(&LAMBDA_BERNSTEIN) {
+                    *o = row
+                        .iter()
+                        .zip(weights)
+                        .fold(Vec2::ZERO, |acc, (v, w)| acc + *w * *v);
+                }
+                out
+            });
+            worst = worst.max(net_bound(&net, goal, GAP_HALVINGS));
+            if worst > goal {
+                break;
+            }
+        }
+        worst
+    }
+
     /// The same bound at one position (`probe`), with the pairing blended by its weights.
     /// `linear`: every master has the same `s`, so the probe's curve samples are the blend
-    /// of the masters'; otherwise they are taken from its own X-spline.
+    /// of the masters'; otherwise they are taken from its own X-spline (then the blended
+    /// cubic's ends, on the blend of the masters' curves, may lie off it: the bound counts
+    /// that gap too). Above `goal` it stops as [`JointSamples::hull_bound`] does.
     fn bound(&self, cubics: &[CubicBez], probe: &Probe, linear: bool, goal: f64) -> f64 {
         let w = &probe.weights;
         let n = self.t.len();
@@ -981,6 +1040,7 @@ impl JointSamples {
                     .clamp(0.0, 1.0),
             })
             .collect();
+        let mut run = Run::new(&probe.spline);
         let sample = |i: usize| -> (Point, Vec2) {
             if linear {
                 let mut p = Vec2::ZERO;
@@ -991,7 +1051,7 @@ impl JointSamples {
                 }
                 (p.to_point(), d)
             } else {
-                probe.spline.eval_deriv(self.t[i])
+                run.eval_deriv(self.t[i])
             }
         };
         let cubic = blend_cubic(cubics, w);
@@ -1005,7 +1065,7 @@ impl JointSamples {
                 if i == 0 || i == n - 1 {
                     u
                 } else {
-                    project(&cubic, samples[i].0, u)
+                    project(&cubic, samples[i].0, u, REPROJECT_STEPS)
                 }
             })
             .collect();
@@ -1036,16 +1096,18 @@ fn paired_bound(
     goal: f64,
     splits: usize,
 ) -> f64 {
-    let gaps: Vec<[Vec2; 4]> = pieces
-        .iter()
-        .zip(cubics)
-        .map(|(piece, cubic)| {
-            let run = cubic.subsegment(u0..u1);
-            let paired = [run.p0, run.p1, run.p2, run.p3];
-            std::array::from_fn(|k| piece[k] - paired[k].to_vec2())
-        })
-        .collect();
-    let bound = hull_of_gaps(&gaps, goal, GAP_HALVINGS);
+    let gap = |(piece, cubic): (&[Vec2; 4], &CubicBez)| -> [Vec2; 4] {
+        let run = cubic.subsegment(u0..u1);
+        let paired = [run.p0, run.p1, run.p2, run.p3];
+        std::array::from_fn(|k| piece[k] - paired[k].to_vec2())
+    };
+    let bound = if let ([piece], [cubic]) = (pieces, cubics) {
+        // One pair (a single position): no allocation.
+        hull_of_gaps(&[gap((piece, cubic))], goal, GAP_HALVINGS)
+    } else {
+        let gaps: Vec<[Vec2; 4]> = pieces.iter().zip(cubics).map(gap).collect();
+        hull_of_gaps(&gaps, goal, GAP_HALVINGS)
+    };
     if bound <= goal || splits == 0 {
         return bound;
     }
@@ -1053,7 +1115,7 @@ fn paired_bound(
     let um = left
         .iter()
         .zip(cubics)
-        .map(|(half, cubic)| project(cubic, half[3].to_point(), 0.5 * (u0 + u1)))
+        .map(|(half, cubic)| project(cubic, half[3].to_point(), 0.5 * (u0 + u1), PROJECT_STEPS))
         .sum::<f64>()
         / cubics.len() as f64;
     paired_bound(&left, cubics, (u0, um), goal, splits - 1).max(paired_bound(
@@ -1063,6 +1125,66 @@ fn paired_bound(
         goal,
         splits - 1,
     ))
+}
+
+/// Bernstein coefficients (degree 4) from values at `λ = 0, 1/4, 1/2, 3/4, 1`: the inverse
+/// of the basis evaluated there.
+const LAMBDA_BERNSTEIN: [[f64; 5]; 5] = [
+    [1.0, 0.0, 0.0, 0.0, 0.0],
+    [-13.0 / 12.0, 4.0, -3.0, 4.0 / 3.0, -0.25],
+    [13.0 / 18.0, -32.0 / 9.0, 20.0 / 3.0, -32.0 / 9.0, 13.0 / 18.0],
+    [-0.25, 4.0 / 3.0, -3.0, 4.0, -13.0 / 12.0],
+    [0.0, 0.0, 0.0, 0.0, 1.0],
+];
+
+/// The largest coefficient length of a tensor-product Bézier net (degree 3 in `s`, 4 in
+/// `λ`), which bounds it on the unit square; halved in both directions up to `halvings`
+/// times while it exceeds `goal`.
+fn net_bound(net: &[[Vec2; 5]; 4], goal: f64, halvings: usize) -> f64 {
+    let bound = net.iter().flatten().map(|c| c.hypot()).fold(0.0, f64::max);
+    if bound <= goal || halvings == 0 {
+        return bound;
+    }
+    // In `s`: each column's four control points; in `λ`: each row's five.
+    let mut halves = [[[Vec2::ZERO; 5]; 4]; 2];
+    for m in 0..5 {
+        let (left, right) = halve(&[net[0][m], net[1][m], net[2][m], net[3][m]]);
+        for k in 0..4 {
+            halves[0][k][m] = left[k];
+            halves[1][k][m] = right[k];
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for half in &halves {
+        let mut quarters = [[[Vec2::ZERO; 5]; 4]; 2];
+        for k in 0..4 {
+            let (low, high) = halve_quartic(&half[k]);
+            quarters[0][k] = low;
+            quarters[1][k] = high;
+        }
+        for quarter in &quarters {
+            worst = worst.max(net_bound(quarter, goal, halvings - 1));
+            if worst > goal && halvings == 1 {
+                return worst;
+            }
+        }
+    }
+    worst
+}
+
+/// De Casteljau at one half, degree 4.
+fn halve_quartic(c: &[Vec2; 5]) -> ([Vec2; 5], [Vec2; 5]) {
+    let mut rows = *c;
+    let mut left = [Vec2::ZERO; 5];
+    let mut right = [Vec2::ZERO; 5];
+    for level in 0..5 {
+        left[level] = rows[0];
+        right[4 - level] = rows[4 - level];
+        for k in 0..4 - level {
+            rows[k] = (rows[k] + rows[k + 1]) * 0.5;
+        }
+    }
+    (left, right)
 }
 
 /// The largest control-point length of the cubic Béziers `gaps` (which bounds every convex
@@ -1079,6 +1201,38 @@ fn hull_of_gaps(gaps: &[[Vec2; 4]], goal: f64, halvings: usize) -> f64 {
     }
     let (left, right): (Vec<_>, Vec<_>) = gaps.iter().map(halve).unzip();
     hull_of_gaps(&left, goal, halvings - 1).max(hull_of_gaps(&right, goal, halvings - 1))
+}
+
+/// Evaluates a contour at mostly increasing parameters, keeping the current segment (the
+/// same values as [`XSpline::eval_deriv`], which locates and assembles the segment for
+/// every point).
+struct Run<'a> {
+    spline: &'a XSpline,
+    current: Option<(usize, Segment)>,
+}
+
+impl<'a> Run<'a> {
+    fn new(spline: &'a XSpline) -> Run<'a> {
+        Run {
+            spline,
+            current: None,
+        }
+    }
+
+    fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
+        let count = self.spline.segment_count();
+        let wrapped = big_t.rem_euclid(count as f64);
+        let j = (wrapped.floor() as usize).min(count - 1);
+        let segment = match self.current {
+            Some((k, segment)) if k == j => segment,
+            _ => {
+                let segment = self.spline.segment(j);
+                self.current = Some((j, segment));
+                segment
+            }
+        };
+        segment.eval_deriv(wrapped - j as f64)
+    }
 }
 
 /// De Casteljau at one half.
@@ -1131,10 +1285,10 @@ fn project_jointly(cubics: &[CubicBez], points: &[Point], guess: f64) -> f64 {
 }
 
 /// The parameter of `cubic` nearest `p`, by Newton's method from `guess` within `[0, 1]`.
-fn project(cubic: &CubicBez, p: Point, guess: f64) -> f64 {
+fn project(cubic: &CubicBez, p: Point, guess: f64, steps: usize) -> f64 {
     let (d1, d2) = (cubic.deriv(), cubic.deriv().deriv());
     let mut u = guess;
-    for _ in 0..PROJECT_STEPS {
+    for _ in 0..steps {
         let r = cubic.eval(u) - p;
         let (v, a) = (d1.eval(u).to_vec2(), d2.eval(u).to_vec2());
         let denom = v.dot(v) + r.dot(a);
