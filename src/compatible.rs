@@ -989,30 +989,10 @@ impl JointSamples {
                     self.hermite(i, points, derivs)
                 })
                 .collect();
-            // The gap's control points in `s` at λ = 0, 1/4, ..., 1.
-            let mut values = [[Vec2::ZERO; 5]; 4];
-            for (m, column) in (0..5).map(|m| (m, m as f64 / 4.0)) {
-                let w = [1.0 - column, column];
-                let pair = |k: usize| w[0] * self.u[0][k] + w[1] * self.u[1][k];
-                let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &w);
-                let run = cubic.subsegment(pair(i)..pair(i + 1));
-                let paired = [run.p0, run.p1, run.p2, run.p3];
-                for k in 0..4 {
-                    let curve = w[0] * pieces[0][k] + w[1] * pieces[1][k];
-                    values[k][m] = curve - paired[k].to_vec2();
-                }
-            }
-            let net = values.map(|row| {
-                let mut out = [Vec2::ZERO; 5];
-                for (o, weights) in out.iter_mut().zip(&LAMBDA_BERNSTEIN) {
-                    *o = row
-                        .iter()
-                        .zip(weights)
-                        .fold(Vec2::ZERO, |acc, (v, w)| acc + *w * *v);
-                }
-                out
-            });
-            worst = worst.max(net_bound(&net, goal, GAP_HALVINGS));
+            let ends = |j: usize| (self.u[j][i], self.u[j][i + 1]);
+            let pieces = [pieces[0], pieces[1]];
+            let bound = interval_net_bound(pieces, cubics, [ends(0), ends(1)], goal, PAIR_SPLITS);
+            worst = worst.max(bound);
             if worst > goal {
                 break;
             }
@@ -1125,6 +1105,73 @@ fn paired_bound(
         goal,
         splits - 1,
     ))
+}
+
+/// [`JointSamples::segment_bound`] on one interval: the curve pieces `pieces` (one per
+/// master) paired with `cubics` from `ends[j].0` to `ends[j].1` in master `j`, the pairing
+/// blended with the position. Over `goal`, the interval is halved and its midpoint paired
+/// with each master's nearest cubic parameter, at most `splits` times (as [`paired_bound`]).
+fn interval_net_bound(
+    pieces: [[Vec2; 4]; 2],
+    cubics: [&CubicBez; 2],
+    ends: [(f64, f64); 2],
+    goal: f64,
+    splits: usize,
+) -> f64 {
+    // The gap's control points in `s` at λ = 0, 1/4, ..., 1.
+    let mut values = [[Vec2::ZERO; 5]; 4];
+    for m in 0..5 {
+        let lambda = m as f64 / 4.0;
+        let w = [1.0 - lambda, lambda];
+        let u0 = w[0] * ends[0].0 + w[1] * ends[1].0;
+        let u1 = w[0] * ends[0].1 + w[1] * ends[1].1;
+        let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &w);
+        let run = cubic.subsegment(u0..u1);
+        let paired = [run.p0, run.p1, run.p2, run.p3];
+        for k in 0..4 {
+            let curve = w[0] * pieces[0][k] + w[1] * pieces[1][k];
+            values[k][m] = curve - paired[k].to_vec2();
+        }
+    }
+    let net = values.map(|row| {
+        let mut out = [Vec2::ZERO; 5];
+        for (o, weights) in out.iter_mut().zip(&LAMBDA_BERNSTEIN) {
+            *o = row
+                .iter()
+                .zip(weights)
+                .fold(Vec2::ZERO, |acc, (v, w)| acc + *w * *v);
+        }
+        out
+    });
+    let bound = net_bound(&net, goal, GAP_HALVINGS);
+    if bound <= goal || splits == 0 {
+        return bound;
+    }
+    let (left0, right0) = halve(&pieces[0]);
+    let (left1, right1) = halve(&pieces[1]);
+    let mid = |j: usize, half: &[Vec2; 4]| {
+        let (a, b) = ends[j];
+        project(cubics[j], half[3].to_point(), 0.5 * (a + b), PROJECT_STEPS)
+    };
+    let (m0, m1) = (mid(0, &left0), mid(1, &left1));
+    let left = interval_net_bound(
+        [left0, left1],
+        cubics,
+        [(ends[0].0, m0), (ends[1].0, m1)],
+        goal,
+        splits - 1,
+    );
+    if left > goal {
+        return left;
+    }
+    let right = interval_net_bound(
+        [right0, right1],
+        cubics,
+        [(m0, ends[0].1), (m1, ends[1].1)],
+        goal,
+        splits - 1,
+    );
+    left.max(right)
 }
 
 /// Bernstein coefficients (degree 4) from values at `λ = 0, 1/4, 1/2, 3/4, 1`: the inverse

@@ -340,3 +340,76 @@ proptest! {
         prop_assert!(worst <= 1.0, "{} of the tolerance", worst);
     }
 }
+
+/// The bound for every position between two masters with the same `s`
+/// (`CompatibleFit::between_masters`) holds at dense positions (41 along the axis, the
+/// dense checker), on curved bundled glyphs with their Bold master (`glyphs/bold/`, same
+/// `s` at every point). It covers only some contours (on the whole font 98 of 143, the
+/// straight-edged ones among them); the others are guaranteed at the checked positions.
+#[test]
+fn bound_between_masters_holds_at_dense_positions() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    let (family, _) = xglyph::source::load_family(&dir).unwrap();
+    let font = &family.default;
+    let tolerance = font.info.tolerance;
+    let at = masters::evenly_spaced(11);
+    let dense = masters::evenly_spaced(41);
+    let (mut covered, mut contours) = (0, 0);
+    let mut closest: f64 = f64::INFINITY;
+    for name in ["a", "g", "S", "ampersand", "O", "R", "e", "s", "two", "eight"] {
+        let index = font.glyphs.iter().position(|g| g.name == name).unwrap();
+        let bold = &family.masters[0].glyphs[index];
+        for (light, heavy) in font.glyphs[index].contours.iter().zip(&bold.contours) {
+            let masters = [light.spline(), heavy.spline()];
+            let fit = fit_compatible(&masters, &at, tolerance).unwrap();
+            contours += 1;
+            let Some(bound) = fit.between_masters else {
+                continue;
+            };
+            covered += 1;
+            assert!(bound <= tolerance, "{name}: bound {bound}");
+            for w in &dense {
+                let xs = blend_spline(&masters, w);
+                let error = hausdorff(&xs, &blend_paths(&fit.paths, w), 200);
+                assert!(
+                    error <= bound * (1.0 + 1e-9),
+                    "{name} at {w:?}: {error} over the bound {bound}"
+                );
+                closest = closest.min(bound - error);
+            }
+        }
+    }
+    println!("{covered} of {contours} contours bounded between the masters; least slack {closest:.4}");
+    // Measured: 7 of 19 before the bound re-paired halved intervals (see the run's print).
+    assert!(covered >= 7, "{covered} of {contours}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 24,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed() ^ 0x5eed),
+        .. ProptestConfig::default()
+    })]
+
+    /// Random pairs with the same `s` (`random_pair`): where the fit reports a bound for
+    /// every position between the masters, 41 dense positions stay within it.
+    #[test]
+    fn random_pairs_never_exceed_the_bound_between_masters(pair in random_pair()) {
+        let Some((light, bold, scale)) = pair else {
+            return Err(TestCaseError::reject("invalid contour"));
+        };
+        let tol = 0.5 * scale / 1000.0;
+        let masters = [&light, &bold];
+        let dense = masters::evenly_spaced(41);
+        if dense.iter().any(|w| masters::blend(&masters, w).is_none()) {
+            return Err(TestCaseError::reject("points meet between the masters"));
+        }
+        let fit = fit_compatible(&masters, &masters::evenly_spaced(11), tol).unwrap();
+        if let Some(bound) = fit.between_masters {
+            for w in &dense {
+                let error = hausdorff(&blend_spline(&masters, w), &blend_paths(&fit.paths, w), 200);
+                prop_assert!(error <= bound * (1.0 + 1e-9), "{} over the bound {} at {:?}", error, bound, w);
+            }
+        }
+    }
+}
