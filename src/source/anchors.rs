@@ -19,7 +19,7 @@ use std::collections::BTreeSet;
 use super::components::ComponentGraph;
 use super::diagnostic::{Ctx, Diagnostics};
 use super::load::GlyphFile;
-use crate::model::{propagate_anchors, Anchor};
+use crate::model::{propagate_anchors, Anchor, Font, Glyph};
 
 /// The combining blocks whose code points must map to marks: Combining Diacritical Marks
 /// (U+0300–U+036F), its Extended (U+1AB0–U+1AFF) and Supplement (U+1DC0–U+1DFF) blocks,
@@ -95,6 +95,29 @@ pub(super) fn place_components(
         for (c, (offset, _)) in glyphs[g].glyph.components.iter_mut().zip(placed) {
             c.offset = offset;
         }
+    }
+}
+
+/// Places the components of `glyph` (loaded alone, so each component without `offset` is at
+/// `[0, 0]`) by the anchors of `font`'s glyphs, as the loader would: for a glyph file read
+/// without reloading its font (the studio's edits while another file has errors).
+/// `offsets_written` says which components had an `offset` ([`super::offsets_written`]).
+/// A component that cannot be placed stays where it is; the loader reports it.
+pub fn place_in_font(font: &Font, glyph: &mut Glyph, offsets_written: &[bool]) {
+    let index = font.index();
+    let mut placed: Vec<((f64, f64), Vec<Anchor>)> = Vec::new();
+    for (k, c) in glyph.components.iter_mut().enumerate() {
+        let anchors = index
+            .get(&c.base)
+            .map(|b| font.anchors_in(&index, b))
+            .unwrap_or_default();
+        if !offsets_written.get(k).copied().unwrap_or(true) {
+            let before = propagate_anchors(&[], placed.iter().map(|(o, a)| (*o, a.as_slice())));
+            if let Ok(offset) = attach(&c.base, &anchors, &before, k) {
+                c.offset = offset;
+            }
+        }
+        placed.push((c.offset, anchors));
     }
 }
 

@@ -26,7 +26,7 @@ pub mod limits;
 mod load;
 mod value;
 
-pub use anchors::{is_combining, COMBINING_BLOCKS};
+pub use anchors::{is_combining, place_in_font, COMBINING_BLOCKS};
 pub use designspace::load_designspace_text;
 pub use diagnostic::{line_col, Diagnostic, Severity, Snippet, MAX_PER_FILE};
 pub use geometry::{FAR_EMS, FLAT_RELATIVE};

@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use xglyph::model::{propagate_anchors, Anchor, Family, Glyph};
-use xglyph::source::{is_combining, load_family, load_font, load_glyph_text};
+use xglyph::source::{
+    is_combining, load_family, load_font, load_glyph_text, offsets_written, place_in_font,
+};
 
 const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
                     x_height = 500\ncap_height = 700\n";
@@ -357,4 +359,18 @@ fn masters_place_by_their_own_anchors() {
         aacute(&family.masters[0].glyphs),
         [(0.0, 0.0), (340.0, 205.0)]
     );
+}
+
+#[test]
+fn a_glyph_read_alone_is_placed_by_the_fonts_anchors() {
+    let dir = accents_dir("alone");
+    let (font, _) = load_font(&dir).expect("loads");
+    let path = dir.join("A_acutegrave.toml");
+    let text = std::fs::read_to_string(&path).expect("read");
+    let (mut glyph, _) = load_glyph_text(&path, &text).expect("loads alone");
+    assert_eq!(offsets(&glyph), [(0.0, 0.0); 4]);
+    let written = offsets_written(&path, &text).expect("written");
+    assert_eq!(written, [false; 4]);
+    place_in_font(&font, &mut glyph, &written);
+    assert_eq!(Some(&glyph), font.glyph("Aacutegrave"));
 }
