@@ -22,8 +22,10 @@
 //! parameters ([`JointSamples`]). When all masters have the same `s`, the X-spline is
 //! linear in its points, and one bound from the masters alone covers every position
 //! between them; otherwise each position gets a bound from its own samples. Only where a
-//! bound misses the goal does the two-sided measure decide (a bound within the goal proves
-//! what the measure would accept, so the decisions are the measure's).
+//! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
+//! a span the measure (an estimate, which can over-estimate where its projections stall)
+//! might have turned away, so outputs can differ slightly from measuring everywhere: on the
+//! bundled font only the variable TTF changed.
 //!
 //! Limits:
 //! - The guarantee holds at the positions given, and at every position between the masters
@@ -435,8 +437,8 @@ impl<'a> Fitter<'a> {
     /// Each probe's error is the cheapest bound that meets its goal: the span's
     /// [`JointSamples::hull_bound`] (every position between the masters at once, when all
     /// masters have the same `s`), else [`JointSamples::bound`] at the probe, else
-    /// [`fit`]'s two-sided measure. A bound within the goal proves what the measure would
-    /// accept, so the decisions are the measure's and only the cost differs.
+    /// [`fit`]'s two-sided measure. A bound within the goal is an upper bound of the
+    /// distance the measure estimates, so accepting on it is never weaker.
     /// The goal at probe `k`: `goal`, or at a blend whose curve lies farther than that from
     /// the blend of the masters' curves (`s` interpolates non-linearly), that distance with
     /// a margin: no structure with vertices on the masters' curves gets closer. (Computed
