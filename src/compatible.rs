@@ -19,7 +19,7 @@
 //! covered again by the same search with the failing positions added to its checks.
 //!
 //! Measuring is mostly bounding: each span is sampled once in every master at common
-//! parameters ([`JointSamples`]). When all masters have the same `s`, the X-spline is
+//! parameters (`JointSamples`). When all masters have the same `s`, the X-spline is
 //! linear in its points, and one bound from the masters alone covers every position
 //! between them; otherwise each position gets a bound from its own samples. Only where a
 //! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
@@ -78,7 +78,7 @@ pub struct CompatibleFit {
     /// the same MoveTo start, and LineTo / CurveTo at the same places.
     pub paths: Vec<BezPath>,
     /// Largest two-sided distance at each checked position (same order as `positions`):
-    /// the smallest of the span's bounds that meets the goal ([`JointSamples`]), else the
+    /// the smallest of the span's bounds that meets the goal (`JointSamples`), else the
     /// two-sided measure. Never below the measure, up to the bounds' limits.
     pub max_error: Vec<f64>,
     /// When every master has the same `s` at every point and the span bound for all
