@@ -373,6 +373,14 @@ fn fit_stretch(
             };
         }
     }
+    // A lone quadratic (most curved stretches of a TrueType glyph): try the direct
+    // candidate before any least squares.
+    if let (false, [PathSeg::Quad(quad)]) = (closed, segs) {
+        let fit = direct_quad(*quad, segs, samples, settings);
+        if fit.error <= target {
+            return Search { fit, interior: 1 };
+        }
+    }
     let (mut lo, mut step) = (min_inner, 1);
     let (mut hi, mut hi_fit) = loop {
         let m = (lo + step).min(max_inner);
@@ -414,6 +422,31 @@ fn off_chord(samples: &StretchSamples) -> f64 {
         .iter()
         .map(|&p| (p - a).cross(d).abs() / len)
         .fold(0.0, f64::max)
+}
+
+/// One interior point for a lone quadratic `P0 C P2` between sharp points, without least
+/// squares: `M + k (C - M)`, `M` the chord's midpoint, `k` such that the X-spline passes
+/// through the quadratic's midpoint at `T = 1`. Both curves are affine images of their
+/// control points, so this is the same construction for every quadratic (the error is
+/// measured, as for any other fit; a miss falls back to the point-count search).
+fn direct_quad(
+    quad: kurbo::QuadBez,
+    segs: &[PathSeg],
+    samples: &StretchSamples,
+    settings: Settings,
+) -> Fit {
+    let mut chain = initial_chain(samples, segs, false, 1, settings);
+    // The X-spline at T = 1 is (1 - w) M + w Q, w the interior point's weight there.
+    let w = chain.basis(1.0).weight[1];
+    let mid = quad.p0.midpoint(quad.p2);
+    chain.pts[1] = mid + (quad.p1 - mid) / (2.0 * w);
+    // Samples are at even steps of the quadratic's parameter: start each at twice it.
+    let last = (samples.pts.len() - 1).max(1) as f64;
+    let mut ts: Vec<f64> = (0..samples.pts.len())
+        .map(|i| 2.0 * i as f64 / last)
+        .collect();
+    let error = stretch_error(&chain, samples, &mut ts, segs);
+    Fit { chain, error }
 }
 
 /// One fit from scratch with `interior` points: initial spacing, rounds of least squares
@@ -745,10 +778,20 @@ fn box_distance_sq(bb: Rect, p: Point) -> f64 {
     dx * dx + dy * dy
 }
 
-/// Samples `(T, point)` of one X-spline segment and their bounding box.
+/// Samples `(T, point)` of a run of the X-spline and their bounding box.
 struct PolyChunk<'a> {
     bounds: Rect,
     samples: &'a [(f64, Point)],
+}
+
+impl<'a> PolyChunk<'a> {
+    fn new(samples: &'a [(f64, Point)]) -> Self {
+        let first = Rect::from_points(samples[0].1, samples[0].1);
+        PolyChunk {
+            bounds: samples.iter().fold(first, |r, s| r.union_pt(s.1)),
+            samples,
+        }
+    }
 }
 
 /// Two-sided distance between a finished X-spline and the original contour, measured
@@ -770,32 +813,36 @@ pub fn contour_error(spline: &XSpline, segs: &[PathSeg]) -> f64 {
         let p = spline.eval(k as f64 / PER_SEG as f64);
         worst = worst.max(distance_to(p, segs, &boxes));
     }
-    // The polyline in chunks of 8 samples with their bounding boxes: a chunk
-    // whose box is no nearer than the best sample so far cannot hold a nearer one, so the
-    // search below finds the same sample as a scan of every one, without visiting most.
-    let chunks: Vec<PolyChunk> = poly
-        .chunks(CHUNK)
-        .map(|samples| PolyChunk {
-            bounds: samples
-                .iter()
-                .fold(Rect::from_points(samples[0].1, samples[0].1), |r, s| {
-                    r.union_pt(s.1)
-                }),
-            samples,
-        })
+    // The polyline in two levels of runs with their bounding boxes (one X-spline segment,
+    // then 8 samples): a run whose box is no nearer than the best sample so far cannot
+    // hold a nearer one, so the search below finds the same sample as a scan of every
+    // one, without visiting most. Hand-written: the runs are fixed and tiny, a spatial
+    // index crate would cost more to build than it saves.
+    let groups: Vec<(PolyChunk, Vec<PolyChunk>)> = poly
+        .chunks(2 * PER_SEG)
+        .map(|run| (PolyChunk::new(run), run.chunks(CHUNK).map(PolyChunk::new).collect()))
         .collect();
+    // The search starts from the sample found for the previous original sample (nearby,
+    // so most runs are skipped at once); ties keep the earlier candidate either way.
+    let mut seed = poly[0];
     for seg in segs {
         for i in 0..PER_SEG {
             let p = seg.eval(i as f64 / PER_SEG as f64);
-            let (mut big_t, mut best) = (0.0, f64::INFINITY);
-            for chunk in &chunks {
-                if box_distance_sq(chunk.bounds, p) >= best {
+            let (mut big_t, mut best) = (seed.0, (seed.1 - p).hypot2());
+            for (group, chunks) in &groups {
+                if box_distance_sq(group.bounds, p) >= best {
                     continue;
                 }
-                for &(t, q) in chunk.samples {
-                    let d = (q - p).hypot2();
-                    if d < best {
-                        (big_t, best) = (t, d);
+                for chunk in chunks {
+                    if box_distance_sq(chunk.bounds, p) >= best {
+                        continue;
+                    }
+                    for &(t, q) in chunk.samples {
+                        let d = (q - p).hypot2();
+                        if d < best {
+                            (big_t, best) = (t, d);
+                            seed = (t, q);
+                        }
                     }
                 }
             }
