@@ -205,6 +205,9 @@ struct StretchSamples {
     /// Cumulative share in `[0, 1]` of arc length weighted by `1 + sqrt(|curvature| · L)`
     /// (L the stretch length), so tight bends get more of the initial points.
     budget: Vec<f64>,
+    /// [`ungrade`] of every budget share, per grade already asked for: the same for every
+    /// point count, and each costs a bisection.
+    ungraded: std::cell::RefCell<Vec<(f64, std::rc::Rc<[f64]>)>>,
 }
 
 impl StretchSamples {
@@ -246,7 +249,22 @@ impl StretchSamples {
             pts.pop();
             budget.pop();
         }
-        StretchSamples { pts, budget }
+        StretchSamples {
+            pts,
+            budget,
+            ungraded: Default::default(),
+        }
+    }
+
+    /// The samples' parameter shares for the initial spacing `grade` (see [`graded`]).
+    fn ungraded(&self, grade: f64) -> std::rc::Rc<[f64]> {
+        let mut cache = self.ungraded.borrow_mut();
+        if let Some((_, shares)) = cache.iter().find(|(g, _)| *g == grade) {
+            return shares.clone();
+        }
+        let shares: std::rc::Rc<[f64]> = self.budget.iter().map(|&b| ungrade(b, grade)).collect();
+        cache.push((grade, shares.clone()));
+        shares
     }
 }
 
@@ -381,7 +399,30 @@ fn fit_stretch(
             return Search { fit, interior: 1 };
         }
     }
-    let (mut lo, mut step) = (min_inner, 1);
+    // Start from one interior point per original curve (a TrueType quadratic mostly needs
+    // one), walk down while the target holds; else grow by doubling steps, then bisect.
+    // `lo` is the largest count known to miss (the count above was measured or skipped).
+    let curves = segs
+        .iter()
+        .filter(|s| !matches!(s, PathSeg::Line(_)))
+        .count();
+    let guess = curves.clamp(min_inner + 1, max_inner);
+    let fit = attempt(guess);
+    if fit.error <= target {
+        let (mut hi, mut hi_fit) = (guess, fit);
+        while hi - 1 > min_inner {
+            let lower = attempt(hi - 1);
+            if lower.error > target {
+                break;
+            }
+            (hi, hi_fit) = (hi - 1, lower);
+        }
+        return Search {
+            fit: hi_fit,
+            interior: hi,
+        };
+    }
+    let (mut lo, mut step) = (guess, 1);
     let (mut hi, mut hi_fit) = loop {
         let m = (lo + step).min(max_inner);
         let fit = attempt(m);
@@ -463,9 +504,9 @@ fn attempt(
     let nseg = chain.nseg() as f64;
     let grade = if closed { 0.0 } else { settings.grade };
     let mut ts: Vec<f64> = samples
-        .budget
+        .ungraded(grade)
         .iter()
-        .map(|&b| ungrade(b, grade) * nseg)
+        .map(|&u| u * nseg)
         .collect();
     refine(&mut chain, samples, &mut ts, target);
     let error = stretch_error(&chain, samples, &mut ts, segs);
@@ -544,12 +585,13 @@ fn ungrade(b: f64, grade: f64) -> f64 {
 
 /// Rounds of least-squares positions and parameter projection.
 fn refine(chain: &mut Chain, samples: &StretchSamples, ts: &mut [f64], target: f64) {
+    let mut bases = Vec::with_capacity(ts.len());
     for _ in 0..ROUNDS {
         let before = chain.pts.clone();
-        if !solve_positions(chain, samples, ts) {
+        if !solve_positions(chain, samples, ts, &mut bases) {
             break;
         }
-        project(chain, samples, ts, ROUND_STEPS);
+        project(chain, samples, ts, ROUND_STEPS, Some(&bases));
         let moved = before
             .iter()
             .zip(&chain.pts)
@@ -562,8 +604,13 @@ fn refine(chain: &mut Chain, samples: &StretchSamples, ts: &mut [f64], target: f
 }
 
 /// Least-squares positions of the free points for fixed parameters `ts`; false when the
-/// chain has no free point.
-fn solve_positions(chain: &mut Chain, samples: &StretchSamples, ts: &[f64]) -> bool {
+/// chain has no free point. `bases` receives the chain's basis at each parameter.
+fn solve_positions(
+    chain: &mut Chain,
+    samples: &StretchSamples,
+    ts: &[f64],
+    bases: &mut Vec<Basis>,
+) -> bool {
     let n = chain.pts.len();
     // Unknowns: x and y of a free point; one distance along the ray of a point held on
     // the original's tangent at a sharp end (the curve leaves a sharp point toward its
@@ -605,8 +652,9 @@ fn solve_positions(chain: &mut Chain, samples: &StretchSamples, ts: &[f64]) -> b
     let mut m = vec![0.0; k * k];
     let mut rhs = vec![0.0; k];
     let mut coefs: Vec<(usize, Vec2)> = Vec::with_capacity(8);
-    for (p, &big_t) in samples.pts.iter().zip(ts) {
-        let basis = chain.basis(big_t);
+    bases.clear();
+    bases.extend(ts.iter().map(|&big_t| chain.basis(big_t)));
+    for (p, basis) in samples.pts.iter().zip(bases.iter()) {
         let mut target = p.to_vec2();
         coefs.clear();
         for (&i, &w) in basis.index.iter().zip(&basis.weight) {
@@ -700,16 +748,26 @@ fn solve_dense(m: &mut [f64], rhs: &mut [f64], k: usize) -> Option<Vec<f64>> {
 }
 
 /// Newton steps moving each sample's parameter to its nearest curve point (fixed ends of
-/// an open chain stay at the ends).
-fn project(chain: &Chain, samples: &StretchSamples, ts: &mut [f64], steps: usize) {
+/// an open chain stay at the ends). `bases`, when given, are the chain's bases at `ts`
+/// (they depend on the parameters and shapes only, not on the positions).
+fn project(
+    chain: &Chain,
+    samples: &StretchSamples,
+    ts: &mut [f64],
+    steps: usize,
+    bases: Option<&[Basis]>,
+) {
     let nf = chain.nseg() as f64;
     let last = ts.len().saturating_sub(1);
     for (k, (p, big_t)) in samples.pts.iter().zip(ts.iter_mut()).enumerate() {
         if !chain.closed && (k == 0 || k == last) {
             continue;
         }
+        let basis = bases.map_or_else(|| chain.basis(*big_t), |b| b[k]);
+        // The point and derivative at the current parameter, carried over from the
+        // accepted backtracking step (the same values a fresh evaluation gives).
+        let (mut c, mut d) = basis.eval_deriv(&chain.pts);
         for _ in 0..steps {
-            let (c, d) = chain.eval_deriv(*big_t);
             let dd = d.hypot2();
             if dd < 1e-18 {
                 break;
@@ -727,8 +785,9 @@ fn project(chain: &Chain, samples: &StretchSamples, ts: &mut [f64], steps: usize
                 if !chain.closed {
                     next = next.clamp(0.0, nf);
                 }
-                if (chain.eval(next) - *p).hypot2() < here {
-                    *big_t = next;
+                let (c_next, d_next) = chain.eval_deriv(next);
+                if (c_next - *p).hypot2() < here {
+                    (*big_t, c, d) = (next, c_next, d_next);
                     moved = true;
                     break;
                 }
@@ -743,7 +802,7 @@ fn project(chain: &Chain, samples: &StretchSamples, ts: &mut [f64], steps: usize
 
 /// Two-sided sampled distance between the chain and the original stretch.
 fn stretch_error(chain: &Chain, samples: &StretchSamples, ts: &mut [f64], segs: &[PathSeg]) -> f64 {
-    project(chain, samples, ts, NEWTON_STEPS + 2);
+    project(chain, samples, ts, NEWTON_STEPS + 2, None);
     let mut worst: f64 = 0.0;
     for (p, &big_t) in samples.pts.iter().zip(ts.iter()) {
         worst = worst.max((chain.eval(big_t) - *p).hypot());
