@@ -107,8 +107,17 @@ pub struct Shapes {
     pub end: f64,
 }
 
-/// Rounds of (solve positions, re-project parameters) per fit, at most.
-const ROUNDS: usize = 20;
+/// Rounds of (solve positions, re-project parameters) per fit, at most. With the
+/// distance measured across the curve ([`TANGENTIAL`]) a fit settles in a few rounds; on
+/// the 64 CJK glyphs of `benches/import.sh`, 20 rounds instead of 8 save 2 points of 3285.
+const ROUNDS: usize = 8;
+/// Weight of the distance along the curve in the least squares after the first round
+/// (across it: 1). A sample's parameter is only an estimate of its foot point, so the
+/// distance along the curve is mostly a parameter error; counting it in full (1.0) made
+/// the rounds creep toward the fit over 20 rounds and more (tangent-distance minimisation,
+/// a Gauss-Newton step for the true distance; the small weight keeps it well posed).
+/// On the 64 CJK glyphs: 3285 points in 0.19 s against 3321 in 0.29 s with 1.0.
+const TANGENTIAL: f64 = 0.003;
 /// A fit has converged when no point moved by more than this share of the target in a
 /// round: later rounds change the error by far less than the target.
 const CONVERGED: f64 = 0.002;
@@ -586,9 +595,10 @@ fn ungrade(b: f64, grade: f64) -> f64 {
 /// Rounds of least-squares positions and parameter projection.
 fn refine(chain: &mut Chain, samples: &StretchSamples, ts: &mut [f64], target: f64) {
     let mut bases = Vec::with_capacity(ts.len());
-    for _ in 0..ROUNDS {
+    for round in 0..ROUNDS {
         let before = chain.pts.clone();
-        if !solve_positions(chain, samples, ts, &mut bases) {
+        let tangential = if round == 0 { 1.0 } else { TANGENTIAL };
+        if !solve_positions(chain, samples, ts, &mut bases, tangential) {
             break;
         }
         project(chain, samples, ts, ROUND_STEPS, Some(&bases));
@@ -610,6 +620,7 @@ fn solve_positions(
     samples: &StretchSamples,
     ts: &[f64],
     bases: &mut Vec<Basis>,
+    tangential: f64,
 ) -> bool {
     let n = chain.pts.len();
     // Unknowns: x and y of a free point; one distance along the ray of a point held on
@@ -670,10 +681,20 @@ fn solve_positions(
                 }
             }
         }
+        // The metric: full weight across the current curve, `tangential` along it.
+        let tangent = basis.eval_deriv(&chain.pts).1;
+        let len2 = tangent.hypot2();
+        let metric = |a: Vec2, b: Vec2| -> f64 {
+            if tangential == 1.0 || len2 < 1e-18 {
+                return a.dot(b);
+            }
+            let (at, bt) = (a.dot(tangent), b.dot(tangent));
+            a.dot(b) - (1.0 - tangential) * at * bt / len2
+        };
         for &(ca, va) in &coefs {
-            rhs[ca] += va.dot(target);
+            rhs[ca] += metric(va, target);
             for &(cb, vb) in &coefs {
-                m[ca * k + cb] += va.dot(vb);
+                m[ca * k + cb] += metric(va, vb);
             }
         }
     }
