@@ -549,11 +549,7 @@ fn attempt(
     let mut chain = initial_chain(samples, segs, closed, interior, settings);
     let nseg = chain.nseg() as f64;
     let grade = if closed { 0.0 } else { settings.grade };
-    let mut ts: Vec<f64> = samples
-        .ungraded(grade)
-        .iter()
-        .map(|&u| u * nseg)
-        .collect();
+    let mut ts: Vec<f64> = samples.ungraded(grade).iter().map(|&u| u * nseg).collect();
     refine(&mut chain, samples, &mut ts, target);
     let error = stretch_error(&chain, samples, &mut ts, segs);
     Fit { chain, error }
@@ -937,7 +933,12 @@ pub fn contour_error(spline: &XSpline, segs: &[PathSeg]) -> f64 {
     // index crate would cost more to build than it saves.
     let groups: Vec<(PolyChunk, Vec<PolyChunk>)> = poly
         .chunks(2 * PER_SEG)
-        .map(|run| (PolyChunk::new(run), run.chunks(CHUNK).map(PolyChunk::new).collect()))
+        .map(|run| {
+            (
+                PolyChunk::new(run),
+                run.chunks(CHUNK).map(PolyChunk::new).collect(),
+            )
+        })
         .collect();
     // The search starts from the sample found for the previous original sample (nearby,
     // so most runs are skipped at once); ties keep the earlier candidate either way.
