@@ -41,6 +41,8 @@ pub enum RenderError {
     Option(String),
     /// PNG encoding failed.
     Png(String),
+    /// The text could not be shaped ([`crate::layout::LayoutError`], as text).
+    Layout(String),
 }
 
 impl fmt::Display for RenderError {
@@ -54,11 +56,18 @@ impl fmt::Display for RenderError {
             ),
             RenderError::Option(msg) => write!(f, "{msg}"),
             RenderError::Png(msg) => write!(f, "PNG encoding failed: {msg}"),
+            RenderError::Layout(msg) => write!(f, "{msg}"),
         }
     }
 }
 
 impl std::error::Error for RenderError {}
+
+impl From<crate::layout::LayoutError> for RenderError {
+    fn from(e: crate::layout::LayoutError) -> Self {
+        RenderError::Layout(e.to_string())
+    }
+}
 
 /// A white pixmap of the given size, or [`RenderError::Size`].
 pub fn white_pixmap(width: u64, height: u64) -> Result<Pixmap, RenderError> {
