@@ -115,6 +115,11 @@ impl<'a> Layout<'a> {
         })
     }
 
+    /// The outlined font this shaper draws.
+    pub fn font(&self) -> &'a OutlinedFont {
+        self.font
+    }
+
     /// Whether the font has a glyph of its own for `c` (not the fallback).
     pub fn covers(&self, c: char) -> bool {
         self.by_char.contains_key(&c)

@@ -14,7 +14,9 @@ use std::fmt;
 
 use tiny_skia::Pixmap;
 
-pub use proof::{default_text, render_instances_proof, render_proof, ProofOptions};
+pub use proof::{
+    default_text, render_instances_proof, render_proof, render_proof_with, ProofOptions,
+};
 pub use sheet::{
     page_file_names, render_sheet, render_sheet_page, sheet_order, sheet_pages, sheet_png_files,
     SheetOptions,

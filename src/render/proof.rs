@@ -99,6 +99,19 @@ const MARGIN: f64 = 16.0;
 
 /// Renders the proof of `font`.
 pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    check_sizes(opts)?;
+    proof_pixmap(&Layout::new(font)?, opts)
+}
+
+/// [`render_proof`] with a shaper already built, e.g. on a TTF the caller has
+/// ([`Layout::with_ttf`]).
+pub fn render_proof_with(layout: &Layout<'_>, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    check_sizes(opts)?;
+    proof_pixmap(layout, opts)
+}
+
+/// At least one size, each 1..=1000 px per em.
+fn check_sizes(opts: &ProofOptions) -> Result<(), RenderError> {
     if opts.sizes.is_empty() {
         return Err(RenderError::Option("at least one size is needed".into()));
     }
@@ -111,6 +124,11 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
             "size {bad} px is out of range 1..=1000"
         )));
     }
+    Ok(())
+}
+
+fn proof_pixmap(layout: &Layout<'_>, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    let font = layout.font();
     let text = opts.text.clone().unwrap_or_else(|| default_text(font));
     let lines: Vec<&str> = text.lines().collect();
     let info = &font.info;
@@ -123,7 +141,6 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
         bottom = bottom.min(ink.y0);
     }
     let em = (info.ascender - info.descender).max(top - bottom);
-    let layout = Layout::new(font)?;
     let laid = lines
         .iter()
         .map(|l| layout.line(l))
