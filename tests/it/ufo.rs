@@ -485,7 +485,7 @@ fn cli_import_of_the_export_equals_the_formatted_sources() {
         .arg("-o")
         .arg(&out));
     assert!(
-        report.contains("102 glyph(s) taken exactly from their org.xglyph.xspline lib"),
+        report.contains("105 glyph(s) taken exactly from their org.xglyph.xspline lib"),
         "{report}"
     );
     let mut want = sources_without_leading_comments(&formatted);
