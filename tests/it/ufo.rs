@@ -245,6 +245,9 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
         None,
         None,
     ));
+    // An anchor without a name, which the model has no place for.
+    o.anchors
+        .push(norad::Anchor::new(10.0, 20.0, None, None, None));
     let mut small = norad::Glyph::new("osmall");
     small.width = 300.0;
     small.components.push(norad::Component::new(
@@ -276,10 +279,22 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
     // Fitted within the import budget: 0.75 of 1/1000 em.
     assert!(imported.report.over_budget().is_empty());
     assert!(imported.report.max_error() <= 0.75);
-    assert!(imported
-        .report
-        .notes
-        .contains(&"1 anchor(s) left out: xglyph sources have no anchors yet".to_string()));
+    assert!(
+        imported
+            .report
+            .notes
+            .contains(&"1 anchor(s) without a name left out: xglyph anchors are named".to_string()),
+        "{:?}",
+        imported.report.notes
+    );
+    // The named anchor comes in with the fitted glyph, at its exact position.
+    assert_eq!(
+        f.glyph("o").expect("o").anchors,
+        [xglyph::model::Anchor {
+            name: "top".into(),
+            position: (270.0, 520.0),
+        }]
+    );
     // The build tolerance without the lib: a quarter of the import tolerance.
     assert_eq!(f.info.tolerance, 0.25);
     assert_eq!(f.info.family, "Xglyph Sans");
