@@ -221,7 +221,7 @@ fn master_ufos_hold_the_compatible_cubics_and_each_masters_sources() {
             "{dir}"
         );
     }
-    assert!(compared > 2 * 250, "{compared}");
+    assert!(compared > 2 * 100, "{compared}");
     // The Bold master differs from the default: its advances are its own.
     let wider = b.family.masters[0]
         .glyphs
@@ -295,14 +295,14 @@ fn anchors_survive_export_and_import_in_every_master() {
     };
     assert!(
         text("XglyphSans-Regular.ufo/glyphs/o.glif")
-            .contains(r#"<anchor x="270.5" y="0.3333333333333333" name="top"/>"#),
+            .contains(r#"<anchor name="top" x="270.5" y="0.3333333333333333"/>"#),
         "{}",
         text("XglyphSans-Regular.ufo/glyphs/o.glif")
     );
     assert!(text("XglyphSans-Bold.ufo/glyphs/o.glif")
-        .contains(r#"<anchor x="301.25" y="555" name="top"/>"#));
+        .contains(r#"<anchor name="top" x="301.25" y="555"/>"#));
     assert!(text("XglyphSans-Bold.ufo/glyphs/acutecomb.glif")
-        .contains(r#"<anchor x="-0.1" y="510" name="_top"/>"#));
+        .contains(r#"<anchor name="_top" x="-0.1" y="510"/>"#));
     // Written out and imported: the anchors come back exactly, per master.
     let dir = tempfile::tempdir().expect("temp dir");
     pipeline::write_outputs(dir.path(), &files).expect("writes");
