@@ -415,3 +415,98 @@ fn fontmake_and_fontc_build_the_designspace_and_match_xglyphs_variable_font() {
     assert_eq!(oks, 2 + 3 * (4 + 2 * 2) + 2 * 5, "{report}");
     assert!(report.contains("designspace_check: all passed"), "{report}");
 }
+
+#[test]
+fn cli_import_of_the_designspace_gives_back_the_family() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let out = tmp.path().join("font");
+    let ds = b.dir.join("XglyphSans.designspace");
+    let (code, stdout, stderr) = crate::common::cli::import(&[ds.to_str().unwrap()], &out);
+    assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
+    assert!(stdout.starts_with("source Regular:\n"), "{stdout}");
+    assert!(stdout.contains("\nsource Bold:\n"), "{stdout}");
+    assert!(
+        stdout.ends_with(&format!("wrote 313 files to {}\n", out.display())),
+        "{stdout}"
+    );
+    // The masters format: font.toml with the axis, the Bold master and the instances, and
+    // the Bold folder.
+    let toml = std::fs::read_to_string(out.join("font.toml")).expect("font.toml");
+    let bundled = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs/font.toml"),
+    )
+    .expect("bundled font.toml");
+    assert_eq!(toml, bundled);
+    assert!(out.join("bold/a.toml").is_file());
+    // Loaded again, it is the bundled family: every master's glyphs and kerning, exactly.
+    let (family, warnings) = xglyph::source::load_family(&out).expect("loads");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let want = &b.loaded.family;
+    assert_eq!(family.designspace, want.designspace);
+    assert_eq!(family.default, want.default);
+    assert_eq!(family.masters.len(), 1);
+    assert_eq!(family.masters[0].glyphs, want.masters[0].glyphs);
+    assert_eq!(family.masters[0].kerning, want.masters[0].kerning);
+    assert_eq!(family.masters[0].location, want.masters[0].location);
+}
+
+#[test]
+fn designspace_import_errors_name_the_file_and_the_problem() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let text = std::fs::read_to_string(b.dir.join("XglyphSans.designspace")).expect("reads");
+    let cases = [
+        (
+            text.replace(r#"xvalue="400"/>
+      </location>
+    </source>"#, r#"xvalue="450"/>
+      </location>
+    </source>"#),
+            "no source sits at the default of every axis",
+        ),
+        (
+            text.replace("XglyphSans-Bold.ufo", "Missing.ufo"),
+            "cannot read the UFO",
+        ),
+        (
+            text.replace("<axes>", "<axes><axis"),
+            "cannot read the designspace",
+        ),
+    ];
+    for (i, (text, message)) in cases.iter().enumerate() {
+        let path = b.dir.join(format!("broken-{i}.designspace"));
+        std::fs::write(&path, text).expect("writes");
+        let out = tmp.path().join(format!("out-{i}"));
+        let err = crate::common::cli::import_fails(&[path.to_str().unwrap()], &out);
+        assert!(err.contains(message), "{i}: {err}");
+        let named = if i == 1 {
+            b.dir.join("Missing.ufo")
+        } else {
+            path.clone()
+        };
+        assert!(err.starts_with(&format!("error: {}: ", named.display())), "{i}: {err}");
+    }
+    // Another editor's master whose points differ cannot be a master.
+    let bold = b.dir.join("XglyphSans-Bold.ufo");
+    let mut ufo = norad::Font::load(&bold).expect("reads");
+    let o = ufo.get_glyph_mut("o").expect("o");
+    o.lib.clear();
+    o.contours.truncate(1);
+    let edited = tmp.path().join("edited");
+    std::fs::create_dir_all(&edited).expect("dir");
+    ufo.save(edited.join("XglyphSans-Bold.ufo")).expect("saves");
+    norad::Font::load(b.dir.join("XglyphSans-Regular.ufo"))
+        .expect("reads")
+        .save(edited.join("XglyphSans-Regular.ufo"))
+        .expect("saves");
+    std::fs::write(edited.join("X.designspace"), &text).expect("writes");
+    let err = crate::common::cli::import_fails(
+        &[edited.join("X.designspace").to_str().unwrap()],
+        &tmp.path().join("out-edited"),
+    );
+    assert!(
+        err.contains("glyph `o`: master `Bold` does not match the default source (1 contours"),
+        "{err}"
+    );
+}
