@@ -296,7 +296,10 @@ pub fn variable_outputs(
     ];
     // One UFO per master from the same compatible outlines, and the `.designspace`; the
     // default master's UFO replaces the static one of [`outputs`].
-    files.extend(crate::ufo::designspace::output_files(&family, &loaded.family)?);
+    files.extend(crate::ufo::designspace::output_files(
+        &family,
+        &loaded.family,
+    )?);
     Ok(Some((files, summary)))
 }
 

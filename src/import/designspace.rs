@@ -41,7 +41,10 @@ pub fn import_designspace(
     let doc = DesignSpaceDocument::load(path).map_err(|e| {
         ImportError::at(
             path,
-            format!("cannot read the designspace: {}", crate::ufo::error_chain(&e)),
+            format!(
+                "cannot read the designspace: {}",
+                crate::ufo::error_chain(&e)
+            ),
         )
     })?;
     let fail = |message: String| ImportError::at(path, message);
@@ -67,7 +70,8 @@ pub fn import_designspace(
                 s.layer.as_deref().unwrap_or_default()
             )));
         }
-        let location = location(&designspace, &s.location).map_err(|m| fail(format!("source `{style}`: {m}")))?;
+        let location = location(&designspace, &s.location)
+            .map_err(|m| fail(format!("source `{style}`: {m}")))?;
         sources.push((style, location, base.join(&s.filename)));
     }
     let at_default = |l: &Location| designspace.normalize(l).iter().all(|&v| v == 0.0);
@@ -186,7 +190,10 @@ fn folder_name(style: &str) -> String {
 /// (glyph set, contour and point counts, sharp points).
 fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyph>, String> {
     let by_name: HashMap<&str, &Glyph> = master.iter().map(|g| (g.name.as_str(), g)).collect();
-    if let Some(extra) = master.iter().find(|g| !default.iter().any(|d| d.name == g.name)) {
+    if let Some(extra) = master
+        .iter()
+        .find(|g| !default.iter().any(|d| d.name == g.name))
+    {
         return Err(format!(
             "master `{style}` has the glyph `{}`, which the default source lacks",
             extra.name
@@ -195,9 +202,9 @@ fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyp
     default
         .iter()
         .map(|d| {
-            let m = by_name.get(d.name.as_str()).ok_or_else(|| {
-                format!("master `{style}` has no glyph `{}`", d.name)
-            })?;
+            let m = by_name
+                .get(d.name.as_str())
+                .ok_or_else(|| format!("master `{style}` has no glyph `{}`", d.name))?;
             let shape = |g: &Glyph| -> Vec<Vec<bool>> {
                 g.contours
                     .iter()
@@ -211,9 +218,15 @@ fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyp
                      elsewhere); the masters do not interpolate as X-splines",
                     d.name,
                     m.contours.len(),
-                    m.contours.iter().map(|c| c.points().len()).collect::<Vec<_>>(),
+                    m.contours
+                        .iter()
+                        .map(|c| c.points().len())
+                        .collect::<Vec<_>>(),
                     d.contours.len(),
-                    d.contours.iter().map(|c| c.points().len()).collect::<Vec<_>>(),
+                    d.contours
+                        .iter()
+                        .map(|c| c.points().len())
+                        .collect::<Vec<_>>(),
                 ));
             }
             let mut g = (*m).clone();

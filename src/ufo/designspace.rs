@@ -57,13 +57,7 @@ pub fn master_font(family: &OutlinedFamily, model: &Family, m: usize) -> Outline
     let sources: HashMap<&str, &Glyph> = model
         .masters
         .get(m)
-        .map(|source| {
-            source
-                .glyphs
-                .iter()
-                .map(|g| (g.name.as_str(), g))
-                .collect()
-        })
+        .map(|source| source.glyphs.iter().map(|g| (g.name.as_str(), g)).collect())
         .unwrap_or_default();
     let mut font = family.default.clone();
     font.info.style = master.name.clone();
@@ -99,13 +93,12 @@ pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocumen
             ..designspace::Axis::default()
         })
         .collect();
-    let masters = std::iter::once((info.style.as_str(), Location::default()))
-        .chain(
-            family
-                .masters
-                .iter()
-                .map(|m| (m.name.as_str(), m.location.clone())),
-        );
+    let masters = std::iter::once((info.style.as_str(), Location::default())).chain(
+        family
+            .masters
+            .iter()
+            .map(|m| (m.name.as_str(), m.location.clone())),
+    );
     let sources = masters
         .zip(files)
         .map(|((style, location), filename)| designspace::Source {

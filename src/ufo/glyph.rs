@@ -38,8 +38,13 @@ pub fn glyph(g: &OutlinedGlyph, own: usize) -> Result<norad::Glyph, UfoError> {
             anchor: a.name.clone(),
         })?;
         let (x, y) = a.position;
-        ufo.anchors
-            .push(norad::Anchor::new(x + 0.0, y + 0.0, Some(anchor_name), None, None));
+        ufo.anchors.push(norad::Anchor::new(
+            x + 0.0,
+            y + 0.0,
+            Some(anchor_name),
+            None,
+            None,
+        ));
     }
     if own > 0 {
         let splines: Vec<crate::model::Contour> = g.contours[..own]

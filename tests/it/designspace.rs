@@ -76,19 +76,31 @@ fn build_writes_a_ufo_per_master_and_the_designspace_deterministically() {
     // norad reads the designspace back: the axes, sources and instances of font.toml.
     let doc = norad::designspace::DesignSpaceDocument::load(b.dir.join("XglyphSans.designspace"))
         .expect("norad reads it");
-    let axes: Vec<(&str, &str, Option<f64>, f64, Option<f64>)> = doc
+    type AxisRow<'a> = (&'a str, &'a str, Option<f64>, f64, Option<f64>);
+    let axes: Vec<AxisRow> = doc
         .axes
         .iter()
-        .map(|a| (a.tag.as_str(), a.name.as_str(), a.minimum, a.default, a.maximum))
+        .map(|a| {
+            (
+                a.tag.as_str(),
+                a.name.as_str(),
+                a.minimum,
+                a.default,
+                a.maximum,
+            )
+        })
         .collect();
-    assert_eq!(
-        axes,
-        [("wght", "Weight", Some(400.0), 400.0, Some(700.0))]
-    );
+    assert_eq!(axes, [("wght", "Weight", Some(400.0), 400.0, Some(700.0))]);
     let sources: Vec<(&str, Option<&str>, Option<f64>)> = doc
         .sources
         .iter()
-        .map(|s| (s.filename.as_str(), s.stylename.as_deref(), s.location[0].xvalue))
+        .map(|s| {
+            (
+                s.filename.as_str(),
+                s.stylename.as_deref(),
+                s.location[0].xvalue,
+            )
+        })
         .collect();
     assert_eq!(
         sources,
@@ -244,7 +256,7 @@ fn the_bold_master_ufo_imports_back_to_the_bold_sources_exactly() {
     let mut want = b.loaded.family.masters[0].glyphs.clone();
     got.sort_by(|a, b| a.name.cmp(&b.name));
     want.sort_by(|a, b| a.name.cmp(&b.name));
-    assert_eq!(got.len(), 155);
+    assert!(got.len() >= 155, "{}", got.len());
     assert_eq!(got, want);
     assert_eq!(imported.font.info.style, "Bold");
 }
@@ -343,7 +355,10 @@ fn an_anchor_name_ufo_cannot_hold_is_an_error_naming_the_glyph() {
 /// under `XGLYPH_REQUIRE_TOOLS=1`).
 fn tools_available() -> bool {
     let ok = Command::new("python3")
-        .args(["-c", "import fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2"])
+        .args([
+            "-c",
+            "import fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2",
+        ])
         .status()
         .is_ok_and(|s| s.success())
         && ["fontmake", "fontc"].iter().all(|t| {
@@ -426,17 +441,18 @@ fn cli_import_of_the_designspace_gives_back_the_family() {
     assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
     assert!(stdout.starts_with("source Regular:\n"), "{stdout}");
     assert!(stdout.contains("\nsource Bold:\n"), "{stdout}");
+    // font.toml, a file per glyph in each master, and each master's kerning.toml.
+    let files = 1 + 2 * (b.loaded.family.default.glyphs.len() + 1);
     assert!(
-        stdout.ends_with(&format!("wrote 313 files to {}\n", out.display())),
+        stdout.ends_with(&format!("wrote {files} files to {}\n", out.display())),
         "{stdout}"
     );
     // The masters format: font.toml with the axis, the Bold master and the instances, and
     // the Bold folder.
     let toml = std::fs::read_to_string(out.join("font.toml")).expect("font.toml");
-    let bundled = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs/font.toml"),
-    )
-    .expect("bundled font.toml");
+    let bundled =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs/font.toml"))
+            .expect("bundled font.toml");
     assert_eq!(toml, bundled);
     assert!(out.join("bold/a.toml").is_file());
     // Loaded again, it is the bundled family: every master's glyphs and kerning, exactly.
@@ -458,11 +474,14 @@ fn designspace_import_errors_name_the_file_and_the_problem() {
     let text = std::fs::read_to_string(b.dir.join("XglyphSans.designspace")).expect("reads");
     let cases = [
         (
-            text.replace(r#"xvalue="400"/>
+            text.replace(
+                r#"xvalue="400"/>
       </location>
-    </source>"#, r#"xvalue="450"/>
+    </source>"#,
+                r#"xvalue="450"/>
       </location>
-    </source>"#),
+    </source>"#,
+            ),
             "no source sits at the default of every axis",
         ),
         (
@@ -485,7 +504,10 @@ fn designspace_import_errors_name_the_file_and_the_problem() {
         } else {
             path.clone()
         };
-        assert!(err.starts_with(&format!("error: {}: ", named.display())), "{i}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {}: ", named.display())),
+            "{i}: {err}"
+        );
     }
     // Another editor's master whose points differ cannot be a master.
     let bold = b.dir.join("XglyphSans-Bold.ufo");
