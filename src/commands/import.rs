@@ -1,4 +1,5 @@
-//! `xglyph import`: a font file, a UFO or SVG drawings -> a font directory of X-spline sources.
+//! `xglyph import`: a font file, a UFO, a designspace or SVG drawings -> a font directory of
+//! X-spline sources (with a master folder per designspace source).
 //!
 //! Everything is fitted in memory first (glyphs in parallel); the files are then written
 //! into a new temporary folder next to the output, which is renamed into place only when
@@ -19,8 +20,9 @@ use crate::terminal::{out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), or one or
-    /// more SVG drawings (.svg, one glyph each).
+    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), one
+    /// designspace (.designspace: a font with masters), or one or more SVG drawings (.svg,
+    /// one glyph each).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
     /// Output font directory (must be empty or absent unless --force).
