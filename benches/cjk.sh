@@ -11,6 +11,7 @@
 # Usage: sh benches/cjk.sh [WORK_DIR]      (default: target/cjk-bench; wiped first)
 # Environment:
 #   CJK_IMPORT_TIMEOUT=S  give up on the import after S seconds (default 900)
+#   XGLYPH_BIN=PATH       time this binary instead of building target/release/xglyph
 #   CJK_STANDIN=1         if the import fails or times out, build a stand-in source folder
 #                         with benches/cjk_standin.py (fontTools: the font's own control
 #                         points as X-spline points) so that the build figures are still
@@ -29,8 +30,12 @@ fi
 WORK=${1:-target/cjk-bench}
 rm -rf "$WORK"
 mkdir -p "$WORK"
-cargo build --release --quiet
-BIN=$(pwd)/target/release/xglyph
+if [ -n "${XGLYPH_BIN:-}" ]; then
+    BIN=$XGLYPH_BIN
+else
+    cargo build --release --quiet
+    BIN=$(pwd)/target/release/xglyph
+fi
 SRC=$WORK/src
 OUT=$WORK/out
 

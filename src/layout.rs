@@ -1,54 +1,104 @@
-//! Text layout: characters -> glyphs with advances and kerning, positions in font units.
+//! Text layout: characters -> positioned glyphs, shaped by HarfRust on the font's own TTF.
 //!
-//! One place for the rule, shared by the text proof and the sheet labels; it reads the
-//! outlined font ([`crate::outline`]). Limits: one line at a time, left to right, no shaping (no contextual forms,
-//! no mark positioning: a combining mark sits where its own outline puts it), no
-//! composition of a base letter and a combining mark into a precomposed glyph.
+//! The one layout rule of the images (the text proof, `render --text` and the sheet labels):
+//! the TTF that [`crate::otf::ttf`] builds from the outlined font, in memory, is shaped with
+//! [HarfRust](https://docs.rs/harfrust) (the Rust port of HarfBuzz), so kerning (GPOS),
+//! ligatures and mark positioning in the PNGs are what a browser does with that font.
+//! HarfRust's glyph ids are mapped back to [`OutlinedFont::glyphs`] through the fonts' glyph
+//! order ([`crate::otf::glyph_order`]) and drawn from the fitted outlines.
+//!
+//! Limits: one line at a time, positions in font units on the TTF's integer grid (advances
+//! are rounded as the fonts store them); the script and direction are guessed from the text
+//! (left to right when it has no strong script); no font features beyond the shaper's
+//! defaults.
 
 use std::collections::BTreeMap;
+use std::fmt;
 
+use harfrust::{Buffer, Direction, ShapeOptions, ShaperFont};
+
+use crate::otf::{self, OtfError};
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
 /// One glyph placed on a line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placed {
-    /// Index into [`OutlinedFont::glyphs`], or `None` when the font has neither the
-    /// character nor a `.notdef`: [`Layout::outline`] then gives the [`notdef_box`].
+    /// Index into [`OutlinedFont::glyphs`], or `None` for the [`notdef_box`] the fonts put
+    /// first when the font has no `.notdef` ([`Layout::outline`] gives it).
     pub glyph: Option<usize>,
-    /// Pen position of the glyph origin, font units from the line start (kerning included).
+    /// Pen position of the glyph origin, font units from the line start (kerning and mark
+    /// offsets included).
     pub x: f64,
-    /// Advance of this glyph, font units.
+    /// Vertical offset of the glyph origin from the baseline, font units, y up (marks).
+    pub y: f64,
+    /// Advance of this glyph, font units (0 for a mark placed on its base).
     pub advance: f64,
 }
 
 /// A laid-out line: placed glyphs and the total advance width.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Line {
-    /// The glyphs, left to right.
+    /// The glyphs in visual order, left to right.
     pub glyphs: Vec<Placed>,
     /// Pen position after the last glyph, font units.
     pub width: f64,
 }
 
-/// Character and kerning lookups for one font, built once.
-#[derive(Clone, Debug)]
+/// Why text could not be laid out.
+#[derive(Debug)]
+pub enum LayoutError {
+    /// The font cannot be built as a TTF (see [`otf::ttf`]).
+    Font(OtfError),
+    /// The built TTF did not read back, or HarfRust refused the text.
+    Shape(String),
+}
+
+impl fmt::Display for LayoutError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LayoutError::Font(e) => write!(f, "cannot build the font to shape text with: {e}"),
+            LayoutError::Shape(msg) => write!(f, "text shaping failed: {msg}"),
+        }
+    }
+}
+
+impl std::error::Error for LayoutError {}
+
+/// The shaper for one font, built once (the TTF is built here).
 pub struct Layout<'a> {
     font: &'a OutlinedFont,
     by_char: BTreeMap<char, usize>,
-    kerning: BTreeMap<(usize, usize), f64>,
-    notdef: Option<usize>,
-    /// The box drawn for characters the font lacks when it has no `.notdef`.
+    /// The TTF of `font`, as HarfRust reads it (owned; its caches live with it).
+    shaping: harfrust::Font,
+    /// Glyph id -> index into `font.glyphs`; `None` for the synthesised `.notdef`.
+    by_gid: Vec<Option<usize>>,
+    /// The box drawn for glyph id 0 when the font has no `.notdef`.
     fallback: OutlinedGlyph,
 }
 
 impl<'a> Layout<'a> {
-    /// The lookups for `font`.
-    pub fn new(font: &'a OutlinedFont) -> Self {
+    /// The shaper for `font`: builds its TTF in memory.
+    pub fn new(font: &'a OutlinedFont) -> Result<Self, LayoutError> {
+        Self::with_ttf(font, otf::ttf(font).map_err(LayoutError::Font)?)
+    }
+
+    /// The shaper for `font` from its TTF already built by [`otf::ttf`] (or that TTF with
+    /// tables changed): its glyph ids must follow [`otf::glyph_order`].
+    pub fn with_ttf(font: &'a OutlinedFont, ttf: Vec<u8>) -> Result<Self, LayoutError> {
+        let shaping = harfrust::Font::new(ttf, 0)
+            .ok_or_else(|| LayoutError::Shape("the built TTF does not read back".into()))?;
         let index: BTreeMap<&str, usize> = font
             .glyphs
             .iter()
             .enumerate()
             .map(|(i, g)| (g.name.as_str(), i))
+            .collect();
+        // The synthesised `.notdef` (when the font has none) is the only name the order
+        // has that the font lacks.
+        let by_gid = otf::glyph_order(font)
+            .map_err(LayoutError::Font)?
+            .iter()
+            .map(|g| index.get(g.model_name.as_str()).copied())
             .collect();
         let mut by_char = BTreeMap::new();
         for (i, g) in font.glyphs.iter().enumerate() {
@@ -56,38 +106,23 @@ impl<'a> Layout<'a> {
                 by_char.entry(c).or_insert(i);
             }
         }
-        let kerning = font
-            .kerning
-            .iter()
-            .filter_map(|k| {
-                Some((
-                    (*index.get(k.left.as_str())?, *index.get(k.right.as_str())?),
-                    k.value,
-                ))
-            })
-            .collect();
-        Layout {
+        Ok(Layout {
             font,
             by_char,
-            kerning,
-            notdef: index.get(".notdef").copied(),
+            shaping,
+            by_gid,
             fallback: notdef_box(&font.info),
-        }
+        })
     }
 
-    /// The glyph index for `c`: its own glyph, else `.notdef`, else `None` (a box).
-    pub fn glyph_for(&self, c: char) -> Option<usize> {
-        self.by_char.get(&c).copied().or(self.notdef)
+    /// The outlined font this shaper draws.
+    pub fn font(&self) -> &'a OutlinedFont {
+        self.font
     }
 
     /// Whether the font has a glyph of its own for `c` (not the fallback).
     pub fn covers(&self, c: char) -> bool {
         self.by_char.contains_key(&c)
-    }
-
-    /// Kerning between two glyph indices, font units (negative = tighter).
-    pub fn kern(&self, left: usize, right: usize) -> f64 {
-        self.kerning.get(&(left, right)).copied().unwrap_or(0.0)
     }
 
     /// The outline to draw for a placed glyph (the [`notdef_box`] for `None`).
@@ -98,26 +133,37 @@ impl<'a> Layout<'a> {
         }
     }
 
-    /// Lays out one line of text; line breaks are the caller's (a `'\n'` here is just a
+    /// Shapes one line of text; line breaks are the caller's (a `'\n'` here is just a
     /// character the font lacks).
-    pub fn line(&self, text: &str) -> Line {
-        let mut glyphs = Vec::new();
-        let mut x = 0.0;
-        let mut prev: Option<usize> = None;
-        for c in text.chars() {
-            let glyph = self.glyph_for(c);
-            if let (Some(l), Some(r)) = (prev, glyph) {
-                x += self.kern(l, r);
-            }
-            let advance = match glyph {
-                Some(i) => self.font.glyphs[i].advance,
-                None => self.fallback.advance,
-            };
-            glyphs.push(Placed { glyph, x, advance });
-            x += advance;
-            prev = glyph;
+    pub fn line(&self, text: &str) -> Result<Line, LayoutError> {
+        let shaper = ShaperFont::new(&self.shaping);
+        let mut buffer = Buffer::new();
+        buffer.push_str(text);
+        buffer.guess_segment_properties();
+        if buffer.direction() == Direction::Invalid {
+            buffer.set_direction(Direction::LeftToRight);
         }
-        Line { glyphs, width: x }
+        harfrust::shape(&shaper, &mut buffer, ShapeOptions::new())
+            .map_err(|e| LayoutError::Shape(e.to_string()))?;
+        let mut pen = 0.0;
+        let mut glyphs = Vec::with_capacity(buffer.len());
+        for (info, pos) in buffer.glyph_infos().iter().zip(buffer.glyph_positions()) {
+            let glyph = self
+                .by_gid
+                .get(info.glyph_id as usize)
+                .copied()
+                .ok_or_else(|| {
+                    LayoutError::Shape(format!("glyph id {} is not in the font", info.glyph_id))
+                })?;
+            glyphs.push(Placed {
+                glyph,
+                x: pen + f64::from(pos.x_offset),
+                y: f64::from(pos.y_offset),
+                advance: f64::from(pos.x_advance),
+            });
+            pen += f64::from(pos.x_advance);
+        }
+        Ok(Line { glyphs, width: pen })
     }
 }
 
@@ -164,7 +210,7 @@ mod tests {
     #[test]
     fn advances_and_kerning() {
         let f = font(true);
-        let line = Layout::new(&f).line("AVA?");
+        let line = Layout::new(&f).unwrap().line("AVA?").unwrap();
         let xs: Vec<f64> = line.glyphs.iter().map(|p| p.x).collect();
         // A at 0; V after 600 - 60; A after V's 580 (no V-A pair); '?' is .notdef.
         assert_eq!(xs, [0.0, 540.0, 1120.0, 1720.0]);
@@ -178,12 +224,12 @@ mod tests {
     #[test]
     fn missing_without_notdef_is_a_box() {
         let f = font(false);
-        let line = Layout::new(&f).line("A?V");
+        let layout = Layout::new(&f).unwrap();
+        let line = layout.line("A?V").unwrap();
         assert_eq!(line.glyphs[1].glyph, None);
         assert_eq!(line.glyphs[1].advance, 500.0);
         // No kerning across the box.
         assert_eq!(line.glyphs[2].x, 1100.0);
-        let layout = Layout::new(&f);
         let area = layout.outline(&line.glyphs[1]).path.area();
         // Outer 400 x 700 minus inner 300 x 600, positive = counter-clockwise.
         assert_eq!(area, 400.0 * 700.0 - 300.0 * 600.0);

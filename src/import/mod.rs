@@ -392,7 +392,9 @@ struct Measured {
 }
 
 /// Rounds positions to `grid`, drops a point that then coincides with the one before it
-/// (keeping sharp points), and validates the result.
+/// (keeping sharp points), and validates the result. A contour that then encloses no area
+/// (a sliver of the original flattened into a spike) is refused as the loader would refuse
+/// it, so that every imported folder loads: the caller tries a finer grid, then drops it.
 fn rounded(points: &[ControlPoint], grid: f64) -> Option<XSpline> {
     let mut out: Vec<ControlPoint> = points
         .iter()
@@ -408,12 +410,25 @@ fn rounded(points: &[ControlPoint], grid: f64) -> Option<XSpline> {
             i += 1;
         }
     }
-    XSpline::new(out).ok()
+    XSpline::new(out)
+        .ok()
+        .filter(|spline| crate::source::no_area(spline).is_none())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_contour_rounded_into_a_spike_is_refused() {
+        // Out and back along itself once on the grid: the loader would refuse it ("encloses
+        // no area"), so the importer must not write it.
+        let p = |x: f64, y: f64| ControlPoint::new(x, y, 0.0);
+        let spike = [p(0.0, 0.0), p(100.0, 0.0), p(100.0, 100.0), p(100.0, 0.2)];
+        assert!(rounded(&spike, 1.0).is_none());
+        // The same points on a fine grid keep a sliver of area and are kept.
+        assert_eq!(rounded(&spike, 0.01).map(|s| s.points().len()), Some(4));
+    }
 
     #[test]
     fn grid_and_rounding() {

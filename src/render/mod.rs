@@ -14,7 +14,9 @@ use std::fmt;
 
 use tiny_skia::Pixmap;
 
-pub use proof::{default_text, render_instances_proof, render_proof, ProofOptions};
+pub use proof::{
+    default_text, render_instances_proof, render_proof, render_proof_with, ProofOptions,
+};
 pub use sheet::{
     page_file_names, render_sheet, render_sheet_page, sheet_order, sheet_pages, sheet_png_files,
     SheetOptions,
@@ -41,6 +43,8 @@ pub enum RenderError {
     Option(String),
     /// PNG encoding failed.
     Png(String),
+    /// The text could not be shaped ([`crate::layout::LayoutError`], as text).
+    Layout(String),
 }
 
 impl fmt::Display for RenderError {
@@ -54,11 +58,18 @@ impl fmt::Display for RenderError {
             ),
             RenderError::Option(msg) => write!(f, "{msg}"),
             RenderError::Png(msg) => write!(f, "PNG encoding failed: {msg}"),
+            RenderError::Layout(msg) => write!(f, "{msg}"),
         }
     }
 }
 
 impl std::error::Error for RenderError {}
+
+impl From<crate::layout::LayoutError> for RenderError {
+    fn from(e: crate::layout::LayoutError) -> Self {
+        RenderError::Layout(e.to_string())
+    }
+}
 
 /// A white pixmap of the given size, or [`RenderError::Size`].
 pub fn white_pixmap(width: u64, height: u64) -> Result<Pixmap, RenderError> {

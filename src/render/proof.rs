@@ -1,9 +1,12 @@
 //! The text proof: lines of text set in the font, at several sizes (a waterfall).
 //!
-//! Black text on white, with the font's advances and kerning ([`crate::layout`]).
+//! Black text on white, shaped as a browser shapes it: kerning, ligatures and marks come
+//! from the font's own TTF through HarfRust ([`crate::layout`]).
 //! Sizes are pixels per em (`units_per_em` font units). Each size sets every line of the
 //! text; the image is as wide as the longest line (plus margins) up to a maximum width,
 //! and lines longer than that are cut at the right edge (no wrapping).
+
+use std::collections::BTreeSet;
 
 use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
 
@@ -51,11 +54,16 @@ const CANDIDATES: &[&str] = &[
 /// A text for the font: the candidate lines it covers; if it covers none, every character
 /// it has (in code-point order, marks and spaces left out) followed by its kerning pairs.
 pub fn default_text(font: &OutlinedFont) -> String {
-    let layout = Layout::new(font);
+    // The font's own code points (no shaper needed to pick the text).
+    let covered: BTreeSet<char> = font
+        .glyphs
+        .iter()
+        .flat_map(|g| g.unicodes.iter().copied())
+        .collect();
     let lines: Vec<&str> = CANDIDATES
         .iter()
         .copied()
-        .filter(|t| t.chars().all(|c| layout.covers(c)))
+        .filter(|t| t.chars().all(|c| covered.contains(&c)))
         .collect();
     if !lines.is_empty() {
         return lines.join("\n");
@@ -91,6 +99,19 @@ const MARGIN: f64 = 16.0;
 
 /// Renders the proof of `font`.
 pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    check_sizes(opts)?;
+    proof_pixmap(&Layout::new(font)?, opts)
+}
+
+/// [`render_proof`] with a shaper already built, e.g. on a TTF the caller has
+/// ([`Layout::with_ttf`]).
+pub fn render_proof_with(layout: &Layout<'_>, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    check_sizes(opts)?;
+    proof_pixmap(layout, opts)
+}
+
+/// At least one size, each 1..=1000 px per em.
+fn check_sizes(opts: &ProofOptions) -> Result<(), RenderError> {
     if opts.sizes.is_empty() {
         return Err(RenderError::Option("at least one size is needed".into()));
     }
@@ -103,6 +124,11 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
             "size {bad} px is out of range 1..=1000"
         )));
     }
+    Ok(())
+}
+
+fn proof_pixmap(layout: &Layout<'_>, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
+    let font = layout.font();
     let text = opts.text.clone().unwrap_or_else(|| default_text(font));
     let lines: Vec<&str> = text.lines().collect();
     let info = &font.info;
@@ -115,8 +141,10 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
         bottom = bottom.min(ink.y0);
     }
     let em = (info.ascender - info.descender).max(top - bottom);
-    let layout = Layout::new(font);
-    let laid: Vec<_> = lines.iter().map(|l| layout.line(l)).collect();
+    let laid = lines
+        .iter()
+        .map(|l| layout.line(l))
+        .collect::<Result<Vec<_>, _>>()?;
     let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
     // Pass 1: baselines, the image height and width.
     let mut y = MARGIN;
@@ -147,7 +175,7 @@ pub fn render_proof(font: &OutlinedFont, opts: &ProofOptions) -> Result<Pixmap, 
                 let at = Placement {
                     scale,
                     origin_x,
-                    baseline_y: baseline,
+                    baseline_y: baseline - placed.y * scale,
                 };
                 fill_glyph(&mut img, &layout.outline(placed).path, at, Color::BLACK);
             }

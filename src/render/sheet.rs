@@ -180,7 +180,7 @@ pub fn render_sheet_page(
     let rows = n.div_ceil(columns);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
     let geometry = CellGeometry::new(font, opts.cell_px);
-    let layout = Layout::new(font);
+    let layout = Layout::new(font)?;
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
         let img = render_cell(font, &layout, &geometry, index, opts)?;
@@ -284,7 +284,7 @@ fn render_cell(
         stroke_glyph(&mut img, &glyph.path, at, rgb(OUTLINE_UNDER_OVERLAY));
         overlay::draw(&mut img, glyph, at, geo.cell);
     }
-    draw_label(&mut img, font, layout, geo, index);
+    draw_label(&mut img, font, layout, geo, index)?;
     // Grid: right and bottom edges, so neighbouring cells share one line.
     let edge = geo.cell - 0.5;
     line_px(
@@ -308,7 +308,7 @@ fn draw_label(
     layout: &Layout<'_>,
     geo: &CellGeometry,
     index: usize,
-) {
+) -> Result<(), RenderError> {
     let glyph = &font.glyphs[index];
     let text = label(&glyph.name, &glyph.unicodes);
     if !text.chars().all(|c| layout.covers(c)) {
@@ -321,9 +321,9 @@ fn draw_label(
             room,
             rgb(LABEL),
         );
-        return;
+        return Ok(());
     }
-    let line = layout.line(&text);
+    let line = layout.line(&text)?;
     let em = font.info.ascender - font.info.descender;
     let mut scale = geo.label_em / em;
     let room = geo.cell - 2.0 * geo.pad;
@@ -334,8 +334,9 @@ fn draw_label(
         let at = Placement {
             scale,
             origin_x: geo.pad + placed.x * scale,
-            baseline_y: geo.pad + font.info.ascender * scale,
+            baseline_y: geo.pad + (font.info.ascender - placed.y) * scale,
         };
         fill_glyph(img, &layout.outline(placed).path, at, rgb(LABEL));
     }
+    Ok(())
 }

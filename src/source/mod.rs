@@ -29,7 +29,7 @@ mod value;
 pub use anchors::{is_combining, place_in_font, COMBINING_BLOCKS};
 pub use designspace::load_designspace_text;
 pub use diagnostic::{line_col, Diagnostic, Severity, Snippet, MAX_PER_FILE};
-pub use geometry::{FAR_EMS, FLAT_RELATIVE};
+pub use geometry::{no_area, NoArea, FAR_EMS, FLAT_RELATIVE};
 pub use glyph::{load_glyph_text, offsets_written};
 pub use info::{check_tolerance_flag, load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 pub use kerning::load_kerning_text;

@@ -27,6 +27,7 @@ mod production;
 mod render;
 mod scale;
 mod serve;
+mod shaping;
 mod source_docs;
 mod source_emit;
 mod source_fmt;

@@ -297,7 +297,7 @@ fn pangrams_read_back_through_tesseract() {
     for (style, font) in &styles {
         let outlines = outline_font(font, font.info.tolerance);
         // The text must be set in the font itself, not in .notdef boxes.
-        let layout = Layout::new(&outlines);
+        let layout = Layout::new(&outlines).expect("the font shapes");
         let missing: BTreeSet<char> = set
             .blocks
             .iter()

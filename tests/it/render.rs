@@ -189,7 +189,7 @@ fn sheet_order_and_default_text() {
     // Mini covers no candidate line: its characters (no marks, no space), then kerning pairs.
     assert_eq!(default_text(&font), ".AVoó\nAV Vo");
     // The proof's layout: kerning A-V -60 and V-o -40 applied.
-    let line = Layout::new(&font).line("AVo");
+    let line = Layout::new(&font).unwrap().line("AVo").unwrap();
     let xs: Vec<f64> = line.glyphs.iter().map(|p| p.x).collect();
     assert_eq!(xs, [0.0, 580.0, 1140.0]);
 }
