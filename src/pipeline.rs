@@ -263,8 +263,9 @@ pub fn instance_outputs(
 }
 
 /// The variable font of a font with masters, `<Family>[<axis tags>].ttf` and `.woff2`
-/// (the naming Google Fonts uses), from the compatible outlines ([`outline_family`]), with
-/// the fit's summary. `None` for a single-master font.
+/// (the naming Google Fonts uses), plus `<Family>-<Master>.ufo` per master and
+/// `<Family>.designspace` ([`crate::ufo::designspace`]), all from the compatible outlines
+/// ([`outline_family`]), with the fit's summary. `None` for a single-master font.
 pub fn variable_outputs(
     loaded: &Loaded,
 ) -> Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError> {
@@ -289,13 +290,17 @@ pub fn variable_outputs(
         .strip_suffix(&format!("-{style}"))
         .unwrap_or(&static_stem);
     let stem = format!("{family_stem}[{}]", tags.join(","));
-    Ok(Some((
-        vec![
-            (PathBuf::from(format!("{stem}.ttf")), ttf),
-            (PathBuf::from(format!("{stem}.woff2")), woff2),
-        ],
-        summary,
-    )))
+    let mut files = vec![
+        (PathBuf::from(format!("{stem}.ttf")), ttf),
+        (PathBuf::from(format!("{stem}.woff2")), woff2),
+    ];
+    // One UFO per master from the same compatible outlines, and the `.designspace`; the
+    // default master's UFO replaces the static one of [`outputs`].
+    files.extend(crate::ufo::designspace::output_files(
+        &family,
+        &loaded.family,
+    )?);
+    Ok(Some((files, summary)))
 }
 
 /// The instances proof: the build's proof text at three sizes (every instance is a block).

@@ -32,7 +32,10 @@ Writes into OUT:
   proof.png              text proof at several sizes
   <Family>-<Style>.ttf   TrueType font (quadratic outlines within the tolerance)
   <Family>-<Style>.otf   OpenType CFF font (the cubics)
+  <Family>-<Style>.ufo/  UFO 3 source (fitted cubics, X-splines in the glyph lib)
   specimen.html          specimen page loading the OTF with @font-face
+With masters, also: <Family>[<axes>].ttf and .woff2 (variable font), one
+  <Family>-<Master>.ufo/ per master (compatible cubics) and <Family>.designspace
 
 Examples:
   xglyph build                            # glyphs/ -> out/
@@ -245,6 +248,16 @@ fn variable_line(fs: &FamilySummary, family: &Family, tolerance: f64) -> String 
     )
 }
 
+/// Adds `newer` to `files`, where a top-level name (file or folder) that `newer` has
+/// replaces everything `files` has under it: the default master's UFO from the compatible
+/// fit replaces the static fit's UFO folder as a whole.
+fn replace_outputs(files: &mut Vec<OutputFile>, newer: &[OutputFile]) {
+    let top = |p: &Path| p.components().next().map(|c| c.as_os_str().to_owned());
+    let replaced: std::collections::HashSet<_> = newer.iter().map(|(p, _)| top(p)).collect();
+    files.retain(|(p, _)| !replaced.contains(&top(p)));
+    files.extend(newer.iter().cloned());
+}
+
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     let cache_path = args.font.out.join(CACHE_FILE);
@@ -268,7 +281,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     files.extend(pipeline::instance_outputs(&loaded, &opts)?);
     let variable = pipeline::variable_outputs(&loaded)?;
     if let Some((var_files, _)) = &variable {
-        files.extend(var_files.iter().cloned());
+        replace_outputs(&mut files, var_files);
     }
     pipeline::write_outputs(&args.font.out, &files)?;
     let info = &loaded.font.info;

@@ -1,4 +1,5 @@
-//! `xglyph import`: a font file, a UFO or SVG drawings -> a font directory of X-spline sources.
+//! `xglyph import`: a font file, a UFO, a designspace or SVG drawings -> a font directory of
+//! X-spline sources (with a master folder per designspace source).
 //!
 //! Everything is fitted in memory first (glyphs in parallel); the files are then written
 //! into a new temporary folder next to the output, which is renamed into place only when
@@ -19,8 +20,9 @@ use crate::terminal::{out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), or one or
-    /// more SVG drawings (.svg, one glyph each).
+    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), one
+    /// designspace (.designspace: a font with masters), or one or more SVG drawings (.svg,
+    /// one glyph each).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
     /// Output font directory (must be empty or absent unless --force).
@@ -58,6 +60,7 @@ enum Kind {
     Font,
     Svg,
     Ufo,
+    Designspace,
 }
 
 fn kind(path: &Path) -> Result<Kind, ImportError> {
@@ -69,9 +72,11 @@ fn kind(path: &Path) -> Result<Kind, ImportError> {
         "ttf" | "otf" | "ttc" | "otc" => Ok(Kind::Font),
         "svg" => Ok(Kind::Svg),
         "ufo" => Ok(Kind::Ufo),
+        "designspace" => Ok(Kind::Designspace),
         _ => Err(ImportError::at(
             path,
-            "unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg file or a .ufo folder",
+            "unknown input type; expected a .ttf, .otf, .ttc, .otc, .svg or .designspace file \
+             or a .ufo folder",
         )),
     }
 }
@@ -83,10 +88,30 @@ fn read(path: &Path) -> Result<Vec<u8>, ImportError> {
 pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
     check_output_dir(&args.output, args.force)?;
     let progress = std::io::stderr().is_terminal().then(terminal_progress);
+    if let [one] = args.inputs.as_slice() {
+        if let Ok(Kind::Designspace) = kind(one) {
+            return import_family(&args, Progress(progress));
+        }
+    }
     let imported = import_inputs(&args, Progress(progress))?;
     let files = font_sources(&imported.font);
     let written = write_font_dir(&args.output, &files)?;
     out!("{}", imported.report.render());
+    outln!("wrote {written} files to {}", args.output.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A designspace: its sources as a font with masters, each source's report in turn.
+fn import_family(args: &ImportArgs, progress: Progress) -> Result<ExitCode, CommandError> {
+    check_designspace_flags(args)?;
+    let opts = ufo_options(args, progress);
+    let imported = import::designspace::import_designspace(&args.inputs[0], &opts)?;
+    let files = import::designspace::family_sources(&imported.family);
+    let written = write_font_dir(&args.output, &files)?;
+    for (style, report) in &imported.reports {
+        outln!("source {style}:");
+        out!("{}", report.render());
+    }
     outln!("wrote {written} files to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }
@@ -124,6 +149,10 @@ fn write_font_dir(dir: &Path, files: &[(String, String)]) -> Result<usize, Impor
         .map_err(|e| fail("create a folder in", &parent, e))?;
     for (name, text) in files {
         let path = temp.path().join(name);
+        // A master's files are in its folder (`bold/a.toml`).
+        if let Some(folder) = path.parent() {
+            std::fs::create_dir_all(folder).map_err(|e| fail("create the folder", folder, e))?;
+        }
         std::fs::write(&path, text).map_err(|e| {
             let path = dir.join(name);
             fail("write", &path, e)
@@ -140,6 +169,10 @@ fn write_font_dir(dir: &Path, files: &[(String, String)]) -> Result<usize, Impor
     } else {
         for (name, _) in files {
             let to = dir.join(name);
+            if let Some(folder) = to.parent() {
+                std::fs::create_dir_all(folder)
+                    .map_err(|e| fail("create the folder", folder, e))?;
+            }
             std::fs::rename(temp.path().join(name), &to).map_err(|e| fail("write", &to, e))?;
         }
     }
@@ -157,6 +190,11 @@ pub fn import_inputs(
         .map(|p| kind(p))
         .collect::<Result<Vec<_>, _>>()?;
     let fonts = kinds.iter().filter(|k| matches!(k, Kind::Font)).count();
+    if kinds.iter().any(|k| matches!(k, Kind::Designspace)) {
+        return Err(ImportError::plain(
+            "import one designspace at a time, without other inputs",
+        ));
+    }
     if kinds.iter().any(|k| matches!(k, Kind::Ufo)) {
         return import_ufo(args, progress);
     }
@@ -237,13 +275,36 @@ fn import_ufo(args: &ImportArgs, progress: Progress) -> Result<import::Imported,
             )));
         }
     }
-    let opts = ImportOptions {
+    import::import_ufo(&args.inputs[0], &ufo_options(args, progress))
+}
+
+/// The options of a UFO or designspace import (the caller checked the flags).
+fn ufo_options(args: &ImportArgs, progress: Progress) -> ImportOptions {
+    ImportOptions {
         tolerance: args.tolerance,
         family: args.family.clone(),
         progress,
         ..ImportOptions::default()
-    };
-    import::import_ufo(&args.inputs[0], &opts)
+    }
+}
+
+/// Refuses the flags that do not apply to a designspace.
+fn check_designspace_flags(args: &ImportArgs) -> Result<(), ImportError> {
+    for (given, flag) in [
+        (args.glyphs.is_some(), "--glyphs"),
+        (args.face.is_some(), "--face"),
+        (args.codepoints.is_some(), "--codepoints"),
+        (args.first_codepoint.is_some(), "--first-codepoint"),
+        (args.units_per_em.is_some(), "--units-per-em"),
+    ] {
+        if given {
+            return Err(ImportError::plain(format!(
+                "{flag} does not apply to a designspace (it imports every glyph of each \
+                 source's default layer)"
+            )));
+        }
+    }
+    Ok(())
 }
 
 fn parse_hex_char(s: &str) -> Option<char> {

@@ -20,6 +20,7 @@
 //! the original (triangle inequality on the two-sided distance).
 
 pub mod contour;
+pub mod designspace;
 pub mod fit;
 pub mod font;
 pub mod report;

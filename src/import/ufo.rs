@@ -15,9 +15,9 @@
 //! Font info: names, metrics and licence from `fontinfo.plist`, the tolerance and version
 //! text from the font lib when an xglyph export wrote them. Kerning: glyph pairs as they are;
 //! group pairs (`public.kern1.*`, `public.kern2.*`) are expanded to glyph pairs, a more
-//! specific pair winning, as UFO kerning defines. Limits: anchors, guidelines, images,
-//! other layers and `features.fea` are not imported (the model has no place for them;
-//! the report counts dropped anchors); a glyph name outside the OpenType `post` rule is
+//! specific pair winning, as UFO kerning defines. Named anchors come in as they are (an
+//! unnamed one is left out and counted in the report). Limits: guidelines, images, other
+//! layers and `features.fea` are not imported (the model has no place for them); a glyph name outside the OpenType `post` rule is
 //! renamed as SVG file names are (`names::glyph_name_from`), in components and
 //! kerning too.
 
@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use super::report::{GlyphReport, Report};
 use super::{contour, grid_for, import_glyph, FittedGlyph, ImportError, ImportOptions, Imported};
 use super::{SourceGlyph, BUILD_SHARE};
-use crate::model::{Component, Font, FontInfo, Glyph, KernPair, DEFAULT_VENDOR};
+use crate::model::{Anchor, Component, Font, FontInfo, Glyph, KernPair, DEFAULT_VENDOR};
 use crate::ufo::lib::{
     number, read_kerning_order, read_xspline, KERNING_ORDER_KEY, TOLERANCE_KEY, VERSION_KEY,
     XSPLINE_KEY,
@@ -73,10 +73,13 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
         .map_err(|m| ImportError::at(path, m))?;
     fitted.sort_by(|a, b| crate::model::glyph_order(&a.fitted.glyph.name, &b.fitted.glyph.name));
     let mut notes = Vec::new();
-    let anchors: usize = glyphs.iter().map(|g| g.anchors.len()).sum();
-    if anchors > 0 {
+    let unnamed: usize = glyphs
+        .iter()
+        .map(|g| g.anchors.iter().filter(|a| a.name.is_none()).count())
+        .sum();
+    if unnamed > 0 {
         notes.push(format!(
-            "{anchors} anchor(s) left out: xglyph sources have no anchors yet"
+            "{unnamed} anchor(s) without a name left out: xglyph anchors are named"
         ));
     }
     let refitted: Vec<&str> = fitted
@@ -280,7 +283,7 @@ fn import_one(
                     advance: g.width,
                     contours: splines,
                     components,
-                    anchors: Vec::new(),
+                    anchors: anchors(g),
                 };
                 return Ok(UfoGlyph {
                     fitted: FittedGlyph { glyph, report },
@@ -298,11 +301,26 @@ fn import_one(
     };
     let mut fitted = import_glyph(&source, tolerance, grid);
     fitted.glyph.components = components;
+    fitted.glyph.anchors = anchors(g);
     Ok(UfoGlyph {
         fitted,
         from_lib: false,
         stale_lib: lib.is_some(),
     })
+}
+
+/// The glyph's named anchors, in file order, at their exact positions (an unnamed one has
+/// no place in the model; the report counts them).
+fn anchors(g: &norad::Glyph) -> Vec<Anchor> {
+    g.anchors
+        .iter()
+        .filter_map(|a| {
+            Some(Anchor {
+                name: a.name.as_ref()?.to_string(),
+                position: (a.x, a.y),
+            })
+        })
+        .collect()
 }
 
 fn affine(t: norad::AffineTransform) -> Affine {

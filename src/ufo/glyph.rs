@@ -1,5 +1,5 @@
 //! One outlined glyph as a UFO glyph: its own fitted contours, its components, code points,
-//! advance, and its X-spline contours in the lib.
+//! advance, anchors (named, at their exact positions), and its X-spline contours in the lib.
 //!
 //! The outlined glyph's path holds its own contours first, then its components' (see
 //! [`crate::outline::OutlinedGlyph`]), each subpath already oriented by the build; the own
@@ -31,6 +31,20 @@ pub fn glyph(g: &OutlinedGlyph, own: usize) -> Result<norad::Glyph, UfoError> {
         };
         ufo.components
             .push(norad::Component::new(name(&c.base)?, transform, None));
+    }
+    for a in &g.anchors {
+        let anchor_name = norad::Name::new(&a.name).map_err(|_| UfoError::AnchorName {
+            glyph: g.name.clone(),
+            anchor: a.name.clone(),
+        })?;
+        let (x, y) = a.position;
+        ufo.anchors.push(norad::Anchor::new(
+            x + 0.0,
+            y + 0.0,
+            Some(anchor_name),
+            None,
+            None,
+        ));
     }
     if own > 0 {
         let splines: Vec<crate::model::Contour> = g.contours[..own]

@@ -17,18 +17,21 @@
 //!   [`crate::import::import_ufo`] gives back the same model: export then import is exact.
 //!
 //! One call per master: [`export`] reads one outlined font, so a family exports each
-//! master's [`OutlinedFont`] in turn.
+//! master's [`OutlinedFont`] in turn; [`designspace`] does that for a font with masters and
+//! writes the `.designspace` file that ties the UFOs together.
 //!
 //! Glyph file names are norad's (the UFO 3 user-name-to-file-name rule); glyph names follow
 //! the OpenType `post` rule already, so every name is a valid UFO name. The output is
 //! deterministic: fixed key order in every plist, glyphs in the font's order.
 //!
-//! Limits: no anchors or guidelines (the model has none); a font without a `.notdef` gets
+//! Anchors are written with their names and exact positions. Limits: no guidelines (the
+//! model has none); a font without a `.notdef` gets
 //! none in the UFO (compilers then make their own); the files are meant for a fresh
 //! `<Family>-<Style>.ufo` folder: glyph files of an older export that are no longer in the
 //! font are not removed by writing into the same folder (they are not in
 //! `contents.plist`, so UFO readers ignore them).
 
+pub mod designspace;
 mod glyph;
 mod info;
 pub mod lib;
@@ -49,6 +52,16 @@ pub enum UfoError {
     /// A glyph name that UFO does not allow (empty, or with control characters); only a
     /// model built in code can have one, the loader refuses them.
     GlyphName(String),
+    /// An anchor name that UFO does not allow (empty, or with control characters).
+    AnchorName {
+        /// The glyph that has the anchor.
+        glyph: String,
+        /// The anchor's name.
+        anchor: String,
+    },
+    /// Two masters would write the same UFO folder (their styles differ only in spaces or
+    /// in characters a file name cannot hold).
+    MasterName(String),
     /// More than 99 glyph names share one file name once case is folded (norad's limit).
     FileNameClash(String),
     /// norad refused to write the font.
@@ -61,6 +74,16 @@ impl fmt::Display for UfoError {
             UfoError::GlyphName(name) => {
                 write!(f, "UFO export: glyph name {name:?} is not a valid UFO name")
             }
+            UfoError::AnchorName { glyph, anchor } => write!(
+                f,
+                "UFO export: glyph `{glyph}` has the anchor name {anchor:?}, which is not a \
+                 valid UFO name"
+            ),
+            UfoError::MasterName(dir) => write!(
+                f,
+                "UFO export: two masters would both be written as {dir}; give them styles \
+                 that differ in more than spaces"
+            ),
             UfoError::FileNameClash(name) => write!(
                 f,
                 "UFO export: too many glyph names share the file name of `{name}` when case is \

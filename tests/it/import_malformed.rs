@@ -229,8 +229,8 @@ fn command_line_errors_write_nothing() {
         ),
         (
             &["notes.txt"],
-            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc or .svg \
-             file or a .ufo folder\n"
+            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc, .svg or \
+             .designspace file or a .ufo folder\n"
                 .into(),
         ),
     ];

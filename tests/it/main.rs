@@ -8,6 +8,7 @@ mod anchors;
 mod build;
 mod cache;
 mod compatible;
+mod designspace;
 mod fit;
 mod fit_count;
 mod flatten;

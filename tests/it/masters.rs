@@ -588,6 +588,7 @@ fn build_writes_each_named_instance_and_their_proof() {
             "MastersTest-Bold.otf",
             "MastersTest-Bold.svg",
             "MastersTest-Bold.ttf",
+            "MastersTest-Bold.ufo",
             "MastersTest-Medium.otf",
             "MastersTest-Medium.svg",
             "MastersTest-Medium.ttf",

@@ -245,6 +245,9 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
         None,
         None,
     ));
+    // An anchor without a name, which the model has no place for.
+    o.anchors
+        .push(norad::Anchor::new(10.0, 20.0, None, None, None));
     let mut small = norad::Glyph::new("osmall");
     small.width = 300.0;
     small.components.push(norad::Component::new(
@@ -276,10 +279,22 @@ fn a_foreign_ufo_is_fitted_with_components_groups_and_transforms() {
     // Fitted within the import budget: 0.75 of 1/1000 em.
     assert!(imported.report.over_budget().is_empty());
     assert!(imported.report.max_error() <= 0.75);
-    assert!(imported
-        .report
-        .notes
-        .contains(&"1 anchor(s) left out: xglyph sources have no anchors yet".to_string()));
+    assert!(
+        imported
+            .report
+            .notes
+            .contains(&"1 anchor(s) without a name left out: xglyph anchors are named".to_string()),
+        "{:?}",
+        imported.report.notes
+    );
+    // The named anchors come in with the fitted glyph, at their exact positions: the
+    // bundled `o`'s and the one added here.
+    let mut want = font.glyph("o").expect("o").anchors.clone();
+    want.push(xglyph::model::Anchor {
+        name: "top".into(),
+        position: (270.0, 520.0),
+    });
+    assert_eq!(f.glyph("o").expect("o").anchors, want);
     // The build tolerance without the lib: a quarter of the import tolerance.
     assert_eq!(f.info.tolerance, 0.25);
     assert_eq!(f.info.family, "Xglyph Sans");
@@ -484,15 +499,43 @@ fn cli_import_of_the_export_equals_the_formatted_sources() {
         .arg(&ufo_path)
         .arg("-o")
         .arg(&out));
+    // Every glyph with contours of its own comes from its lib.
+    let (bundled, _) = xglyph::load_font(&glyphs_dir()).expect("loads");
+    let drawn = bundled
+        .glyphs
+        .iter()
+        .filter(|g| !g.contours.is_empty())
+        .count();
+    assert!(drawn >= 102, "{drawn}");
     assert!(
-        report.contains("105 glyph(s) taken exactly from their org.xglyph.xspline lib"),
+        report.contains(&format!(
+            "{drawn} glyph(s) taken exactly from their org.xglyph.xspline lib"
+        )),
         "{report}"
     );
     let mut want = sources_without_leading_comments(&formatted);
     // The one bundled file whose name does not follow the file-name rule (see above).
     let nbsp = want.remove("uni00A0.toml").expect("bundled");
     want.insert("uni00A_0.toml".into(), nbsp);
-    assert_eq!(sources_without_leading_comments(&out), want);
+    // The import writes every component offset; the sources leave out the ones their
+    // anchors give (`oacute`). Apart from those lines the files are the same, and the two
+    // folders load as the same font, offsets included.
+    let strip = |files: std::collections::BTreeMap<String, String>| {
+        files
+            .into_iter()
+            .map(|(name, text)| {
+                let kept: Vec<&str> = text
+                    .lines()
+                    .filter(|l| !l.starts_with("offset = "))
+                    .collect();
+                (name, kept.join("\n"))
+            })
+            .collect::<std::collections::BTreeMap<_, _>>()
+    };
+    assert_eq!(strip(sources_without_leading_comments(&out)), strip(want));
+    let (imported, _) = xglyph::load_font(&out).expect("loads");
+    let (formatted_font, _) = xglyph::load_font(&formatted).expect("loads");
+    assert_eq!(imported, formatted_font);
     // Flags that do not apply are refused, naming the flag.
     let refused = Command::new(bin)
         .arg("import")

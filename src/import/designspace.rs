@@ -1,0 +1,266 @@
+//! Designspace import: a `.designspace` (norad) and its source UFOs -> a font with masters
+//! (`font.toml` `[[axis]]`/`[[master]]`/`[[instance]]`, one folder per non-default master).
+//!
+//! Each source UFO is imported on its own ([`super::import_ufo`]): an xglyph export takes
+//! its X-splines from the glyph libs, so `build` then import gives the same family back.
+//! The source at every axis default becomes the font folder itself; every other source a
+//! master whose folder is its style name in lower case without spaces (`bold/`).
+//!
+//! Limits: the masters must be compatible X-splines once imported (same contours, same
+//! number of points, sharp points at the same places). Foreign UFOs without xglyph's lib are
+//! fitted one master at a time, so that holds only when the fits happen to agree; when it
+//! does not, the error names the glyph and master. Discrete axes, axis maps (`avar`),
+//! sources on a layer other than the default, and rules are not supported (an error says
+//! which); locations are read as user coordinates (`uservalue`, else `xvalue`, which equals
+//! it without a map).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use norad::designspace::{DesignSpaceDocument, Dimension};
+
+use super::report::Report;
+use super::{import_ufo, ImportError, ImportOptions};
+use crate::designspace::{Axis, Designspace, Location, NamedInstance};
+use crate::model::{Family, Glyph, Master};
+
+/// A designspace imported: the family and each source's report (default first).
+#[derive(Debug)]
+pub struct ImportedFamily {
+    /// The default master with the others, axes and named instances.
+    pub family: Family,
+    /// Per source, its style name and import report, the default's first.
+    pub reports: Vec<(String, Report)>,
+}
+
+/// Imports the designspace at `path` and every source UFO it names.
+pub fn import_designspace(
+    path: &Path,
+    opts: &ImportOptions,
+) -> Result<ImportedFamily, ImportError> {
+    let doc = DesignSpaceDocument::load(path).map_err(|e| {
+        ImportError::at(
+            path,
+            format!(
+                "cannot read the designspace: {}",
+                crate::ufo::error_chain(&e)
+            ),
+        )
+    })?;
+    let fail = |message: String| ImportError::at(path, message);
+    let axes = axes(&doc).map_err(fail)?;
+    if !doc.rules.rules.is_empty() {
+        return Err(fail("rules (glyph substitutions) are not supported".into()));
+    }
+    let designspace = Designspace {
+        axes,
+        instances: Vec::new(),
+    };
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut sources = Vec::new();
+    for s in &doc.sources {
+        let style = s
+            .stylename
+            .clone()
+            .or_else(|| s.name.clone())
+            .unwrap_or_else(|| s.filename.trim_end_matches(".ufo").to_string());
+        if s.layer.is_some() {
+            return Err(fail(format!(
+                "source `{style}` reads the layer {:?}; only default layers are supported",
+                s.layer.as_deref().unwrap_or_default()
+            )));
+        }
+        let location = location(&designspace, &s.location)
+            .map_err(|m| fail(format!("source `{style}`: {m}")))?;
+        sources.push((style, location, base.join(&s.filename)));
+    }
+    let at_default = |l: &Location| designspace.normalize(l).iter().all(|&v| v == 0.0);
+    let default_index = sources
+        .iter()
+        .position(|(_, l, _)| at_default(l))
+        .ok_or_else(|| fail("no source sits at the default of every axis".into()))?;
+    let mut imported = Vec::new();
+    for (style, location, ufo) in &sources {
+        imported.push((style.clone(), location.clone(), import_ufo(ufo, opts)?));
+    }
+    let (style, _, default) = imported.remove(default_index);
+    let mut font = default.font;
+    font.info.style = style.clone();
+    let mut reports = vec![(style, default.report)];
+    let mut masters = Vec::new();
+    for (style, location, other) in imported {
+        let folder = PathBuf::from(folder_name(&style));
+        let glyphs = parallel(&font.glyphs, &other.font.glyphs, &style).map_err(fail)?;
+        masters.push(Master {
+            name: style.clone(),
+            folder,
+            location,
+            glyphs,
+            kerning: other.font.kerning,
+        });
+        reports.push((style, other.report));
+    }
+    let mut folders: Vec<&PathBuf> = masters.iter().map(|m| &m.folder).collect();
+    folders.sort();
+    if let Some(w) = folders.windows(2).find(|w| w[0] == w[1]) {
+        return Err(fail(format!(
+            "two sources would share the master folder {}/; give them distinct style names",
+            w[0].display()
+        )));
+    }
+    let mut designspace = designspace;
+    for i in &doc.instances {
+        let name = i
+            .stylename
+            .clone()
+            .or_else(|| i.name.clone())
+            .unwrap_or_default();
+        let location = location(&designspace, &i.location)
+            .map_err(|m| fail(format!("instance `{name}`: {m}")))?;
+        designspace.instances.push(NamedInstance { name, location });
+    }
+    Ok(ImportedFamily {
+        family: Family {
+            default: font,
+            designspace,
+            masters,
+        },
+        reports,
+    })
+}
+
+/// The continuous axes of `doc`.
+fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
+    doc.axes
+        .iter()
+        .map(|a| {
+            if a.map.as_ref().is_some_and(|m| !m.is_empty()) {
+                return Err(format!("axis `{}` has a map (avar), which is not supported", a.name));
+            }
+            match (a.minimum, a.maximum) {
+                (Some(min), Some(max)) => Ok(Axis {
+                    tag: a.tag.clone(),
+                    name: a.name.clone(),
+                    min,
+                    default: a.default,
+                    max,
+                }),
+                _ => Err(format!(
+                    "axis `{}` is discrete (values, no minimum and maximum), which is not supported",
+                    a.name
+                )),
+            }
+        })
+        .collect()
+}
+
+/// A location by axis tag; an axis the dimensions leave out is at its default.
+fn location(ds: &Designspace, dims: &[Dimension]) -> Result<Location, String> {
+    let mut location = Location::default();
+    for d in dims {
+        let axis = ds
+            .axes
+            .iter()
+            .find(|a| a.name == d.name)
+            .ok_or_else(|| format!("the location names the unknown axis `{}`", d.name))?;
+        let value = d
+            .uservalue
+            .or(d.xvalue)
+            .ok_or_else(|| format!("the location on `{}` has no value", d.name))?;
+        location.0.insert(axis.tag.clone(), value);
+    }
+    Ok(location)
+}
+
+/// The master folder of a style: lower case, without spaces (`Semi Bold` -> `semibold`).
+fn folder_name(style: &str) -> String {
+    let name: String = style
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_'))
+        .flat_map(char::to_lowercase)
+        .collect();
+    if name.is_empty() {
+        "master".into()
+    } else {
+        name
+    }
+}
+
+/// The master's glyphs in the default's order, checked compatible with the default's
+/// (glyph set, contour and point counts, sharp points).
+fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyph>, String> {
+    let by_name: HashMap<&str, &Glyph> = master.iter().map(|g| (g.name.as_str(), g)).collect();
+    if let Some(extra) = master
+        .iter()
+        .find(|g| !default.iter().any(|d| d.name == g.name))
+    {
+        return Err(format!(
+            "master `{style}` has the glyph `{}`, which the default source lacks",
+            extra.name
+        ));
+    }
+    default
+        .iter()
+        .map(|d| {
+            let m = by_name
+                .get(d.name.as_str())
+                .ok_or_else(|| format!("master `{style}` has no glyph `{}`", d.name))?;
+            let shape = |g: &Glyph| -> Vec<Vec<bool>> {
+                g.contours
+                    .iter()
+                    .map(|c| c.points().iter().map(|p| p.s == 0.0).collect())
+                    .collect()
+            };
+            if shape(m) != shape(d) {
+                return Err(format!(
+                    "glyph `{}`: master `{style}` does not match the default source ({} \
+                     contours of {:?} points, the default {} of {:?}, or sharp points \
+                     elsewhere); the masters do not interpolate as X-splines",
+                    d.name,
+                    m.contours.len(),
+                    m.contours
+                        .iter()
+                        .map(|c| c.points().len())
+                        .collect::<Vec<_>>(),
+                    d.contours.len(),
+                    d.contours
+                        .iter()
+                        .map(|c| c.points().len())
+                        .collect::<Vec<_>>(),
+                ));
+            }
+            let mut g = (*m).clone();
+            g.unicodes = d.unicodes.clone();
+            Ok(g)
+        })
+        .collect()
+}
+
+/// Every source file of an imported family as `(relative path, text)`: `font.toml` with the
+/// axes, masters and instances, the default master's glyph files and kerning, then each
+/// master's folder (`bold/a.toml` …, glyph files without `unicode`, and `bold/kerning.toml`).
+pub fn family_sources(family: &Family) -> Vec<(String, String)> {
+    let mut files = crate::source::emit::font_sources(&family.default);
+    files[0].1 = crate::source::emit::family_font_toml(
+        &family.default.info,
+        &family.designspace,
+        &family.masters,
+    );
+    for m in &family.masters {
+        let folder = m.folder.to_string_lossy();
+        let stems = crate::names::file_stems(m.glyphs.iter().map(|g| g.name.as_str()));
+        for (g, stem) in m.glyphs.iter().zip(stems) {
+            files.push((
+                format!("{folder}/{stem}.toml"),
+                crate::source::emit::master_glyph_toml(g),
+            ));
+        }
+        if !m.kerning.is_empty() {
+            files.push((
+                format!("{folder}/kerning.toml"),
+                crate::source::emit::kerning_toml(&m.kerning),
+            ));
+        }
+    }
+    files
+}

@@ -1,0 +1,272 @@
+//! Designspace export: a font with masters as one UFO per master plus a `.designspace`
+//! file (format 5.0), written with norad, the input fontmake and fontc build variable fonts
+//! from.
+//!
+//! ```text
+//! OutlinedFamily (compatible cubics) + Family (X-splines, components, anchors per master)
+//!   -> master_font(): one OutlinedFont per master -> super::export -> <Family>-<Master>.ufo
+//!   -> document(): axes, sources, named instances  -> <Family>.designspace
+//! ```
+//!
+//! Every master UFO holds that master's **compatible** cubics from
+//! [`crate::family::outline_family`] (not a static fit of the master), so the UFOs have the
+//! same points in the same order and interpolate into the variable TTF's outlines. Advances,
+//! kerning, components (with this master's offsets), anchors and the X-spline sources (the
+//! glyph lib key of [`super::lib`]) are the master's own.
+//!
+//! Locations are written as design coordinates (`xvalue`) equal to the user coordinates:
+//! the axes have no `avar` mapping yet, so the two spaces are the same. Instances carry no
+//! `filename` (fontmake then names their UFOs itself when asked for static instances).
+
+use std::collections::{HashMap, HashSet};
+use std::path::PathBuf;
+
+use norad::designspace::{self, DesignSpaceDocument, Dimension};
+
+use super::{ufo_dir_name, UfoError};
+use crate::designspace::{Designspace, Location};
+use crate::family::OutlinedFamily;
+use crate::model::{Family, FontInfo, Glyph};
+use crate::outline::OutlinedFont;
+use crate::svg::output_stem;
+
+/// The designspace's file name: `<Family>.designspace`, the family part of the static
+/// stem (`XglyphSans.designspace` next to `XglyphSans-Regular.ufo`).
+pub fn designspace_file_name(info: &FontInfo) -> String {
+    format!("{}.designspace", family_stem(info))
+}
+
+/// `<Family>-<Style>` without its `-<Style>`.
+fn family_stem(info: &FontInfo) -> String {
+    let stem = output_stem(info);
+    let style: String = info.style.chars().filter(|c| !c.is_whitespace()).collect();
+    match stem.strip_suffix(&format!("-{style}")) {
+        Some(family) if !family.is_empty() => family.to_string(),
+        _ => stem,
+    }
+}
+
+/// Master `m` of `family` (an index into [`OutlinedFamily::masters`]) as an outlined font:
+/// the default master's glyphs with this master's compatible paths, advances, own
+/// X-spline contours, components, anchors and kerning, and its name as the style.
+///
+/// What [`super::export`] reads is the master's; the rest (`max_error`, the components'
+/// placed contours) stays the default master's.
+pub fn master_font(family: &OutlinedFamily, model: &Family, m: usize) -> OutlinedFont {
+    let master = &family.masters[m];
+    let sources: HashMap<&str, &Glyph> = model
+        .masters
+        .get(m)
+        .map(|source| source.glyphs.iter().map(|g| (g.name.as_str(), g)).collect())
+        .unwrap_or_default();
+    let mut font = family.default.clone();
+    font.info.style = master.name.clone();
+    font.kerning = master.kerning.clone();
+    for (g, mg) in font.glyphs.iter_mut().zip(&master.glyphs) {
+        g.advance = mg.advance;
+        g.path = mg.path.clone();
+        if let Some(source) = sources.get(g.name.as_str()) {
+            g.components = source.components.clone();
+            g.anchors = source.anchors.clone();
+            for (placed, own) in g.contours.iter_mut().zip(&source.contours) {
+                placed.spline = own.spline().clone();
+            }
+        }
+    }
+    font
+}
+
+/// The designspace document of `family`, whose master UFOs are `files` (the default
+/// master's first, then [`OutlinedFamily::masters`] in order).
+pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocument {
+    let ds = &family.designspace;
+    let info = &family.default.info;
+    let axes = ds
+        .axes
+        .iter()
+        .map(|a| designspace::Axis {
+            name: a.name.clone(),
+            tag: a.tag.clone(),
+            default: a.default,
+            minimum: Some(a.min),
+            maximum: Some(a.max),
+            ..designspace::Axis::default()
+        })
+        .collect();
+    let masters = std::iter::once((info.style.as_str(), Location::default())).chain(
+        family
+            .masters
+            .iter()
+            .map(|m| (m.name.as_str(), m.location.clone())),
+    );
+    let sources = masters
+        .zip(files)
+        .map(|((style, location), filename)| designspace::Source {
+            familyname: Some(info.family.clone()),
+            stylename: Some(style.to_string()),
+            name: Some(format!("master.{style}")),
+            filename: filename.clone(),
+            location: dimensions(ds, &location),
+            ..designspace::Source::default()
+        })
+        .collect();
+    let instances = ds
+        .instances
+        .iter()
+        .map(|i| designspace::Instance {
+            familyname: Some(info.family.clone()),
+            stylename: Some(i.name.clone()),
+            name: Some(format!("{} {}", info.family, i.name)),
+            location: dimensions(ds, &i.location),
+            ..designspace::Instance::default()
+        })
+        .collect();
+    DesignSpaceDocument {
+        format: 5.0,
+        axes,
+        sources,
+        instances,
+        ..DesignSpaceDocument::default()
+    }
+}
+
+/// A location on every axis (an axis it leaves out is at its default), as design
+/// coordinates equal to the user ones.
+fn dimensions(ds: &Designspace, location: &Location) -> Vec<Dimension> {
+    ds.axes
+        .iter()
+        .map(|a| Dimension {
+            name: a.name.clone(),
+            xvalue: Some(location.get(a) + 0.0),
+            ..Dimension::default()
+        })
+        .collect()
+}
+
+/// Every file of the family's UFOs and designspace, paths relative to the build's output
+/// folder, the UFOs' files sorted by path within each UFO, the designspace last: what
+/// `build` writes for a font with masters.
+pub fn output_files(
+    family: &OutlinedFamily,
+    model: &Family,
+) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    let fonts: Vec<OutlinedFont> = std::iter::once(family.default.clone())
+        .chain((0..family.masters.len()).map(|m| master_font(family, model, m)))
+        .collect();
+    let dirs: Vec<String> = fonts.iter().map(ufo_dir_name).collect();
+    let mut seen = HashSet::new();
+    if let Some(dir) = dirs.iter().find(|d| !seen.insert(d.to_lowercase())) {
+        return Err(UfoError::MasterName(dir.clone()));
+    }
+    let mut out = Vec::new();
+    for (font, dir) in fonts.iter().zip(&dirs) {
+        for (path, bytes) in super::files(&super::export(font)?)? {
+            out.push((PathBuf::from(dir).join(path), bytes));
+        }
+    }
+    let xml = document(family, &dirs)
+        .serialize_to_string()
+        .map_err(|e| UfoError::Write(format!("designspace: {}", super::error_chain(&e))))?;
+    out.push((
+        PathBuf::from(designspace_file_name(&family.default.info)),
+        xml.into_bytes(),
+    ));
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::designspace::{Axis, NamedInstance};
+
+    fn info(family: &str, style: &str) -> FontInfo {
+        FontInfo {
+            family: family.into(),
+            style: style.into(),
+            ..crate::model::test_info()
+        }
+    }
+
+    #[test]
+    fn the_file_is_named_after_the_family() {
+        assert_eq!(
+            designspace_file_name(&info("Xglyph Sans", "Regular")),
+            "XglyphSans.designspace"
+        );
+        assert_eq!(
+            designspace_file_name(&info("Xglyph Sans", "Semi Bold")),
+            "XglyphSans.designspace"
+        );
+    }
+
+    #[test]
+    fn axes_sources_and_instances_in_the_xml() {
+        let axis = Axis {
+            tag: "wght".into(),
+            name: "Weight".into(),
+            min: 400.0,
+            default: 400.0,
+            max: 700.0,
+        };
+        let at = |v: f64| Location([("wght".to_string(), v)].into_iter().collect());
+        let family = OutlinedFamily {
+            designspace: Designspace {
+                axes: vec![axis],
+                instances: vec![NamedInstance {
+                    name: "Medium".into(),
+                    location: at(500.0),
+                }],
+            },
+            default: OutlinedFont {
+                info: info("Xglyph Sans", "Regular"),
+                kerning: Vec::new(),
+                features: None,
+                tolerance: 0.5,
+                glyphs: Vec::new(),
+            },
+            masters: vec![crate::family::OutlinedMaster {
+                name: "Bold".into(),
+                location: at(700.0),
+                region: crate::designspace::Region {
+                    axis: 0,
+                    start: 0.0,
+                    peak: 1.0,
+                    end: 1.0,
+                },
+                glyphs: Vec::new(),
+                kerning: Vec::new(),
+            }],
+        };
+        let files = ["A-Regular.ufo".to_string(), "A-Bold.ufo".to_string()];
+        let xml = document(&family, &files)
+            .serialize_to_string()
+            .expect("serialises");
+        let want = "<?xml version='1.0' encoding='UTF-8'?>
+<designspace format=\"5.0\">
+  <axes>
+    <axis name=\"Weight\" tag=\"wght\" default=\"400\" minimum=\"400\" maximum=\"700\"/>
+  </axes>
+  <sources>
+    <source familyname=\"Xglyph Sans\" stylename=\"Regular\" name=\"master.Regular\" filename=\"A-Regular.ufo\">
+      <location>
+        <dimension name=\"Weight\" xvalue=\"400\"/>
+      </location>
+    </source>
+    <source familyname=\"Xglyph Sans\" stylename=\"Bold\" name=\"master.Bold\" filename=\"A-Bold.ufo\">
+      <location>
+        <dimension name=\"Weight\" xvalue=\"700\"/>
+      </location>
+    </source>
+  </sources>
+  <instances>
+    <instance familyname=\"Xglyph Sans\" stylename=\"Medium\" name=\"Xglyph Sans Medium\">
+      <location>
+        <dimension name=\"Weight\" xvalue=\"500\"/>
+      </location>
+    </instance>
+  </instances>
+</designspace>
+";
+        assert_eq!(xml, want);
+    }
+}

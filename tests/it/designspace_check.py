@@ -1,0 +1,128 @@
+"""Compares variable fonts compiled from an exported designspace with xglyph's own variable
+TTF (tests/it/designspace.rs).
+
+Usage: designspace_check.py DESIGNSPACE XGLYPH_VF FONTMAKE_VF FONTC_VF TOLERANCE POS...
+
+Prints what fontTools.designspaceLib reads (`axes: …`, `sources: …`, `instances: …`, for
+the Rust test to compare with the sources), then checks, printing each measured figure:
+- every source UFO opens with ufoLib2 and has the same glyphs, in the same order, with the
+  same number of points per contour as the default master (the UFOs interpolate);
+- each compiled font has xglyph's fvar axes (tag, min, default, max) and named instances
+  (subfamily name and coordinates), glyph set and cmap;
+- advances at each master (fontTools.varLib.instancer) equal xglyph's there and the master
+  UFO's widths;
+- kerning at each master equals xglyph's there;
+- outlines at every POS (user wght values): each glyph of the compiled font's instance is
+  within a stated distance of xglyph's instance (dense two-sided distance of flattened
+  pens, helpers of ufo_check.py). The bound: xglyph's TTF converts the cubics to
+  quadratics within TOLERANCE, fontmake (cu2qu) and fontc within 1/1000 em; both round to
+  the integer grid at the masters and in the instancer (at most sqrt(2)/2 units per point
+  each); plus the flattening slack.
+Prints "designspace_check: all passed" when every check holds; exits 1 otherwise.
+"""
+
+import math
+import os
+import sys
+
+import ufoLib2
+from fontTools.designspaceLib import DesignSpaceDocument
+from fontTools.ttLib import TTFont
+from fontTools.varLib import instancer
+
+from ufo_check import FLAT_SLACK, distance, flat, kerning
+
+
+def fvar_axes(font):
+    return [(a.axisTag, a.minValue, a.defaultValue, a.maxValue) for a in font["fvar"].axes]
+
+
+def fvar_instances(font):
+    name = font["name"]
+    tags = [a.axisTag for a in font["fvar"].axes]
+    return [
+        (str(name.getDebugName(i.subfamilyNameID)), tuple(i.coordinates[t] for t in tags))
+        for i in font["fvar"].instances
+    ]
+
+
+def at(path, wght):
+    return instancer.instantiateVariableFont(TTFont(path), {"wght": wght}, inplace=False)
+
+
+def main():
+    ds_path, ours_path, fontmake_path, fontc_path, tolerance = sys.argv[1:6]
+    positions = [float(p) for p in sys.argv[6:]]
+    tolerance = float(tolerance)
+    failures = []
+
+    def check(ok, what):
+        print(("ok    " if ok else "FAIL  ") + what)
+        if not ok:
+            failures.append(what)
+
+    doc = DesignSpaceDocument.fromfile(ds_path)
+    fmt = lambda v: f"{v:g}"
+    print("axes: " + ", ".join(f"{a.tag} {a.name} {fmt(a.minimum)} {fmt(a.default)} {fmt(a.maximum)}" for a in doc.axes))
+    print("sources: " + ", ".join(
+        f"{s.filename} {s.styleName} " + " ".join(f"{k}={fmt(v)}" for k, v in sorted(s.location.items()))
+        for s in doc.sources
+    ))
+    print("instances: " + ", ".join(
+        f"{i.styleName} " + " ".join(f"{k}={fmt(v)}" for k, v in sorted(i.location.items()))
+        for i in doc.instances
+    ))
+
+    base = os.path.dirname(ds_path)
+    ufos = [ufoLib2.Font.open(os.path.join(base, s.filename), validate=True) for s in doc.sources]
+    default = ufos[0]
+    order = default.lib["public.glyphOrder"]
+    structure = lambda ufo: {
+        g.name: [len(c.points) for c in g.contours] + [c.baseGlyph for c in g.components] for g in ufo
+    }
+    want = structure(default)
+    for s, ufo in zip(doc.sources, ufos):
+        check(ufo.lib["public.glyphOrder"] == order and structure(ufo) == want,
+              f"{s.filename}: {len(ufo)} glyphs, same contours and points as the default master")
+
+    ours = TTFont(ours_path)
+    masters = {s.location["Weight"]: ufo for s, ufo in zip(doc.sources, ufos)}
+    ours_at = {w: at(ours_path, w) for w in sorted(set(positions) | set(masters))}
+    rounding = math.sqrt(2) / 2
+    upm = default.info.unitsPerEm
+    bound = tolerance + upm / 1000 + 4 * rounding + FLAT_SLACK
+    for path in (ours_path, fontmake_path, fontc_path):
+        label = path.rsplit("/", 1)[-1]
+        font = TTFont(path)
+        check(fvar_axes(font) == fvar_axes(ours), f"{label}: fvar axes {fvar_axes(font)}")
+        check(fvar_instances(font) == fvar_instances(ours), f"{label}: named instances {fvar_instances(font)}")
+        check(sorted(font.getGlyphOrder()) == sorted(ours.getGlyphOrder()), f"{label}: glyph set ({len(font.getGlyphOrder())} glyphs)")
+        check(font.getBestCmap() == ours.getBestCmap(), f"{label}: cmap ({len(font.getBestCmap())} code points)")
+        for w, ufo in sorted(masters.items()):
+            inst = at(path, w)
+            widths = {g.name: round(g.width) for g in ufo}
+            mine = ours_at[w]
+            check(
+                all(inst["hmtx"][g][0] == mine["hmtx"][g][0] == widths[g] for g in order),
+                f"{label}: advances at wght {fmt(w)} (xglyph's and the UFO's)",
+            )
+            k, ok = kerning(inst), kerning(mine)
+            check(k == ok, f"{label}: kerning at wght {fmt(w)} ({len(k)} pairs)")
+        if path == ours_path:
+            continue
+        for w in positions:
+            gs, mine = at(path, w).getGlyphSet(), ours_at[w].getGlyphSet()
+            worst, worst_glyph = 0.0, None
+            for name in order:
+                d = distance(flat(gs, name), flat(mine, name))
+                if d > worst:
+                    worst, worst_glyph = d, name
+            check(worst <= bound, f"{label}: outlines at wght {fmt(w)} within {bound:.3f} of xglyph's (worst {worst:.3f} in {worst_glyph})")
+    if failures:
+        print(f"designspace_check: {len(failures)} failed")
+        sys.exit(1)
+    print("designspace_check: all passed")
+
+
+if __name__ == "__main__":
+    main()
