@@ -7,8 +7,8 @@
 //! - `HVAR` ([`hvar`]) with the same advance deltas;
 //! - `fvar` ([`fvar`]) with the axes and named instances, `STAT` ([`stat`]) and their names
 //!   ([`naming`]) in `name`; an identity `avar` ([`avar`]);
-//! - kerning in GPOS with VariationIndex devices into `GDEF`'s item variation store
-//!   ([`gpos`]).
+//! - the layout of `otf/features.rs` (fea-rs): kerning (and anchors) with VariationIndex
+//!   devices into `GDEF`'s item variation store.
 //!
 //! Grid rounding as fontmake does it: the default master's points are rounded, and each
 //! master's deltas are its rounded points minus the rounded default's, so every master
@@ -21,7 +21,6 @@
 
 mod avar;
 mod fvar;
-mod gpos;
 mod gvar;
 mod hvar;
 mod naming;
@@ -34,6 +33,7 @@ use write_fonts::tables::glyf::{Contour, SimpleGlyph};
 use write_fonts::types::Tag;
 use write_fonts::BuilderError;
 
+use super::features::{layout_tables, LayoutSource};
 use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
 use super::truetype::TtGlyph;
@@ -126,7 +126,29 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
         weight_class,
         names: names.records.clone(),
     };
-    let mut builder = font_builder(font, &set, Outlines::TrueType(tt_glyphs), Some(&shared))?;
+    let mut kerning = vec![kern_pairs(&font.kerning, &set)?];
+    for master in &family.masters {
+        kerning.push(kern_pairs(&master.kerning, &set)?);
+    }
+    // The masters' glyphs carry no anchors of their own (`family::MasterGlyph`), so
+    // every master has the default's: mark positions do not vary yet.
+    let default_anchors: Vec<&[crate::model::Anchor]> =
+        set.glyphs.iter().map(|g| g.anchors.as_slice()).collect();
+    let layout = layout_tables(&LayoutSource {
+        names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
+        anchors: vec![default_anchors; kerning.len()],
+        kerning,
+        regions: &regions,
+        axis_count,
+        features: font.features.as_ref(),
+    })?;
+    let mut builder = font_builder(
+        font,
+        &set,
+        Outlines::TrueType(tt_glyphs),
+        &layout,
+        Some(&shared),
+    )?;
     let table_err = |e: BuilderError| OtfError::Table(e.to_string());
     builder
         .add_table(&fvar::fvar(designspace, &names)?)
@@ -143,14 +165,6 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
     builder
         .add_table(&hvar::hvar(&regions, axis_count, &advance_deltas)?)
         .map_err(table_err)?;
-    let mut pairs = vec![kern_pairs(&font.kerning, &set)?];
-    for master in &family.masters {
-        pairs.push(kern_pairs(&master.kerning, &set)?);
-    }
-    if let Some((gpos, gdef)) = gpos::gpos_gdef(&pairs, &regions, axis_count)? {
-        builder.add_table(&gpos).map_err(table_err)?;
-        builder.add_table(&gdef).map_err(table_err)?;
-    }
     Ok(builder.build())
 }
 
