@@ -293,7 +293,13 @@ pub fn variable_outputs(
     }
     let (family, summary) =
         outline_family(&loaded.family, loaded.font.tolerance).map_err(PipelineError::Family)?;
-    let ttf = otf::variable_ttf(&family)?;
+    let anchors: Vec<Vec<_>> = loaded
+        .family
+        .masters
+        .iter()
+        .map(|m| m.glyphs.iter().map(|g| g.anchors.clone()).collect())
+        .collect();
+    let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
     let woff2 = otf::woff2_from_ttf(&ttf)?;
     let tags: Vec<&str> = family
         .designspace

@@ -7,6 +7,7 @@ mod common;
 mod build;
 mod cache;
 mod compatible;
+mod features;
 mod fit;
 mod fit_count;
 mod flatten;
