@@ -7,9 +7,9 @@
 //! - `mark`: per anchor name `N`, one mark-to-base lookup: marks carry `_N`, bases `N`;
 //! - `mkmk`: per anchor name `N`, one mark-to-mark lookup: marks with `_N` on marks with
 //!   `N`, filtered to those marks (UseMarkFilteringSet);
-//! - GDEF glyph classes: fea-rs's own inference from the lookups (ligature substitution
-//!   outputs are ligatures, `markClass` members marks), every glyph with a `_` anchor a
-//!   mark, every other glyph but `.notdef` a base. No component class: components are
+//! - GDEF glyph classes: fea-rs's own inference from the GPOS lookups (`markClass`
+//!   members are marks), the outputs of ligature substitutions ligatures, every glyph with
+//!   a `_` anchor a mark, every other glyph but `.notdef` a base. No component class: components are
 //!   resolved into outlines.
 //!
 //! The user's features and the generated ones merge (fea-rs's [`FeatureProvider`]); where
@@ -121,10 +121,19 @@ pub(crate) fn layout_tables(source: &LayoutSource) -> Result<LayoutTables, OtfEr
     if let Some(gpos) = &compilation.gpos {
         out.gpos = Some(fea_write_fonts::dump_table(gpos).map_err(|e| table_err("GPOS", e))?);
     }
+    let ligatures = match &out.gsub {
+        Some(gsub) => ligature_glyphs(gsub)
+            .map_err(|e| OtfError::Table(format!("GSUB from features.fea: {e}")))?,
+        None => BTreeSet::new(),
+    };
     let mut gdef = compilation.gdef.clone();
-    if compilation.gdef_classes.is_none() && (gdef.is_some() || generated.has_marks()) {
+    let wanted = gdef.is_some() || generated.has_marks() || !ligatures.is_empty();
+    if compilation.gdef_classes.is_none() && wanted {
         let gdef = gdef.get_or_insert_with(Gdef::default);
-        let inferred = inferred_classes(gdef)?;
+        let mut inferred = inferred_classes(gdef)?;
+        for g in ligatures {
+            inferred.insert(g, GlyphClassDef::Ligature as u16);
+        }
         gdef.glyph_class_def = glyph_classes(source, &generated.marks, &inferred).into();
     }
     if let Some(gdef) = &gdef {
@@ -546,7 +555,32 @@ fn inferred_classes(gdef: &Gdef) -> Result<BTreeMap<u16, u16>, OtfError> {
         .collect())
 }
 
-/// The GDEF glyph classes: fea-rs's inference, the marks of the anchors, and every other
+/// The outputs of the ligature substitutions (GDEF class 2; fea-rs infers classes from
+/// GPOS only).
+fn ligature_glyphs(gsub: &[u8]) -> Result<BTreeSet<u16>, read_fonts::ReadError> {
+    use read_fonts::tables::gsub::{Gsub, LigatureSubst, SubstitutionSubtables};
+    use read_fonts::FontRead;
+    let gsub = Gsub::read(read_fonts::FontData::new(gsub))?;
+    let mut out = BTreeSet::new();
+    for lookup in gsub.lookup_list()?.lookups().iter() {
+        if let SubstitutionSubtables::Ligature(subtables) = lookup?.subtables()? {
+            for subtable in subtables.iter() {
+                // Format 2 is for 24-bit glyph ids, which a font of ours never has.
+                let LigatureSubst::Format1(subtable) = subtable? else {
+                    continue;
+                };
+                for set in subtable.ligature_sets().iter() {
+                    for ligature in set?.ligatures().iter() {
+                        out.insert(ligature?.ligature_glyph().to_u16());
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The GDEF glyph classes: fea-rs's inference, the ligatures of GSUB, the marks of the anchors, and every other
 /// glyph (but `.notdef`) a base.
 fn glyph_classes(
     source: &LayoutSource,
