@@ -9,7 +9,8 @@
 //!   `N`, filtered to those marks (UseMarkFilteringSet);
 //! - GDEF glyph classes: fea-rs's own inference from the GPOS lookups (`markClass`
 //!   members are marks), the outputs of ligature substitutions ligatures, every glyph with
-//!   a `_` anchor a mark, every other glyph but `.notdef` a base. No component class: components are
+//!   a `_` anchor or a combining code point (U+0300…) a mark, every other glyph but
+//!   `.notdef` a base. No component class: components are
 //!   resolved into outlines.
 //!
 //! The user's features and the generated ones merge (fea-rs's [`FeatureProvider`]); where
@@ -57,6 +58,8 @@ use crate::source::{line_col, Diagnostic, Severity, Snippet};
 pub(crate) struct LayoutSource<'a> {
     /// Model glyph names in glyph order (`.notdef` first).
     pub names: Vec<&'a str>,
+    /// Each glyph's code points (combining marks are GDEF marks without anchors too).
+    pub unicodes: Vec<&'a [char]>,
     /// Per master, per glyph (glyph order), its anchors.
     pub anchors: Vec<Vec<&'a [Anchor]>>,
     /// Per master, its kerning by glyph id.
@@ -127,7 +130,8 @@ pub(crate) fn layout_tables(source: &LayoutSource) -> Result<LayoutTables, OtfEr
         None => BTreeSet::new(),
     };
     let mut gdef = compilation.gdef.clone();
-    let wanted = gdef.is_some() || generated.has_marks() || !ligatures.is_empty();
+    let wanted =
+        gdef.is_some() || generated.has_marks() || !ligatures.is_empty() || out.gsub.is_some();
     if compilation.gdef_classes.is_none() && wanted {
         let gdef = gdef.get_or_insert_with(Gdef::default);
         let mut inferred = inferred_classes(gdef)?;
@@ -593,6 +597,11 @@ fn glyph_classes(
     for g in marks.values().flat_map(BTreeMap::keys) {
         classes.insert(*g, mark);
     }
+    for (gid, unicodes) in source.unicodes.iter().enumerate() {
+        if unicodes.iter().any(|&c| is_combining(c)) {
+            classes.insert(gid as u16, mark);
+        }
+    }
     for (gid, name) in source.names.iter().enumerate() {
         if *name != ".notdef" {
             classes.entry(gid as u16).or_insert(base);
@@ -602,6 +611,17 @@ fn glyph_classes(
         .into_iter()
         .map(|(g, c)| (GlyphId16::new(g), c))
         .collect()
+}
+
+/// Whether `c` is in one of the combining-mark blocks (diacritical marks, extended,
+/// supplement, for symbols, half marks): marks to GDEF as to glyphsLib's categories,
+/// anchors or not (FontBakery's `gdef_mark_chars`). Hand-written: a handful of ranges
+/// does not need a Unicode database crate.
+fn is_combining(c: char) -> bool {
+    matches!(
+        u32::from(c),
+        0x0300..=0x036F | 0x1AB0..=0x1AFF | 0x1DC0..=0x1DFF | 0x20D0..=0x20FF | 0xFE20..=0xFE2F
+    )
 }
 
 /// A master's tent as an item-variation region (fea-rs's write-fonts).

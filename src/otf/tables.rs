@@ -153,6 +153,7 @@ pub fn build_font(
 ) -> Result<Vec<u8>, OtfError> {
     let layout = layout_tables(&LayoutSource {
         names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
+        unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
         anchors: vec![set.glyphs.iter().map(|g| g.anchors.as_slice()).collect()],
         kerning: vec![kern_pairs(&font.kerning, set)?],
         regions: &[],

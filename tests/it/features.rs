@@ -226,7 +226,10 @@ fn fonttools_reads_gdef_classes_and_mark_anchors() {
         ] {
             assert_eq!(classes[glyph], json!(class), "{flavour}: class of {glyph}");
         }
-        assert!(classes.get(".notdef").is_none(), "{flavour}: .notdef unclassified");
+        assert!(
+            classes.get(".notdef").is_none(),
+            "{flavour}: .notdef unclassified"
+        );
         assert_eq!(
             layout["features"],
             json!(["ccmp", "kern", "liga", "mark", "mkmk"]),
@@ -410,7 +413,10 @@ fn chromium_puts_the_accent_over_the_a_and_draws_the_ligature() {
     eprintln!("Chromium ink boxes (x0, y0, x1, y1, px): {boxes}");
     // The accent's ink is above the a's ink (y grows down) and over it horizontally: its
     // centre lies within the a's ink, not after the a's advance (300 + 540).
-    assert!(b("accent", 3) < b("a", 1), "accent not above the a: {boxes}");
+    assert!(
+        b("accent", 3) < b("a", 1),
+        "accent not above the a: {boxes}"
+    );
     let centre = (b("accent", 0) + b("accent", 2)) / 2.0;
     assert!(
         centre > b("a", 0) && centre < b("a", 2),
@@ -445,7 +451,8 @@ fn chromium_puts_the_accent_over_the_a_and_draws_the_ligature() {
 /// move in the Bold master.
 fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
     let mut font = test_font();
-    font.glyphs.retain(|g| ["o", "acutecomb"].contains(&g.name.as_str()));
+    font.glyphs
+        .retain(|g| ["o", "acutecomb"].contains(&g.name.as_str()));
     font.features = None;
     font.kerning = vec![KernPair {
         left: "o".into(),
@@ -462,7 +469,9 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
         max: 700.0,
     });
     let location = Location(BTreeMap::from([("wght".to_string(), 700.0)]));
-    let region = designspace.regions(std::slice::from_ref(&location)).unwrap()[0];
+    let region = designspace
+        .regions(std::slice::from_ref(&location))
+        .unwrap()[0];
     let bold = OutlinedMaster {
         name: "Bold".into(),
         location,
@@ -556,7 +565,11 @@ fn errors_in_features_fea_are_at_file_line_col_and_nothing_is_written() {
         let dir = format!("tests/fixtures/features/{fixture}");
         let (code, stdout, _) = xglyph(&["check", &dir]);
         assert_eq!(code, 1, "{fixture}");
-        assert_eq!(stdout, format!("{expected}1 error, 0 warnings\n"), "{fixture}");
+        assert_eq!(
+            stdout,
+            format!("{expected}1 error, 0 warnings\n"),
+            "{fixture}"
+        );
         let (code, _, stderr) = xglyph(&["build", &dir, "-o", out_dir.to_str().unwrap()]);
         assert_eq!(code, 1, "{fixture}");
         assert!(stderr.starts_with(expected), "{fixture}: {stderr}");

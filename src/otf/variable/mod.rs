@@ -143,8 +143,7 @@ pub fn variable_ttf_with_anchors(
     for master in &family.masters {
         kerning.push(kern_pairs(&master.kerning, &set)?);
     }
-    let default_anchors: Vec<&[Anchor]> =
-        set.glyphs.iter().map(|g| g.anchors.as_slice()).collect();
+    let default_anchors: Vec<&[Anchor]> = set.glyphs.iter().map(|g| g.anchors.as_slice()).collect();
     let mut anchors = vec![default_anchors.clone()];
     for m in 0..family.masters.len() {
         anchors.push(match master_anchors.get(m) {
@@ -159,6 +158,7 @@ pub fn variable_ttf_with_anchors(
     }
     let layout = layout_tables(&LayoutSource {
         names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
+        unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
         anchors,
         kerning,
         regions: &regions,
