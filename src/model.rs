@@ -5,7 +5,7 @@
 //! can only be built from curves that evaluate. Coordinates are font units, y up.
 
 use std::cmp::Ordering;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 
 use crate::designspace::{Designspace, Location, Region, RegionError};
@@ -170,6 +170,49 @@ impl Anchor {
     }
 }
 
+/// A composite's effective anchors, as ufo2ft's propagate-anchors filter makes them: the
+/// glyph's `own` anchors, then, for each name it lacks, the anchors carried by its
+/// components. `placed` gives each component's offset and effective anchors, in component
+/// order.
+///
+/// A component that is not a mark (no `_` anchor) brings its anchors moved by its offset
+/// (a later one replaces an earlier one of the same name). A mark brings its `x` where it
+/// also has `_x` and `x` is already there: the mark is attached there, and a mark stacked
+/// on it then attaches to its own `x` (`acutecomb`'s `top` becomes `Aacute`'s `top`).
+/// Underscore anchors never propagate, so a composite is a mark only by its own anchors.
+///
+/// Limits: no ligature anchors (`top_1`, `top_2` for several bases, as ufo2ft makes them);
+/// no transforms other than offsets (the model has none).
+pub fn propagate_anchors<'a>(
+    own: &[Anchor],
+    placed: impl IntoIterator<Item = ((f64, f64), &'a [Anchor])>,
+) -> Vec<Anchor> {
+    let mut found: Vec<Anchor> = Vec::new();
+    for ((dx, dy), anchors) in placed {
+        let mark = anchors.iter().any(|a| a.attaches_to().is_some());
+        for a in anchors.iter().filter(|a| a.attaches_to().is_none()) {
+            let moved = Anchor {
+                name: a.name.clone(),
+                position: (a.position.0 + dx, a.position.1 + dy),
+            };
+            let slot = found.iter_mut().find(|f| f.name == a.name);
+            let attached = anchors.iter().any(|m| m.attaches_to() == Some(&a.name));
+            match slot {
+                Some(slot) if !mark || attached => *slot = moved,
+                None if !mark => found.push(moved),
+                _ => {}
+            }
+        }
+    }
+    let mut out = own.to_vec();
+    out.extend(
+        found
+            .into_iter()
+            .filter(|f| own.iter().all(|o| o.name != f.name)),
+    );
+    out
+}
+
 impl Glyph {
     /// Whether the glyph is a mark: it has an anchor whose name starts with `_`.
     pub fn is_mark(&self) -> bool {
@@ -317,6 +360,60 @@ impl Font {
             }
         }
         out
+    }
+
+    /// A glyph's effective anchors ([`propagate_anchors`]): its own, and for the names it
+    /// lacks the ones its components bring, recursively. Builds a [`GlyphIndex`]; for many
+    /// glyphs, build one and call [`Font::anchors_in`].
+    pub fn anchors(&self, glyph: &Glyph) -> Vec<Anchor> {
+        if glyph.components.is_empty() {
+            return glyph.anchors.clone();
+        }
+        self.anchors_in(&self.index(), glyph)
+    }
+
+    /// [`Font::anchors`] with base glyphs looked up in `index`.
+    ///
+    /// Each glyph below `glyph` is resolved once, bases first, with an explicit stack (a
+    /// chain of components thousands deep needs no deep call stack). The model has no
+    /// cycles; as a safety net a base on a cycle brings its own anchors only, and a missing
+    /// base brings none.
+    pub fn anchors_in<'a>(&'a self, index: &GlyphIndex<'a>, glyph: &'a Glyph) -> Vec<Anchor> {
+        let mut done: HashMap<&str, Vec<Anchor>> = HashMap::new();
+        let mut open: HashSet<&str> = HashSet::new();
+        let mut stack = vec![glyph];
+        while let Some(&g) = stack.last() {
+            if done.contains_key(g.name.as_str()) {
+                stack.pop();
+                continue;
+            }
+            if open.insert(&g.name) {
+                // First visit: resolve the bases first.
+                for c in &g.components {
+                    if let Some(b) = index.get(&c.base) {
+                        if !done.contains_key(b.name.as_str()) && !open.contains(b.name.as_str()) {
+                            stack.push(b);
+                        }
+                    }
+                }
+                continue;
+            }
+            stack.pop();
+            let placed: Vec<((f64, f64), &[Anchor])> = g
+                .components
+                .iter()
+                .map(|c| {
+                    let anchors = match done.get(c.base.as_str()) {
+                        Some(a) => a.as_slice(),
+                        None => index.get(&c.base).map_or(&[][..], |b| &b.anchors),
+                    };
+                    (c.offset, anchors)
+                })
+                .collect();
+            let anchors = propagate_anchors(&g.anchors, placed);
+            done.insert(&g.name, anchors);
+        }
+        done.remove(glyph.name.as_str()).unwrap_or_default()
     }
 
     /// Glyphs by name, for many look-ups (the list itself is searched linearly).

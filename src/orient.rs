@@ -1,8 +1,12 @@
 //! Contour orientation for the nonzero fill rule.
 //!
-//! A contour's nesting depth is the number of other contours that contain it (tested with
-//! a point on it). Even depth is an outer contour and runs counter-clockwise in y-up font
-//! units; odd depth is a counter and runs clockwise, whatever the author's direction.
+//! A contour's nesting depth is the number of other contours that contain it wholly: each
+//! of its on-curve points and segment midpoints has a nonzero winding number in the other.
+//! Even depth is an outer contour and runs counter-clockwise in y-up font units; odd depth
+//! is a counter and runs clockwise, whatever the author's direction. Contours that cross
+//! (some of their points inside the other, some outside) do not nest: both keep the depth
+//! of their surroundings, so two overlapping strokes are both filled and their overlap too,
+//! as a type designer draws them before overlap removal.
 //!
 //! Finding the containers: a contour can only contain a point inside its bounding box, so
 //! the exact winding test runs only on contours whose box holds the point. The boxes are
@@ -10,10 +14,12 @@
 //! their right edge), so a glyph of n separate contours costs O(n log n) plus the boxes that
 //! share an x range with each point, instead of n² winding tests. Limits: contours nested
 //! k deep still cost k winding tests each (a stack of 8,000 concentric rings is quadratic,
-//! as the answer itself is); contours that cross each other have no well-defined nesting;
-//! they are oriented by the depth of their first on-curve point.
+//! as the answer itself is). A container found by the first point is confirmed on the
+//! contour's other points, so the extra winding tests are paid only by nested contours. The
+//! test samples points, not the whole boundary: a contour that leaves its container only
+//! between two samples (a crossing narrower than half a segment) counts as nested.
 
-use kurbo::{BezPath, PathEl, Point, Rect, Shape};
+use kurbo::{BezPath, ParamCurve, PathEl, Point, Rect, Shape};
 
 /// Orients closed contours (one subpath each) and joins them into one path.
 pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
@@ -32,8 +38,8 @@ pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
     out
 }
 
-/// For each contour, how many of the others have a nonzero winding number around its
-/// first point (0 for a contour without one).
+/// For each contour, how many of the others contain it wholly: a nonzero winding number
+/// around each of its [`probe_points`] (0 for a contour without points).
 pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
     let boxes: Vec<Rect> = contours.iter().map(padded_box).collect();
     let mut by_left: Vec<usize> = (0..contours.len()).collect();
@@ -43,6 +49,9 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         .enumerate()
         .filter_map(|(i, c)| Some((i, first_point(c)?)))
         .collect();
+    let contains = |j: usize, i: usize| {
+        probe_points(&contours[i]).all(|p| boxes[j].contains(p) && contours[j].winding(p) != 0)
+    };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
     let mut depths = vec![0; contours.len()];
@@ -56,7 +65,7 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         depths[i] = active
             .iter()
             .filter(|&&j| j != i && boxes[j].y0 <= p.y && p.y <= boxes[j].y1)
-            .filter(|&&j| contours[j].winding(p) != 0)
+            .filter(|&&j| contours[j].winding(p) != 0 && contains(j, i))
             .count();
     }
     depths
@@ -68,6 +77,13 @@ fn padded_box(path: &BezPath) -> Rect {
     let r = path.bounding_box();
     let size = r.x0.abs().max(r.x1.abs()).max(r.y0.abs()).max(r.y1.abs());
     r.inflate(1e-9 * (1.0 + size), 1e-9 * (1.0 + size))
+}
+
+/// The points that decide whether a contour lies inside another: each segment's end point
+/// and midpoint.
+fn probe_points(path: &BezPath) -> impl Iterator<Item = Point> + '_ {
+    path.segments()
+        .flat_map(|seg| [seg.eval(0.5), seg.eval(1.0)])
 }
 
 fn first_point(path: &BezPath) -> Option<Point> {
@@ -87,11 +103,13 @@ mod tests {
             .iter()
             .enumerate()
             .map(|(i, c)| {
-                let Some(p) = first_point(c) else { return 0 };
+                if first_point(c).is_none() {
+                    return 0;
+                }
                 contours
                     .iter()
                     .enumerate()
-                    .filter(|&(j, other)| j != i && other.winding(p) != 0)
+                    .filter(|&(j, other)| j != i && probe_points(c).all(|p| other.winding(p) != 0))
                     .count()
             })
             .collect()
@@ -152,6 +170,35 @@ mod tests {
         let depths = nesting_depths(&contours);
         assert_eq!(depths, depths_by_definition(&contours));
         assert_eq!(depths.iter().max(), Some(&3));
+    }
+
+    #[test]
+    fn crossing_contours_do_not_nest() {
+        // An X of two bars (each has a corner inside the other), a bar through a ring's
+        // counter, and a dot inside the crossing: only wholly enclosed contours nest.
+        let bar = |x0: f64, y0: f64, x1: f64, y1: f64| {
+            let mut p = BezPath::new();
+            p.move_to((x0, y0));
+            p.line_to((x1, y0));
+            p.line_to((x1, y1));
+            p.line_to((x0, y1));
+            p.close_path();
+            p
+        };
+        let contours = vec![
+            bar(0.0, 40.0, 100.0, 60.0),
+            bar(40.0, 0.0, 60.0, 100.0),
+            square(48.0, 48.0, 4.0),
+            circle(300.0, 50.0, 40.0),
+            circle(300.0, 50.0, 30.0),
+            bar(250.0, 45.0, 350.0, 55.0),
+        ];
+        let depths = nesting_depths(&contours);
+        assert_eq!(depths, depths_by_definition(&contours));
+        assert_eq!(depths, [0, 0, 2, 0, 1, 0]);
+        // Both bars counter-clockwise: the overlap is filled twice under nonzero.
+        let path = orient_contours(contours[..2].to_vec());
+        assert_eq!(path.winding(Point::new(50.0, 50.0)), 2);
     }
 
     #[test]

@@ -18,10 +18,11 @@ use std::process::ExitCode;
 use super::check;
 use super::CommandError;
 use crate::designspace::Location;
+use crate::model::Glyph;
 use crate::source::format::{rewrites, Rewrite};
 use crate::source::{
     line_col, load_designspace_text, load_glyph_text, load_info_text, load_kerning_text,
-    load_sources, LoadedFont, SourceKind,
+    load_sources, offsets_written, LoadedFont, SourceKind,
 };
 use crate::terminal::{err, errln, outln};
 use crate::write::{reason, OutputSet};
@@ -141,20 +142,15 @@ fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> 
                     && load_designspace_text(&r.path, &r.new, dir)
                         .is_ok_and(|(ds, ms)| ds == loaded.designspace && ms == masters)
             }
-            SourceKind::Glyph(name) => {
-                load_glyph_text(&r.path, &r.new).is_ok_and(|(g, _)| font.glyph(name) == Some(&g))
-            }
+            SourceKind::Glyph(name) => font
+                .glyph(name)
+                .is_some_and(|want| same_glyph(r, want, true)),
             SourceKind::Kerning => {
                 load_kerning_text(&r.path, &r.new, &names).is_ok_and(|k| k == font.kerning)
             }
             SourceKind::MasterGlyph(m, name) => {
                 let want = loaded.masters[*m].glyphs.iter().find(|g| &g.name == name);
-                load_glyph_text(&r.path, &r.new).is_ok_and(|(g, _)| {
-                    want.is_some_and(|w| {
-                        (&g.name, g.advance, &g.contours, &g.components)
-                            == (&w.name, w.advance, &w.contours, &w.components)
-                    })
-                })
+                want.is_some_and(|want| same_glyph(r, want, false))
             }
             SourceKind::MasterKerning(m) => load_kerning_text(&r.path, &r.new, &names)
                 .is_ok_and(|k| k == loaded.masters[*m].kerning),
@@ -168,4 +164,42 @@ fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> 
         }
     }
     Ok(())
+}
+
+/// Whether the rewritten glyph file loads back as `want`: the same name, advance, contours,
+/// components and anchors (and code points, with `unicodes`), with an `offset` written
+/// for exactly the components that had one. A component without `offset` reads back at
+/// `[0, 0]` alone (its placement needs the font), so its offset is not compared.
+fn same_glyph(r: &Rewrite, want: &Glyph, unicodes: bool) -> bool {
+    let Ok((mut got, _)) = load_glyph_text(&r.path, &r.new) else {
+        return false;
+    };
+    let written = offsets_written(&r.path, &r.new);
+    if written.is_none() || written != offsets_written(&r.path, &r.old) {
+        return false;
+    }
+    let written = written.unwrap_or_default();
+    for ((c, w), &kept) in got
+        .components
+        .iter_mut()
+        .zip(&want.components)
+        .zip(&written)
+    {
+        if !kept {
+            c.offset = w.offset;
+        }
+    }
+    (
+        &got.name,
+        got.advance,
+        &got.contours,
+        &got.components,
+        &got.anchors,
+    ) == (
+        &want.name,
+        want.advance,
+        &want.contours,
+        &want.components,
+        &want.anchors,
+    ) && (!unicodes || got.unicodes == want.unicodes)
 }

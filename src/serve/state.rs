@@ -23,7 +23,9 @@ use crate::fit::fit_contour;
 use crate::model::{Contour, Font, Glyph};
 use crate::orient::orient_contours;
 use crate::outline::{OutlinedGlyph, PlacedContour};
-use crate::source::{load_glyph_text, load_sources, Diagnostic, Severity, SourceKind};
+use crate::source::{
+    load_glyph_text, load_sources, offsets_written, place_in_font, Diagnostic, Severity, SourceKind,
+};
 use crate::svg::glyph_svg;
 use crate::svg::path_data::path_data;
 
@@ -140,9 +142,12 @@ impl Studio {
         let Some((path, _)) = self.files.get(name).cloned() else {
             return Vec::new();
         };
-        let Ok((glyph, _)) = load_glyph_text(&path, text) else {
+        let Ok((mut glyph, _)) = load_glyph_text(&path, text) else {
             return Vec::new();
         };
+        // Components without `offset` go where the font's anchors put them.
+        let written = offsets_written(&path, text).unwrap_or_default();
+        place_in_font(&self.font, &mut glyph, &written);
         let old = self.font.clone();
         if let Some(slot) = self.font.glyphs.iter_mut().find(|g| g.name == name) {
             *slot = glyph;

@@ -1,6 +1,7 @@
 //! Compatibility of a master with the default master: the same glyphs, and in each glyph
 //! the same contours with the same number of points, the same sharp points, and the same
-//! components in the same order.
+//! components in the same order, and the same anchor names in the same order (their
+//! positions may differ).
 //!
 //! Problems are reported in the master's file, at the place to fix, and say what the
 //! default master has. A glyph the master lacks is reported at the master's `folder` in
@@ -128,6 +129,35 @@ fn check_glyph(ctx: &mut Ctx<'_>, d: &GlyphFile, m: &GlyphFile) {
                 ),
             ),
         }
+    }
+
+    let names = |g: &crate::model::Glyph| -> Vec<String> {
+        g.anchors.iter().map(|a| a.name.clone()).collect()
+    };
+    let (da, ma) = (names(dg), names(mg));
+    if da != ma {
+        let listed = |names: &[String]| -> String {
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+                quoted.join(", ")
+            }
+        };
+        let first = (0..da.len().max(ma.len())).find(|&i| da.get(i) != ma.get(i));
+        let at = first
+            .and_then(|i| m.spans.anchors.get(i).or(m.spans.anchors.last()))
+            .copied()
+            .unwrap_or(m.spans.start);
+        ctx.err(
+            at,
+            format!(
+                "anchors are {} here but {} in the default master; masters need the same \
+                 anchor names in the same order (positions may differ)",
+                listed(&ma),
+                listed(&da)
+            ),
+        );
     }
 
     let (dc, mc) = (&dg.contours, &mg.contours);

@@ -109,18 +109,25 @@ fn key(k: &str) -> String {
     }
 }
 
-/// One glyph file: name, code points, advance, contours, components.
+/// One glyph file: name, code points, advance, contours, components, anchors.
 pub fn glyph_toml(glyph: &Glyph) -> String {
-    glyph_text(glyph, true)
+    glyph_text(glyph, true, &[])
 }
 
 /// A glyph file of a non-default master that leaves out `unicode` (a master's glyph has
 /// the default's code points): [`glyph_toml`] without it.
 pub fn master_glyph_toml(glyph: &Glyph) -> String {
-    glyph_text(glyph, false)
+    glyph_text(glyph, false, &[])
 }
 
-fn glyph_text(glyph: &Glyph, unicodes: bool) -> String {
+/// A glyph file as `fmt` rewrites it: [`glyph_toml`], with `unicode` only when `unicodes`,
+/// and an `offset` only for the components whose entry in `offsets_written` is true (or
+/// missing): a component placed by anchors stays without one.
+pub fn glyph_source(glyph: &Glyph, unicodes: bool, offsets_written: &[bool]) -> String {
+    glyph_text(glyph, unicodes, offsets_written)
+}
+
+fn glyph_text(glyph: &Glyph, unicodes: bool, offsets_written: &[bool]) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "name = {}", string(&glyph.name));
     let shown: &[char] = if unicodes { &glyph.unicodes } else { &[] };
@@ -148,11 +155,19 @@ fn glyph_text(glyph: &Glyph, unicodes: bool) -> String {
         }
         out.push_str("]\n");
     }
-    for component in &glyph.components {
+    for (k, component) in glyph.components.iter().enumerate() {
         let _ = writeln!(out, "\n[[component]]");
         let _ = writeln!(out, "base = {}", string(&component.base));
-        let (x, y) = component.offset;
-        let _ = writeln!(out, "offset = [{}, {}]", number(x), number(y));
+        if offsets_written.get(k).copied().unwrap_or(true) {
+            let (x, y) = component.offset;
+            let _ = writeln!(out, "offset = [{}, {}]", number(x), number(y));
+        }
+    }
+    for anchor in &glyph.anchors {
+        let _ = writeln!(out, "\n[[anchor]]");
+        let _ = writeln!(out, "name = {}", string(&anchor.name));
+        let (x, y) = anchor.position;
+        let _ = writeln!(out, "position = [{}, {}]", number(x), number(y));
     }
     out
 }

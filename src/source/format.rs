@@ -1,5 +1,7 @@
 //! The rewrite `xglyph fmt` performs: every source file in the canonical layout of
-//! [`super::emit`], each glyph staying in its own file.
+//! [`super::emit`], each glyph staying in its own file. A component written without
+//! `offset` (placed by anchors) stays without one: the model holds its resolved offset,
+//! the file keeps what the author wrote.
 //!
 //! Comments: the canonical text is generated from the model, which has no comments. A
 //! file's leading comment block (the lines before the first key, when they hold a comment)
@@ -11,7 +13,7 @@
 use std::path::PathBuf;
 
 use super::emit;
-use super::glyph::load_glyph_text;
+use super::glyph::{load_glyph_text, offsets_written};
 use super::load::{LoadedFont, SourceKind};
 
 /// One source file and its canonical text.
@@ -47,7 +49,10 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
                 SourceKind::Info => {
                     emit::family_font_toml(&font.info, &loaded.designspace, &loaded.masters)
                 }
-                SourceKind::Glyph(name) => emit::glyph_toml(font.glyph(name)?),
+                SourceKind::Glyph(name) => {
+                    let offsets = offsets_written(&file.path, &file.text).unwrap_or_default();
+                    emit::glyph_source(font.glyph(name)?, true, &offsets)
+                }
                 SourceKind::Kerning => emit::kerning_toml(&font.kerning),
                 SourceKind::MasterGlyph(m, name) => {
                     let master = loaded.masters.get(*m)?;
@@ -56,11 +61,8 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
                     // default's, the loader checked) or left out.
                     let written = load_glyph_text(&file.path, &file.text)
                         .is_ok_and(|(g, _)| !g.unicodes.is_empty());
-                    if written {
-                        emit::glyph_toml(glyph)
-                    } else {
-                        emit::master_glyph_toml(glyph)
-                    }
+                    let offsets = offsets_written(&file.path, &file.text).unwrap_or_default();
+                    emit::glyph_source(glyph, written, &offsets)
                 }
                 SourceKind::MasterKerning(m) => {
                     emit::kerning_toml(&loaded.masters.get(*m)?.kerning)

@@ -1,8 +1,10 @@
-//! One glyph file -> [`Glyph`]: name, code points, advance, contours, components.
+//! One glyph file -> [`Glyph`]: name, code points, advance, contours, components, anchors.
 //!
 //! Checks here need only the file itself; the checks across files (duplicate names and
 //! code points, component bases and cycles, points far outside the metrics) are in
-//! [`super::load`].
+//! [`super::load`], and the anchor checks and the placement of components by anchors are
+//! in [`super::anchors`]. A component written without `offset` is read at `[0, 0]` here;
+//! [`GlyphSpans::offsets`] records that it had none, for the placement and for `fmt`.
 
 use std::path::Path;
 
@@ -15,11 +17,18 @@ use super::limits;
 use super::value::{
     check_keys, first_offset, get, integer, number, parse, require, string, tables, type_name,
 };
-use crate::model::{Component, Contour, Glyph};
+use crate::model::{Anchor, Component, Contour, Glyph};
 use crate::xspline::{ControlPoint, XSplineError};
 
 /// Every key a glyph file may contain at the top level.
-const KEYS: &[&str] = &["name", "unicode", "advance", "contour", "component"];
+const KEYS: &[&str] = &[
+    "name",
+    "unicode",
+    "advance",
+    "contour",
+    "component",
+    "anchor",
+];
 
 /// Where the parts of a glyph were written (byte offsets), for diagnostics across files.
 #[derive(Clone, Debug, Default)]
@@ -30,6 +39,11 @@ pub(super) struct GlyphSpans {
     pub name: usize,
     pub unicodes: Vec<usize>,
     pub bases: Vec<usize>,
+    /// Per component: where its `offset` was written, `None` when it has none (then the
+    /// loader places it by anchors).
+    pub offsets: Vec<Option<usize>>,
+    /// Per anchor: where its `name` value was written.
+    pub anchors: Vec<usize>,
     /// Per contour, per point.
     pub points: Vec<Vec<usize>>,
 }
@@ -133,12 +147,38 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     if let Some(v) = get(t, "component") {
         for (ct, header) in tables(ctx, v, "component", &mut ok) {
             match load_component(ctx, ct, header) {
-                Some((component, base_off)) => {
+                Some((component, base_off, offset_off)) => {
                     components.push(component);
                     spans.bases.push(base_off);
+                    spans.offsets.push(offset_off);
                 }
                 None => ok = false,
             }
+        }
+    }
+
+    let mut anchors: Vec<Anchor> = Vec::new();
+    if let Some(v) = get(t, "anchor") {
+        for (at, header) in tables(ctx, v, "anchor", &mut ok) {
+            let Some((anchor, name_off)) = load_anchor(ctx, at, header) else {
+                ok = false;
+                continue;
+            };
+            if let Some(k) = anchors.iter().position(|a| a.name == anchor.name) {
+                let (line, _) = ctx.line_col(spans.anchors[k]);
+                ctx.err(
+                    name_off,
+                    format!(
+                        "duplicate anchor `{}` (also on line {line}); anchor names are unique \
+                         in a glyph",
+                        anchor.name
+                    ),
+                );
+                ok = false;
+                continue;
+            }
+            anchors.push(anchor);
+            spans.anchors.push(name_off);
         }
     }
 
@@ -157,7 +197,7 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
         advance,
         contours,
         components,
-        anchors: Vec::new(),
+        anchors,
     };
     Some(Loaded {
         glyph,
@@ -288,44 +328,85 @@ fn load_contour(
     Some((contour, offs))
 }
 
-/// One `[[component]]` table and where its `base` was written.
+/// One `[[component]]` table, where its `base` was written, and where its `offset` was
+/// written (`None` without one: the component is read at `[0, 0]` and placed later).
 fn load_component(
     ctx: &mut Ctx<'_>,
     ct: &DeTable<'_>,
     header: usize,
-) -> Option<(Component, usize)> {
+) -> Option<(Component, usize, Option<usize>)> {
     let suggested = check_keys(ctx, ct, &["base", "offset"]);
     let base = require(ctx, ct, "base", "base = \"acutecomb\"", header, &suggested)
         .and_then(|b| Some((string(ctx, b, "base")?, b.span().start)));
     let offset = match get(ct, "offset") {
-        None => Some((0.0, 0.0)),
-        Some(o) => match o.get_ref() {
-            DeValue::Array(xy) if xy.len() == 2 => {
-                let x = limits::coordinate(ctx, &xy[0], "x");
-                match (x, limits::coordinate(ctx, &xy[1], "y")) {
-                    (Some(x), Some(y)) => Some((x, y)),
-                    _ => None,
-                }
-            }
-            DeValue::Array(xy) => {
-                ctx.err(
-                    o.span().start,
-                    format!("`offset` must be [x, y], found {} values", xy.len()),
-                );
-                None
-            }
-            other => {
-                ctx.err(
-                    o.span().start,
-                    format!(
-                        "`offset` must be an array [x, y], found {}",
-                        type_name(other)
-                    ),
-                );
-                None
-            }
-        },
+        None => Some(((0.0, 0.0), None)),
+        Some(o) => xy(ctx, o, "offset").map(|xy| (xy, Some(o.span().start))),
     };
-    let ((base, base_off), offset) = (base?, offset?);
-    Some((Component { base, offset }, base_off))
+    let ((base, base_off), (offset, offset_off)) = (base?, offset?);
+    Some((Component { base, offset }, base_off, offset_off))
+}
+
+/// One `[[anchor]]` table and where its `name` was written.
+fn load_anchor(ctx: &mut Ctx<'_>, at: &DeTable<'_>, header: usize) -> Option<(Anchor, usize)> {
+    let suggested = check_keys(ctx, at, &["name", "position"]);
+    let name = require(ctx, at, "name", "name = \"top\"", header, &suggested).and_then(|v| {
+        let name = string(ctx, v, "name")?;
+        if name.is_empty() || name == "_" || name.chars().any(char::is_whitespace) {
+            ctx.err(
+                v.span().start,
+                format!(
+                    "anchor name {} is not usable: write a word such as `top`, or `_top` \
+                     on a mark",
+                    super::emit::string(&name)
+                ),
+            );
+            return None;
+        }
+        Some((name, v.span().start))
+    });
+    let example = "position = [250, 500]";
+    let position = require(ctx, at, "position", example, header, &suggested)
+        .and_then(|v| xy(ctx, v, "position"));
+    let ((name, name_off), position) = (name?, position?);
+    Some((Anchor { name, position }, name_off))
+}
+
+/// A point `[x, y]` in font units (a component's `offset`, an anchor's `position`), each
+/// number a coordinate within the outputs' limits.
+fn xy(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>, key: &str) -> Option<(f64, f64)> {
+    match v.get_ref() {
+        DeValue::Array(xy) if xy.len() == 2 => {
+            let x = limits::coordinate(ctx, &xy[0], "x");
+            match (x, limits::coordinate(ctx, &xy[1], "y")) {
+                (Some(x), Some(y)) => Some((x, y)),
+                _ => None,
+            }
+        }
+        DeValue::Array(xy) => {
+            ctx.err(
+                v.span().start,
+                format!("`{key}` must be [x, y], found {} values", xy.len()),
+            );
+            None
+        }
+        other => {
+            ctx.err(
+                v.span().start,
+                format!(
+                    "`{key}` must be an array [x, y], found {}",
+                    type_name(other)
+                ),
+            );
+            None
+        }
+    }
+}
+
+/// Per component of the glyph file `text`: whether it has an `offset` written (`fmt`
+/// keeps a component without one that way). `None` when the file does not load alone.
+pub fn offsets_written(path: &Path, text: &str) -> Option<Vec<bool>> {
+    let mut out = Diagnostics::default();
+    let loaded = load_glyph(&mut Ctx::new(path, text, &mut out))?;
+    (loaded.complete && !out.has_errors())
+        .then(|| loaded.spans.offsets.iter().map(Option::is_some).collect())
 }

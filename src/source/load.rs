@@ -8,6 +8,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fs::FileType;
 use std::path::{Path, PathBuf};
 
+use super::anchors::{check_anchors, place_components};
 use super::compat::check_master;
 use super::components::{check_components, ComponentGraph};
 use super::designspace::{load_designspace, DesignspaceSpec};
@@ -146,11 +147,13 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             "no glyph files: add one `<glyph>.toml` per glyph next to `font.toml`",
         ));
     }
-    let (glyphs, mut glyph_failed) = load_glyph_files(&glyph_paths, &mut out);
+    let (mut glyphs, mut glyph_failed) = load_glyph_files(&glyph_paths, &mut out);
 
     check_unique(&glyphs, &mut out);
     let graph = ComponentGraph::new(&glyphs);
     check_components(&glyphs, &graph, &mut out);
+    check_anchors(&glyphs, &mut out);
+    place_components(&mut glyphs, &graph, &mut out);
     limits::check_font(dir, &glyphs, &graph, &mut out);
     if let Some(info) = &info {
         check_far_points(&glyphs, info, &mut out);
@@ -211,12 +214,16 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         };
         master_order.push(mdir.clone());
         master_order.extend(mcandidates);
-        let (mglyphs, failed) = load_glyph_files(&paths, &mut out);
+        let (mut mglyphs, failed) = load_glyph_files(&paths, &mut out);
         glyph_failed |= failed;
         check_unique(&mglyphs, &mut out);
+        // Each master places its components by its own anchors (compared with the
+        // default's names in `check_master`).
+        let mgraph = ComponentGraph::new(&mglyphs);
+        place_components(&mut mglyphs, &mgraph, &mut out);
         // The outputs' limits hold for each master, so every instance between fits too
         // (an instance's extent and counts are within its masters').
-        limits::check_font(&mdir, &mglyphs, &ComponentGraph::new(&mglyphs), &mut out);
+        limits::check_font(&mdir, &mglyphs, &mgraph, &mut out);
         if let Some(info) = &info {
             check_far_points(&mglyphs, info, &mut out);
         }

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod anchors;
 mod build;
 mod cache;
 mod compatible;
