@@ -286,7 +286,7 @@ fn diagnostics(tree: &ParseTree, set: &DiagnosticSet) -> Vec<Diagnostic> {
 fn user_feature_tags(tree: &ParseTree) -> BTreeSet<[u8; 4]> {
     tree.typed_root()
         .statements()
-        .filter_map(|item| fea_rs::typed::Feature::cast(item))
+        .filter_map(fea_rs::typed::Feature::cast)
         .map(|f| f.tag().to_raw().into_bytes())
         .collect()
 }
