@@ -39,7 +39,7 @@ pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
 }
 
 /// For each contour, how many of the others contain it wholly: a nonzero winding number
-/// around each of its [`probe_points`] (0 for a contour without points).
+/// around each of its on-curve points and segment midpoints (0 for a contour without points).
 pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
     let boxes: Vec<Rect> = contours.iter().map(padded_box).collect();
     let mut by_left: Vec<usize> = (0..contours.len()).collect();

@@ -198,7 +198,7 @@ fn font_glyph_and_svg_endpoints() {
     assert_eq!(font["info"]["family"], "Xglyph Sans");
     assert_eq!(font["info"]["units_per_em"], 1000);
     let glyphs = font["glyphs"].as_array().unwrap();
-    assert_eq!(glyphs.len(), 155); // 154 + uni00A0 (NBSP)
+    assert_eq!(glyphs.len(), 158); // 154 + uni00A0 (NBSP) + fi, fl, dotlessj
     let o = glyphs.iter().find(|g| g["name"] == "o").unwrap();
     assert_eq!(o["unicodes"], json!([0x6F]));
     assert_eq!(o["advance"], 550.0);
@@ -577,7 +577,7 @@ fn disk_edits_stream_events_and_conflict() {
             .as_array()
             .unwrap()
             .len(),
-        155
+        158
     );
     // A page that opens now gets the errors at once.
     let late = studio.events();
