@@ -156,10 +156,7 @@ fn check_font(bytes: &[u8], font: &Font, outlines: &OutlinedFont, cff: bool) -> 
     // (tests/it/features.rs checks it).
     let gpos = face.tables().gpos.expect("GPOS");
     let tags: Vec<_> = gpos.features.into_iter().map(|f| f.tag).collect();
-    assert_eq!(
-        tags,
-        [b"kern", b"mark"].map(|t| ttf_parser::Tag::from_bytes(t))
-    );
+    assert_eq!(tags, [b"kern", b"mark"].map(ttf_parser::Tag::from_bytes));
     let lookup = gpos.lookups.get(0).unwrap();
     let subtable = lookup
         .subtables
