@@ -139,12 +139,32 @@ pub fn load_with(
     if family.default.glyphs.is_empty() {
         return Err(PipelineError::NoGlyphs(font_dir.to_path_buf()));
     }
+    // features.fea errors stop the build here, like every other source error.
+    let feature_errors = feature_diagnostics(&family.default);
+    if !feature_errors.is_empty() {
+        let mut diagnostics = warnings;
+        diagnostics.extend(feature_errors);
+        return Err(PipelineError::Sources {
+            dir: font_dir.to_path_buf(),
+            diagnostics,
+        });
+    }
     let tolerance = tolerance.unwrap_or(family.default.info.tolerance);
     Ok(Loaded {
         font: outline_font_with(&family.default, tolerance, opts),
         family,
         warnings,
     })
+}
+
+/// The errors of the font's `features.fea` (none without one), checked against its glyph
+/// names.
+pub fn feature_diagnostics(font: &crate::model::Font) -> Vec<Diagnostic> {
+    let Some(features) = &font.features else {
+        return Vec::new();
+    };
+    let names: Vec<&str> = font.glyphs.iter().map(|g| g.name.as_str()).collect();
+    otf::check_features(features, &names)
 }
 
 impl From<crate::ufo::UfoError> for PipelineError {
@@ -274,7 +294,13 @@ pub fn variable_outputs(
     }
     let (family, summary) =
         outline_family(&loaded.family, loaded.font.tolerance).map_err(PipelineError::Family)?;
-    let ttf = otf::variable_ttf(&family)?;
+    let anchors: Vec<Vec<_>> = loaded
+        .family
+        .masters
+        .iter()
+        .map(|m| m.glyphs.iter().map(|g| g.anchors.clone()).collect())
+        .collect();
+    let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
     let woff2 = otf::woff2_from_ttf(&ttf)?;
     let tags: Vec<&str> = family
         .designspace

@@ -35,7 +35,11 @@ pub struct CheckArgs {
 
 pub fn run(args: CheckArgs) -> Result<ExitCode, CommandError> {
     let diags = match load_font(&args.font_dir) {
-        Ok((_, warnings)) => warnings,
+        Ok((font, mut warnings)) => {
+            // features.fea, once the sources load (it needs their glyph names).
+            warnings.extend(crate::pipeline::feature_diagnostics(&font));
+            warnings
+        }
         Err(diags) => diags,
     };
     let (errors, warnings) = counts(&diags);

@@ -58,6 +58,7 @@ mod tests {
             advance: 0,
             path: kurbo::BezPath::new(),
             from_components: false,
+            anchors: Vec::new(),
         }
     }
 

@@ -1,22 +1,12 @@
-//! Kerning: GPOS `kern` feature (one PairPosFormat1 lookup) and a legacy `kern` table.
+//! Kerning by glyph id, for the GPOS `kern` feature (generated in `features.rs`) and a
+//! legacy `kern` table.
 //!
 //! Pairs are by glyph, as in the model (no classes). The value adjusts the first glyph's
 //! advance, negative = tighter. The legacy table (version 0, one format 0 subtable, TTF
 //! only) is for consumers that predate GPOS; it is left out when its pairs overflow the
 //! 16-bit subtable length (more than 10 920 pairs), GPOS still carries them all.
-//! A GPOS subtable too large for 16-bit offsets is split (and the lookup promoted to
-//! Extension) by write-fonts' packer; `tests/it/otf.rs` reads 40 000 pairs back.
 
 use std::collections::BTreeMap;
-
-use write_fonts::tables::gpos::{
-    Gpos, PairPos, PairSet, PairValueRecord, PositionLookup, PositionLookupList, ValueRecord,
-};
-use write_fonts::tables::layout::{
-    CoverageFormat1, CoverageTable, Feature, FeatureList, FeatureRecord, LangSys, Lookup,
-    LookupFlag, Script, ScriptList, ScriptRecord,
-};
-use write_fonts::types::{GlyphId16, Tag};
 
 use super::{grid, GlyphSet, OtfError};
 use crate::model::KernPair;
@@ -39,52 +29,6 @@ pub fn kern_pairs(kerning: &[KernPair], set: &GlyphSet) -> Result<KernPairs, Otf
         }
     }
     Ok(pairs)
-}
-
-/// GPOS with the `kern` feature for the DFLT and latn scripts, `None` without pairs.
-pub fn gpos(pairs: &KernPairs) -> Option<Gpos> {
-    if pairs.is_empty() {
-        return None;
-    }
-    let coverage: Vec<GlyphId16> = pairs.keys().map(|&g| GlyphId16::new(g)).collect();
-    let pair_sets = pairs
-        .values()
-        .map(|seconds| {
-            PairSet::new(
-                seconds
-                    .iter()
-                    .map(|(&second, &value)| {
-                        PairValueRecord::new(
-                            GlyphId16::new(second),
-                            ValueRecord::new().with_x_advance(value),
-                            ValueRecord::new(),
-                        )
-                    })
-                    .collect(),
-            )
-        })
-        .collect();
-    Some(kern_gpos(coverage, pair_sets))
-}
-
-/// A GPOS with one `kern` lookup (DFLT and latn): pair adjustment format 1, one pair set
-/// per first glyph of `coverage`.
-pub fn kern_gpos(coverage: Vec<GlyphId16>, pair_sets: Vec<PairSet>) -> Gpos {
-    let subtable = PairPos::format_1(
-        CoverageTable::Format1(CoverageFormat1::new(coverage)),
-        pair_sets,
-    );
-    let lookup = PositionLookup::Pair(Lookup::new(LookupFlag::empty(), vec![subtable]));
-    let script = || Script::new(Some(LangSys::new(vec![0])), Vec::new());
-    let scripts = ScriptList::new(vec![
-        ScriptRecord::new(Tag::new(b"DFLT"), script()),
-        ScriptRecord::new(Tag::new(b"latn"), script()),
-    ]);
-    let features = FeatureList::new(vec![FeatureRecord::new(
-        Tag::new(b"kern"),
-        Feature::new(None, vec![0]),
-    )]);
-    Gpos::new(scripts, features, PositionLookupList::new(vec![lookup]))
 }
 
 /// The legacy `kern` table (Apple/Microsoft version 0, one horizontal format 0 subtable),

@@ -22,13 +22,15 @@
 //!
 //! [`OutlinedFamily`]: crate::family::OutlinedFamily
 //!
-//! Kerning goes into GPOS (`kern` feature, pair adjustment) and, in the TTF, a legacy
-//! `kern` table (`kern.rs`). Components are already resolved into the outlines; no
+//! Layout (`features.rs`): the font's `features.fea` compiled by fea-rs with the
+//! generated `kern`, `mark` and `mkmk` features and GDEF classes, in GSUB, GPOS and GDEF;
+//! the TTF also has a legacy `kern` table (`kern.rs`). Components are already resolved into the outlines; no
 //! composite glyphs.
 
 mod cff;
 mod charstring;
 mod cmap;
+mod features;
 mod gasp;
 mod glyph_names;
 mod grid;
@@ -53,8 +55,9 @@ use kurbo::BezPath;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
+pub use features::check_features;
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
-pub use variable::variable_ttf;
+pub use variable::{variable_ttf, variable_ttf_with_anchors};
 
 /// Something the model holds that an OpenType font cannot.
 #[derive(Debug)]
@@ -74,6 +77,8 @@ pub enum OtfError {
     CmapConflict(String),
     /// write-fonts rejected a table.
     Table(String),
+    /// `features.fea` has errors, each at its file:line:col.
+    Features(Vec<crate::source::Diagnostic>),
 }
 
 impl std::fmt::Display for OtfError {
@@ -87,6 +92,10 @@ impl std::fmt::Display for OtfError {
             }
             OtfError::CmapConflict(msg) => write!(f, "cmap: {msg}"),
             OtfError::Table(msg) => write!(f, "{msg}"),
+            OtfError::Features(diags) => {
+                let lines: Vec<String> = diags.iter().map(ToString::to_string).collect();
+                write!(f, "{}", lines.join("\n"))
+            }
         }
     }
 }
@@ -107,6 +116,8 @@ pub(crate) struct OtGlyph {
     pub path: BezPath,
     /// The outline includes resolved components, whose contours may overlap.
     pub from_components: bool,
+    /// Anchors (mark positioning, see `features.rs`).
+    pub anchors: Vec<crate::model::Anchor>,
 }
 
 /// The glyph order shared by both flavours.
@@ -160,6 +171,7 @@ impl OtGlyph {
             advance,
             path: glyph.path.clone(),
             from_components: !glyph.components.is_empty(),
+            anchors: glyph.anchors.clone(),
         })
     }
 }

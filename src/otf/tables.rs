@@ -1,7 +1,7 @@
 //! The font file: the outline tables of one flavour and the tables both share, assembled
 //! with write-fonts' `FontBuilder`. One builder per table, each in its own module:
 //! [`super::head`], [`super::hmtx`] (hhea, hmtx), [`super::maxp`], [`super::cmap`],
-//! [`super::post`], [`super::os2`], [`super::naming`] (name), [`super::kern`] (GPOS, kern),
+//! [`super::post`], [`super::os2`], [`super::naming`] (name), [`super::features`] (GSUB, GPOS, GDEF), [`super::kern`] (legacy kern),
 //! [`super::truetype`] (glyf, loca), [`super::prep`] and [`super::gasp`] (TTF only) and
 //! [`super::cff`].
 //!
@@ -20,11 +20,12 @@ use write_fonts::{BuilderError, FontBuilder};
 use super::cff::{cff_table, CffInfo};
 use super::charstring::charstring;
 use super::cmap::cmap;
+use super::features::{layout_tables, LayoutSource, LayoutTables};
 use super::gasp::gasp;
 use super::grid::to_i16;
 use super::head::head;
 use super::hmtx::{hhea, hmtx};
-use super::kern::{gpos, kern_pairs, legacy_kern};
+use super::kern::{kern_pairs, legacy_kern};
 use super::maxp::{cff_maxp, truetype_maxp};
 use super::naming::{name_table, Naming};
 use super::os2::os2_table;
@@ -150,7 +151,16 @@ pub fn build_font(
     set: &GlyphSet,
     outlines: Outlines,
 ) -> Result<Vec<u8>, OtfError> {
-    Ok(font_builder(font, set, outlines, None)?.build())
+    let layout = layout_tables(&LayoutSource {
+        names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
+        unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
+        anchors: vec![set.glyphs.iter().map(|g| g.anchors.as_slice()).collect()],
+        kerning: vec![kern_pairs(&font.kerning, set)?],
+        regions: &[],
+        axis_count: 0,
+        features: font.features.as_ref(),
+    })?;
+    Ok(font_builder(font, set, outlines, &layout, None)?.build())
 }
 
 /// What a variable font changes in the shared tables (see `super::variable`).
@@ -161,13 +171,14 @@ pub(crate) struct VariableShared {
     pub names: Vec<(u16, String)>,
 }
 
-/// [`build_font`]'s tables, not yet assembled. With `variable`, kerning is left out (the
-/// variable backend adds a GPOS with variations, and the legacy `kern` table cannot vary)
-/// and the weight class and names are the variable font's.
+/// [`build_font`]'s tables, not yet assembled, with the `layout` tables (GSUB, GPOS,
+/// GDEF). With `variable`, the legacy `kern` table is left out (it cannot vary) and the
+/// weight class and names are the variable font's.
 pub(crate) fn font_builder(
     font: &OutlinedFont,
     set: &GlyphSet,
     outlines: Outlines,
+    layout: &LayoutTables,
     variable: Option<&VariableShared>,
 ) -> Result<FontBuilder<'static>, OtfError> {
     let info = &font.info;
@@ -214,8 +225,14 @@ pub(crate) fn font_builder(
         .add_table(&hmtx(&advances, &boxes))
         .map_err(table_err)?;
     builder.add_table(&cmap(&set.glyphs)?).map_err(table_err)?;
-    if let Some(gpos) = gpos(&pairs).filter(|_| variable.is_none()) {
-        builder.add_table(&gpos).map_err(table_err)?;
+    for (tag, table) in [
+        (b"GSUB", &layout.gsub),
+        (b"GPOS", &layout.gpos),
+        (b"GDEF", &layout.gdef),
+    ] {
+        if let Some(bytes) = table {
+            builder.add_raw(Tag::new(tag), bytes.clone());
+        }
     }
     // The legacy table only in the TTF: OTS (the sanitizer in Chrome and Firefox) drops
     // `kern` from fonts without `glyf` ("this table is not for CFF fonts"), and GPOS
@@ -267,6 +284,7 @@ pub(crate) mod tests {
             advance,
             path: BezPath::new(),
             from_components: false,
+            anchors: Vec::new(),
         }
     }
 

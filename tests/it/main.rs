@@ -9,6 +9,7 @@ mod build;
 mod cache;
 mod compatible;
 mod designspace;
+mod features;
 mod fit;
 mod fit_count;
 mod flatten;

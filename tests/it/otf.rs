@@ -152,13 +152,11 @@ fn check_font(bytes: &[u8], font: &Font, outlines: &OutlinedFont, cff: bool) -> 
     assert_eq!(name(5).as_deref(), Some("Version 1.000"));
     assert_eq!(name(6).as_deref(), Some("MiniTest-Regular"));
 
-    // Kerning in GPOS: A V -60, V o -40, nothing else.
+    // Kerning in GPOS: A V -60, V o -40, nothing else; then `mark` from the anchors
+    // (tests/it/features.rs checks it).
     let gpos = face.tables().gpos.expect("GPOS");
-    assert_eq!(gpos.features.len(), 1);
-    assert_eq!(
-        gpos.features.get(0).unwrap().tag,
-        ttf_parser::Tag::from_bytes(b"kern")
-    );
+    let tags: Vec<_> = gpos.features.into_iter().map(|f| f.tag).collect();
+    assert_eq!(tags, [b"kern", b"mark"].map(ttf_parser::Tag::from_bytes));
     let lookup = gpos.lookups.get(0).unwrap();
     let subtable = lookup
         .subtables

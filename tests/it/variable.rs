@@ -452,7 +452,7 @@ for i, w in enumerate(locs):
     if "GPOS" in font:
         for lookup in font["GPOS"].table.LookupList.Lookup:
             for st in lookup.SubTable:
-                if st.Format != 1:
+                if lookup.LookupType != 2 or st.Format != 1:
                     continue
                 for first, ps in zip(st.Coverage.glyphs, st.PairSet):
                     for r in ps.PairValueRecord:

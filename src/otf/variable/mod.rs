@@ -7,8 +7,8 @@
 //! - `HVAR` ([`hvar`]) with the same advance deltas;
 //! - `fvar` ([`fvar`]) with the axes and named instances, `STAT` ([`stat`]) and their names
 //!   ([`naming`]) in `name`; an identity `avar` ([`avar`]);
-//! - kerning in GPOS with VariationIndex devices into `GDEF`'s item variation store
-//!   ([`gpos`]).
+//! - the layout of `otf/features.rs` (fea-rs): kerning and mark anchors with
+//!   VariationIndex devices into `GDEF`'s item variation store.
 //!
 //! Grid rounding as fontmake does it: the default master's points are rounded, and each
 //! master's deltas are its rounded points minus the rounded default's, so every master
@@ -21,7 +21,6 @@
 
 mod avar;
 mod fvar;
-mod gpos;
 mod gvar;
 mod hvar;
 mod naming;
@@ -34,11 +33,13 @@ use write_fonts::tables::glyf::{Contour, SimpleGlyph};
 use write_fonts::types::Tag;
 use write_fonts::BuilderError;
 
+use super::features::{layout_tables, LayoutSource};
 use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
 use super::truetype::TtGlyph;
 use super::{grid, GlyphSet, OtfError};
 use crate::family::OutlinedFamily;
+use crate::model::Anchor;
 use naming::VariableNames;
 
 /// Per non-default master, one glyph's deltas (outline points then 4 phantom points).
@@ -51,8 +52,20 @@ fn tag(text: &str) -> Result<Tag, OtfError> {
 }
 
 /// The family as a variable TrueType font: the default master's tables, its outlines and
-/// the variations of every other master (see the module documentation).
+/// the variations of every other master (see the module documentation). Anchors are the
+/// default master's in every master; [`variable_ttf_with_anchors`] varies them.
 pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
+    variable_ttf_with_anchors(family, &[])
+}
+
+/// [`variable_ttf`] with the anchors of the non-default masters: per master of
+/// [`OutlinedFamily::masters`], per glyph of the default (same order), its anchors (the
+/// model's `Master::glyphs`; the outlined masters carry none). A master left out, or with
+/// another glyph count, has the default's anchors.
+pub fn variable_ttf_with_anchors(
+    family: &OutlinedFamily,
+    master_anchors: &[Vec<Vec<Anchor>>],
+) -> Result<Vec<u8>, OtfError> {
     let font = &family.default;
     let designspace = &family.designspace;
     if designspace.axes.is_empty() {
@@ -126,7 +139,39 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
         weight_class,
         names: names.records.clone(),
     };
-    let mut builder = font_builder(font, &set, Outlines::TrueType(tt_glyphs), Some(&shared))?;
+    let mut kerning = vec![kern_pairs(&font.kerning, &set)?];
+    for master in &family.masters {
+        kerning.push(kern_pairs(&master.kerning, &set)?);
+    }
+    let default_anchors: Vec<&[Anchor]> = set.glyphs.iter().map(|g| g.anchors.as_slice()).collect();
+    let mut anchors = vec![default_anchors.clone()];
+    for m in 0..family.masters.len() {
+        anchors.push(match master_anchors.get(m) {
+            Some(glyphs) if glyphs.len() == font.glyphs.len() => (0..set.glyphs.len())
+                .map(|gid| {
+                    gid.checked_sub(synthesised)
+                        .map_or(&[][..], |i| glyphs[i].as_slice())
+                })
+                .collect(),
+            _ => default_anchors.clone(),
+        });
+    }
+    let layout = layout_tables(&LayoutSource {
+        names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
+        unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
+        anchors,
+        kerning,
+        regions: &regions,
+        axis_count,
+        features: font.features.as_ref(),
+    })?;
+    let mut builder = font_builder(
+        font,
+        &set,
+        Outlines::TrueType(tt_glyphs),
+        &layout,
+        Some(&shared),
+    )?;
     let table_err = |e: BuilderError| OtfError::Table(e.to_string());
     builder
         .add_table(&fvar::fvar(designspace, &names)?)
@@ -143,14 +188,6 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
     builder
         .add_table(&hvar::hvar(&regions, axis_count, &advance_deltas)?)
         .map_err(table_err)?;
-    let mut pairs = vec![kern_pairs(&font.kerning, &set)?];
-    for master in &family.masters {
-        pairs.push(kern_pairs(&master.kerning, &set)?);
-    }
-    if let Some((gpos, gdef)) = gpos::gpos_gdef(&pairs, &regions, axis_count)? {
-        builder.add_table(&gpos).map_err(table_err)?;
-        builder.add_table(&gdef).map_err(table_err)?;
-    }
     Ok(builder.build())
 }
 
