@@ -27,12 +27,21 @@ pub struct Font {
 
 /// The font's own OpenType feature code (`features.fea` in the font folder), compiled
 /// together with the features generated from the sources (kerning, anchors).
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Two feature files are equal when their texts are: the path only says where the text
+/// was read, for diagnostics (an imported or copied font has the same features).
+#[derive(Clone, Debug)]
 pub struct FeatureFile {
     /// The file, for diagnostics at file:line:col.
     pub path: PathBuf,
     /// Its text, as read.
     pub text: String,
+}
+
+impl PartialEq for FeatureFile {
+    fn eq(&self, other: &Self) -> bool {
+        self.text == other.text
+    }
 }
 
 /// A font with masters: the default master (an ordinary [`Font`]), the design space, and

@@ -16,9 +16,10 @@
 //! text from the font lib when an xglyph export wrote them. Kerning: glyph pairs as they are;
 //! group pairs (`public.kern1.*`, `public.kern2.*`) are expanded to glyph pairs, a more
 //! specific pair winning, as UFO kerning defines. Named anchors come in as they are (an
-//! unnamed one is left out and counted in the report). Limits: guidelines, images, other
-//! layers and `features.fea` are not imported (the model has no place for them); a glyph name outside the OpenType `post` rule is
-//! renamed as SVG file names are (`names::glyph_name_from`), in components and
+//! unnamed one is left out and counted in the report), and so does `features.fea` (written
+//! next to the glyph files; `check` compiles it). Limits: guidelines, images and other
+//! layers are not imported (the model has no place for them); a glyph name outside the
+//! OpenType `post` rule is renamed as SVG file names are (`names::glyph_name_from`), in components and
 //! kerning too.
 
 use std::collections::{BTreeMap, HashMap};
@@ -31,7 +32,9 @@ use rayon::prelude::*;
 use super::report::{GlyphReport, Report};
 use super::{contour, grid_for, import_glyph, FittedGlyph, ImportError, ImportOptions, Imported};
 use super::{SourceGlyph, BUILD_SHARE};
-use crate::model::{Anchor, Component, Font, FontInfo, Glyph, KernPair, DEFAULT_VENDOR};
+use crate::model::{
+    Anchor, Component, FeatureFile, Font, FontInfo, Glyph, KernPair, DEFAULT_VENDOR,
+};
 use crate::ufo::lib::{
     number, read_kerning_order, read_xspline, KERNING_ORDER_KEY, TOLERANCE_KEY, VERSION_KEY,
     XSPLINE_KEY,
@@ -123,7 +126,10 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
             info,
             glyphs,
             kerning,
-            features: None,
+            features: (!ufo.features.trim().is_empty()).then(|| FeatureFile {
+                path: path.join("features.fea"),
+                text: ufo.features.clone(),
+            }),
         },
         report: Report {
             rows,

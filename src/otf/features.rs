@@ -94,6 +94,16 @@ pub(crate) fn layout_tables(source: &LayoutSource) -> Result<LayoutTables, OtfEr
     let user_features = user_feature_tags(&tree);
 
     let var_info = Axes(source.axis_count);
+    // fea-rs's compiler assumes a validated tree (it panics on an unknown glyph name in a
+    // class definition): validate first, so a bad file is an error, never a panic.
+    let invalid = if source.axis_count > 0 {
+        compile::validate(&tree, &glyph_map, Some(&var_info))
+    } else {
+        compile::validate::<NopVariationInfo>(&tree, &glyph_map, None)
+    };
+    if invalid.has_errors() {
+        return Err(OtfError::Features(diagnostics(&tree, &invalid)));
+    }
     let generated = Generated::new(source, &user_features)?;
     let (compilation, _warnings) = if source.axis_count > 0 {
         compile::compile(

@@ -13,7 +13,8 @@ use crate::model::{Font, FontInfo, Glyph, KernPair, Master};
 use crate::names::file_stems;
 
 /// Every source file of `font` as `(file name, text)`: `font.toml`, one `<stem>.toml` per
-/// glyph (stems by `names::file_stems`), and `kerning.toml` when there is kerning.
+/// glyph (stems by `names::file_stems`), `kerning.toml` when there is kerning, and
+/// `features.fea` as it was read.
 pub fn font_sources(font: &Font) -> Vec<(String, String)> {
     let mut files = vec![("font.toml".to_string(), font_toml(&font.info))];
     let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));
@@ -22,6 +23,9 @@ pub fn font_sources(font: &Font) -> Vec<(String, String)> {
     }
     if !font.kerning.is_empty() {
         files.push(("kerning.toml".to_string(), kerning_toml(&font.kerning)));
+    }
+    if let Some(features) = &font.features {
+        files.push(("features.fea".to_string(), features.text.clone()));
     }
     files
 }

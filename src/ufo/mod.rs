@@ -125,6 +125,11 @@ pub fn export(font: &OutlinedFont) -> Result<norad::Font, UfoError> {
         let own = g.contours.len().saturating_sub(placed);
         layer.insert_glyph(glyph::glyph(g, own)?);
     }
+    // The font's own features.fea, as written: fontmake and fontc add kern and mark from
+    // the kerning and anchors, as xglyph does.
+    if let Some(features) = &font.features {
+        ufo.features = features.text.clone();
+    }
     for k in &font.kerning {
         let (left, right) = (name(&k.left)?, name(&k.right)?);
         ufo.kerning

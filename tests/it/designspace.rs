@@ -441,8 +441,9 @@ fn cli_import_of_the_designspace_gives_back_the_family() {
     assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
     assert!(stdout.starts_with("source Regular:\n"), "{stdout}");
     assert!(stdout.contains("\nsource Bold:\n"), "{stdout}");
-    // font.toml, a file per glyph in each master, and each master's kerning.toml.
-    let files = 1 + 2 * (b.loaded.family.default.glyphs.len() + 1);
+    // font.toml, features.fea, a file per glyph in each master, and each master's
+    // kerning.toml.
+    let files = 2 + 2 * (b.loaded.family.default.glyphs.len() + 1);
     assert!(
         stdout.ends_with(&format!("wrote {files} files to {}\n", out.display())),
         "{stdout}"

@@ -182,6 +182,8 @@ fn a_font_that_covers_its_labels_sets_them_itself() {
     let keep = ["A", "space", "U", "plus", "zero", "four", "one"];
     font.glyphs.retain(|g| keep.contains(&g.name.as_str()));
     font.kerning.clear();
+    // The bundled features.fea names glyphs this subset lacks.
+    font.features = None;
     let a = font.glyphs.iter().position(|g| g.name == "A").unwrap();
     let opts = SheetOptions {
         cell_px: 160,

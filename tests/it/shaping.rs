@@ -254,11 +254,22 @@ fn shaping_reads_gpos_marks_go_on_their_base() {
     let mark = line.glyphs[1];
     assert_eq!((mark.x, mark.y), (f64::from(x_mid - acute_mid), 20.0));
     assert_eq!((mark.advance, line.width), (0.0, x.advance));
-    // Without the lookup (the font xglyph builds has no `mark` feature yet) the accent
-    // follows the x.
-    let plain = Layout::new(&font).expect("shapes");
-    let line = plain.line("x\u{301}").expect("shapes");
-    assert_eq!((line.glyphs[1].x, line.glyphs[1].y), (x.advance, 0.0));
+    // The font xglyph builds has its own `mark` feature, from the sources' anchors: the
+    // accent's `_top` lands on the x's `top`.
+    let anchor = |g: &xglyph::OutlinedGlyph, name: &str| {
+        g.anchors
+            .iter()
+            .find(|a| a.name == name)
+            .map(|a| a.position)
+            .expect("anchor")
+    };
+    let (top, mark_top) = (anchor(x, "top"), anchor(acute, "_top"));
+    let built = Layout::new(&font).expect("shapes");
+    let line = built.line("x\u{301}").expect("shapes");
+    assert_eq!(
+        (line.glyphs[1].x, line.glyphs[1].y),
+        (top.0 - mark_top.0, top.1 - mark_top.1)
+    );
 }
 
 /// The ink's pixel rows, in runs separated by blank rows, each with its leftmost and
@@ -314,10 +325,29 @@ fn the_proof_draws_a_gpos_positioned_accent_over_its_base() {
         (centre(accent) - centre(base)).abs() <= 2.0,
         "{accent:?} {base:?}"
     );
-    // Without the lookup the accent hangs off the x's right side, as in a browser today.
-    let plain = render_proof(&font, &opts).expect("renders");
-    let [accent, base] = ink_runs(&plain)[..] else {
-        panic!("{:?}", ink_runs(&plain));
+    // The font xglyph builds places the accent by its own anchors (`mark` from the x's
+    // `top` and the accent's `_top`): over the x as well.
+    let built = render_proof(&font, &opts).expect("renders");
+    let [accent, base] = ink_runs(&built)[..] else {
+        panic!("{:?}", ink_runs(&built));
     };
-    assert!(centre(accent) - centre(base) > 40.0, "{accent:?} {base:?}");
+    assert!(
+        accent.0 >= base.0 && accent.1 <= base.1,
+        "{accent:?} over {base:?}"
+    );
+    // The check can fail: the same proof from a font whose `mark` anchor on the x sits 150
+    // units (30 px) right of its middle puts the accent off centre.
+    let bytes = with_mark_gpos(
+        &font,
+        "x",
+        (x_mid + 150, 520),
+        "acutecomb",
+        (acute_mid, 500),
+    );
+    let moved = render_proof_with(&Layout::with_ttf(&font, bytes).expect("shapes"), &opts)
+        .expect("renders");
+    let [accent, base] = ink_runs(&moved)[..] else {
+        panic!("{:?}", ink_runs(&moved));
+    };
+    assert!(centre(accent) - centre(base) > 20.0, "{accent:?} {base:?}");
 }

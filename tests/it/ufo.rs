@@ -98,6 +98,7 @@ fn export_is_deterministic_and_holds_what_the_sources_say() {
     assert_eq!(
         names,
         [
+            "XglyphSans-Regular.ufo/features.fea",
             "XglyphSans-Regular.ufo/fontinfo.plist",
             "XglyphSans-Regular.ufo/kerning.plist",
             "XglyphSans-Regular.ufo/layercontents.plist",
