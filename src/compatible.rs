@@ -871,7 +871,7 @@ impl JointSamples {
                     1.0
                 } else {
                     let point = out.p[j][i];
-                    let near = project(cubic, point, guess, PROJECT_STEPS);
+                    let near = fit::project_onto(cubic, point, guess, PROJECT_STEPS);
                     let far = cubic.eval(near).distance(point);
                     if far <= goal {
                         near
@@ -879,7 +879,7 @@ impl JointSamples {
                         // A poor start can stall at a clamp or a far branch: retry from
                         // the sample's share of the span.
                         let share = (out.t[i] - a) / (b - a);
-                        let alt = project(cubic, point, share, PROJECT_STEPS);
+                        let alt = fit::project_onto(cubic, point, share, PROJECT_STEPS);
                         if cubic.eval(alt).distance(point) < far {
                             alt
                         } else {
@@ -1052,7 +1052,7 @@ impl JointSamples {
                 if i == 0 || i == n - 1 {
                     u
                 } else {
-                    project(&cubic, samples[i].0, u, REPROJECT_STEPS)
+                    fit::project_onto(&cubic, samples[i].0, u, REPROJECT_STEPS)
                 }
             })
             .collect();
@@ -1102,7 +1102,9 @@ fn paired_bound(
     let um = left
         .iter()
         .zip(cubics)
-        .map(|(half, cubic)| project(cubic, half[3].to_point(), 0.5 * (u0 + u1), PROJECT_STEPS))
+        .map(|(half, cubic)| {
+            fit::project_onto(cubic, half[3].to_point(), 0.5 * (u0 + u1), PROJECT_STEPS)
+        })
         .sum::<f64>()
         / cubics.len() as f64;
     paired_bound(&left, cubics, (u0, um), goal, splits - 1).max(paired_bound(
@@ -1158,7 +1160,7 @@ fn interval_net_bound(
     let (left1, right1) = halve(&pieces[1]);
     let mid = |j: usize, half: &[Vec2; 4]| {
         let (a, b) = ends[j];
-        project(cubics[j], half[3].to_point(), 0.5 * (a + b), PROJECT_STEPS)
+        fit::project_onto(cubics[j], half[3].to_point(), 0.5 * (a + b), PROJECT_STEPS)
     };
     let (m0, m1) = (mid(0, &left0), mid(1, &left1));
     let left = interval_net_bound(
@@ -1331,27 +1333,6 @@ fn project_jointly(cubics: &[CubicBez], points: &[Point], guess: f64) -> f64 {
             break;
         }
         let next = (u - slope / curvature).clamp(0.0, 1.0);
-        let done = (next - u).abs() < 1e-10;
-        u = next;
-        if done {
-            break;
-        }
-    }
-    u
-}
-
-/// The parameter of `cubic` nearest `p`, by Newton's method from `guess` within `[0, 1]`.
-fn project(cubic: &CubicBez, p: Point, guess: f64, steps: usize) -> f64 {
-    let (d1, d2) = (cubic.deriv(), cubic.deriv().deriv());
-    let mut u = guess;
-    for _ in 0..steps {
-        let r = cubic.eval(u) - p;
-        let (v, a) = (d1.eval(u).to_vec2(), d2.eval(u).to_vec2());
-        let denom = v.dot(v) + r.dot(a);
-        if denom <= 1e-300 {
-            break;
-        }
-        let next = (u - r.dot(v) / denom).clamp(0.0, 1.0);
         let done = (next - u).abs() < 1e-10;
         u = next;
         if done {

@@ -867,6 +867,12 @@ fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64)
     err
 }
 
+/// The parameter of `cubic` nearest `p`: `steps` Newton steps from `guess` within `[0, 1]`
+/// (stopping early when a step is below 1e-10).
+pub(crate) fn project_onto(cubic: &CubicBez, p: Point, guess: f64, steps: usize) -> f64 {
+    Poly::new(cubic).project_steps(p, guess, steps).0
+}
+
 /// The distance from `q` to the true curve near parameter `t`: `steps` Newton steps on the
 /// curve parameter within `[lo, hi]`, keeping the nearest point seen. Every distance taken
 /// is to a real curve point, so the result never underestimates the distance there.

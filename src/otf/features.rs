@@ -608,7 +608,9 @@ fn glyph_classes(
         classes.insert(*g, mark);
     }
     for (gid, unicodes) in source.unicodes.iter().enumerate() {
-        if unicodes.iter().any(|&c| is_combining(c)) {
+        // The combining blocks are marks whether or not they have anchors (as glyphsLib's
+        // categories make them; FontBakery's `gdef_mark_chars`).
+        if unicodes.iter().any(|&c| crate::source::is_combining(c)) {
             classes.insert(gid as u16, mark);
         }
     }
@@ -623,32 +625,14 @@ fn glyph_classes(
         .collect()
 }
 
-/// Whether `c` is in one of the combining-mark blocks (diacritical marks, extended,
-/// supplement, for symbols, half marks): marks to GDEF as to glyphsLib's categories,
-/// anchors or not (FontBakery's `gdef_mark_chars`). Hand-written: a handful of ranges
-/// does not need a Unicode database crate.
-fn is_combining(c: char) -> bool {
-    matches!(
-        u32::from(c),
-        0x0300..=0x036F | 0x1AB0..=0x1AFF | 0x1DC0..=0x1DFF | 0x20D0..=0x20FF | 0xFE20..=0xFE2F
-    )
-}
-
-/// A master's tent as an item-variation region (fea-rs's write-fonts).
+/// A master's tent as an item-variation region (fea-rs's write-fonts, an older release than
+/// the one `hvar` builds with, hence its own types; the numbers come from one place).
 fn variation_region(region: &Region, axis_count: usize) -> VariationRegion {
-    let f = |v: f64| F2Dot14::from_f32(v as f32);
     VariationRegion::new(
-        (0..axis_count)
-            .map(|axis| {
-                if axis == region.axis {
-                    RegionAxisCoordinates::new(
-                        f(region.start.min(region.end)),
-                        f(region.peak),
-                        f(region.start.max(region.end)),
-                    )
-                } else {
-                    RegionAxisCoordinates::new(F2Dot14::ZERO, F2Dot14::ZERO, F2Dot14::ZERO)
-                }
+        crate::otf::variable::region_axes(region, axis_count)
+            .map(|[start, peak, end]| {
+                let f = F2Dot14::from_f32;
+                RegionAxisCoordinates::new(f(start), f(peak), f(end))
             })
             .collect(),
     )

@@ -13,22 +13,33 @@ use crate::otf::OtfError;
 
 /// A region as an item-variation-store region (0, 0, 0 on the axes it does not use).
 pub fn variation_region(region: &Region, axis_count: usize) -> VariationRegion {
-    let f = |v: f64| F2Dot14::from_f32(v as f32);
     VariationRegion::new(
-        (0..axis_count)
-            .map(|axis| {
-                if axis == region.axis {
-                    RegionAxisCoordinates::new(
-                        f(region.start.min(region.end)),
-                        f(region.peak),
-                        f(region.start.max(region.end)),
-                    )
-                } else {
-                    RegionAxisCoordinates::new(F2Dot14::ZERO, F2Dot14::ZERO, F2Dot14::ZERO)
-                }
+        region_axes(region, axis_count)
+            .map(|[start, peak, end]| {
+                let f = F2Dot14::from_f32;
+                RegionAxisCoordinates::new(f(start), f(peak), f(end))
             })
             .collect(),
     )
+}
+
+/// A region's (start, peak, end) per axis, normalized: its tent on its own axis, zeros on
+/// the others.
+pub(crate) fn region_axes(
+    region: &Region,
+    axis_count: usize,
+) -> impl Iterator<Item = [f32; 3]> + '_ {
+    (0..axis_count).map(move |axis| {
+        if axis == region.axis {
+            [
+                region.start.min(region.end) as f32,
+                region.peak as f32,
+                region.start.max(region.end) as f32,
+            ]
+        } else {
+            [0.0; 3]
+        }
+    })
 }
 
 /// The `HVAR` table: `advance_deltas[glyph][master]` for the masters of `regions`.

@@ -23,6 +23,7 @@ mod avar;
 mod fvar;
 mod gvar;
 mod hvar;
+pub(crate) use hvar::region_axes;
 mod naming;
 mod quadratic;
 mod stat;
