@@ -320,6 +320,7 @@ fn fit_glyph(
         advance: glyph.advance,
         components: glyph.components.clone(),
         anchors: glyph.anchors.clone(),
+        placed_anchors: fonts[0].anchors_in(&indexes[0], glyph),
         contours: placed[0]
             .iter()
             .map(|(c, (dx, dy))| PlacedContour {

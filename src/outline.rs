@@ -61,8 +61,12 @@ pub struct OutlinedGlyph {
     pub advance: f64,
     /// The components the glyph places (their contours are in `contours` and `path`).
     pub components: Vec<Component>,
-    /// The glyph's own anchors, as in the source (see [`crate::model::Anchor`]).
+    /// The glyph's own anchors, as in the source (see [`crate::model::Anchor`]): what the
+    /// UFO export writes.
     pub anchors: Vec<Anchor>,
+    /// Its own anchors and those its components bring ([`Font::anchors`]): what mark
+    /// positioning reads, so a precomposed `ecircumflex` takes a further accent.
+    pub placed_anchors: Vec<Anchor>,
     /// The X-spline contours the path was fitted to: the glyph's own, then its components'.
     pub contours: Vec<PlacedContour>,
     /// Closed subpaths (MoveTo … ClosePath), components resolved, oriented.
@@ -237,6 +241,7 @@ fn outline_glyph_with<'a>(
         advance: glyph.advance,
         components: glyph.components.clone(),
         anchors: glyph.anchors.clone(),
+        placed_anchors: font.anchors_in(index, glyph),
         contours,
         path,
         max_error,
@@ -292,6 +297,7 @@ pub fn notdef_box(info: &FontInfo) -> OutlinedGlyph {
         advance,
         components: Vec::new(),
         anchors: Vec::new(),
+        placed_anchors: Vec::new(),
         contours: Vec::new(),
         path,
         max_error: 0.0,

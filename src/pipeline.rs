@@ -294,11 +294,24 @@ pub fn variable_outputs(
     }
     let (family, summary) =
         outline_family(&loaded.family, loaded.font.tolerance).map_err(PipelineError::Family)?;
+    // Each master's anchors with those its components bring, as the default's
+    // `placed_anchors`.
     let anchors: Vec<Vec<_>> = loaded
         .family
         .masters
         .iter()
-        .map(|m| m.glyphs.iter().map(|g| g.anchors.clone()).collect())
+        .map(|m| {
+            let font = crate::model::Font {
+                glyphs: m.glyphs.clone(),
+                kerning: Vec::new(),
+                ..loaded.family.default.clone()
+            };
+            let index = font.index();
+            font.glyphs
+                .iter()
+                .map(|g| font.anchors_in(&index, g))
+                .collect()
+        })
         .collect();
     let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
     let woff2 = otf::woff2_from_ttf(&ttf)?;

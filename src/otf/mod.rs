@@ -116,7 +116,7 @@ pub(crate) struct OtGlyph {
     pub path: BezPath,
     /// The outline includes resolved components, whose contours may overlap.
     pub from_components: bool,
-    /// Anchors (mark positioning, see `features.rs`).
+    /// Anchors, the components' included (mark positioning, see `features.rs`).
     pub anchors: Vec<crate::model::Anchor>,
 }
 
@@ -171,7 +171,7 @@ impl OtGlyph {
             advance,
             path: glyph.path.clone(),
             from_components: !glyph.components.is_empty(),
-            anchors: glyph.anchors.clone(),
+            anchors: glyph.placed_anchors.clone(),
         })
     }
 }

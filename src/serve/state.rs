@@ -427,6 +427,7 @@ impl Studio {
             advance: glyph.advance,
             components: glyph.components.clone(),
             anchors: glyph.anchors.clone(),
+            placed_anchors: self.font.anchors(glyph),
             contours: self
                 .font
                 .placed_contours(glyph)

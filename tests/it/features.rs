@@ -63,7 +63,8 @@ fn anchor_at(font: &Font, glyph: &str, name: &str) -> (i64, i64) {
 fn expected_anchors(font: &Font) -> BTreeMap<String, [Value; 3]> {
     let mut out: BTreeMap<String, [Value; 3]> = BTreeMap::new();
     for g in &font.glyphs {
-        for a in &g.anchors {
+        // A composite's anchors include those its components bring (`Font::anchors`).
+        for a in &font.anchors(g) {
             let (name, slot) = match a.attaches_to() {
                 Some(base) => (base, 0),
                 None if g.is_mark() => (a.name.as_str(), 2),
@@ -601,5 +602,43 @@ fn errors_in_features_fea_are_at_file_line_col_and_nothing_is_written() {
             "{fixture}: {stderr}"
         );
         assert!(!out_dir.exists(), "{fixture}: output written");
+    }
+}
+
+#[test]
+fn a_precomposed_letter_takes_a_further_accent_on_its_components_anchor() {
+    if no_python("uharfbuzz, fontTools", "pip install uharfbuzz fonttools") {
+        return;
+    }
+    // The bundled font as it is (precomposed letters in cmap): HarfBuzz composes e + U+0302
+    // to `ecircumflex`, a composite without anchors of its own. Its `top` comes from its
+    // components (the circumflex's `top`, moved to where the circumflex sits on the e), so
+    // the acute stacks over the circumflex (Vietnamese ế).
+    let (font, _) = load_font(Path::new("glyphs")).expect("the bundled typeface loads");
+    let (_dir, paths) = built(&font);
+    let e_top = anchor_at(&font, "e", "top");
+    let (circ, circ_top) = (
+        anchor_at(&font, "circumflexcomb", "_top"),
+        anchor_at(&font, "circumflexcomb", "top"),
+    );
+    let acute = anchor_at(&font, "acutecomb", "_top");
+    let top = (e_top.0 + circ_top.0 - circ.0, e_top.1 + circ_top.1 - circ.1);
+    let adv = advance(&font, "ecircumflex") as i64;
+    for path in &paths {
+        let runs = shape(path, &["e\u{302}\u{301}"]);
+        assert_eq!(
+            runs[0],
+            [
+                ("ecircumflex".into(), adv, 0, 0),
+                (
+                    "acutecomb".into(),
+                    0,
+                    top.0 - acute.0 - adv,
+                    top.1 - acute.1
+                )
+            ],
+            "{}",
+            path.display()
+        );
     }
 }

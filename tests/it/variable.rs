@@ -187,6 +187,7 @@ fn outlined(name: &str, c: char, advance: f64, path: BezPath) -> OutlinedGlyph {
         advance,
         components: vec![],
         anchors: Vec::new(),
+        placed_anchors: Vec::new(),
         contours: vec![],
         path,
         max_error: 0.0,
