@@ -262,19 +262,7 @@ fn import_ufo(args: &ImportArgs, progress: Progress) -> Result<import::Imported,
             "import one UFO at a time, and UFOs, fonts and SVG drawings separately",
         ));
     }
-    for (given, flag) in [
-        (args.glyphs.is_some(), "--glyphs"),
-        (args.face.is_some(), "--face"),
-        (args.codepoints.is_some(), "--codepoints"),
-        (args.first_codepoint.is_some(), "--first-codepoint"),
-        (args.units_per_em.is_some(), "--units-per-em"),
-    ] {
-        if given {
-            return Err(ImportError::plain(format!(
-                "{flag} does not apply to a UFO (it imports every glyph of its default layer)"
-            )));
-        }
-    }
+    refuse_font_flags(args, "a UFO (it imports every glyph of its default layer)")?;
     import::import_ufo(&args.inputs[0], &ufo_options(args, progress))
 }
 
@@ -290,6 +278,15 @@ fn ufo_options(args: &ImportArgs, progress: Progress) -> ImportOptions {
 
 /// Refuses the flags that do not apply to a designspace.
 fn check_designspace_flags(args: &ImportArgs) -> Result<(), ImportError> {
+    refuse_font_flags(
+        args,
+        "a designspace (it imports every glyph of each source's default layer)",
+    )
+}
+
+/// Refuses the flags of font and SVG imports for an input that takes none of them:
+/// "`--flag` does not apply to {what}".
+fn refuse_font_flags(args: &ImportArgs, what: &str) -> Result<(), ImportError> {
     for (given, flag) in [
         (args.glyphs.is_some(), "--glyphs"),
         (args.face.is_some(), "--face"),
@@ -299,8 +296,7 @@ fn check_designspace_flags(args: &ImportArgs) -> Result<(), ImportError> {
     ] {
         if given {
             return Err(ImportError::plain(format!(
-                "{flag} does not apply to a designspace (it imports every glyph of each \
-                 source's default layer)"
+                "{flag} does not apply to {what}"
             )));
         }
     }
