@@ -13,8 +13,8 @@
 //! Before Criterion, in the same run, an **interleaved probe** over every bundled contour
 //! (143) at the 11 positions: per contour, a static fit of the Regular and a compatible fit
 //! timed alternately, best of 5 each, summed. Interleaving exposes both to the same load,
-//! which Criterion's consecutive groups do not. `XGLYPH_PROBE_ONLY=1` runs the probe once
-//! (one round, no Criterion), for `valgrind --tool=callgrind`.
+//! which Criterion's consecutive groups do not. `XGLYPH_PROBE_ONLY=Bold` (or `="synthetic bold"`)
+//! runs that master's probe once (one round, no Criterion), for `valgrind --tool=callgrind`.
 
 use criterion::Criterion;
 use std::hint::black_box;
@@ -55,10 +55,14 @@ fn time(mut f: impl FnMut() -> usize) -> Duration {
 
 /// The interleaved probe: Σ over contours of the best static fit of the Regular and the
 /// best compatible fit, timed alternately per contour; prints both and their ratio.
-fn probe(rounds: usize) {
+/// `only`: `"Bold"` or `"synthetic bold"` probes that master alone.
+fn probe(rounds: usize, only: Option<&str>) {
     let (bundled, synthetic, tolerance) = all_pairs();
     let eleven = masters::evenly_spaced(11);
     for (label, pairs) in [("Bold", &bundled), ("synthetic bold", &synthetic)] {
+        if only.is_some_and(|o| o != label) {
+            continue;
+        }
         let (mut fixed, mut joint) = (Duration::ZERO, Duration::ZERO);
         for (light, bold) in pairs {
             let (mut one, mut two) = (Duration::MAX, Duration::MAX);
@@ -159,11 +163,11 @@ fn bench(c: &mut Criterion) {
 }
 
 fn main() {
-    if std::env::var_os("XGLYPH_PROBE_ONLY").is_some() {
-        probe(1);
+    if let Some(only) = std::env::var_os("XGLYPH_PROBE_ONLY") {
+        probe(1, only.to_str());
         return;
     }
-    probe(5);
+    probe(5, None);
     let mut criterion = Criterion::default().configure_from_args();
     bench(&mut criterion);
     criterion.final_summary();
