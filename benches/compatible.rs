@@ -29,8 +29,11 @@ mod masters;
 /// Glyphs with bowls, stems, terminals and mixed `s`.
 const GLYPHS: [&str; 6] = ["a", "g", "S", "ampersand", "O", "R"];
 
+/// Contours paired with a second master.
+type Pairs = Vec<(XSpline, XSpline)>;
+
 /// Every bundled contour with its Bold master and with the synthetic bold.
-fn all_pairs() -> (Vec<(XSpline, XSpline)>, Vec<(XSpline, XSpline)>, f64) {
+fn all_pairs() -> (Pairs, Pairs, f64) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
     let (family, _) = xglyph::source::load_family(&dir).expect("the bundled glyphs load");
     let mut bundled = Vec::new();
