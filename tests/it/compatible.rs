@@ -462,8 +462,8 @@ fn cubic_joins(path: &BezPath) -> Vec<(Point, Point, Point)> {
 /// tangent there), on the bundled glyphs with their Bold master and with the synthetic
 /// bold. Between the masters the handles blend with each master's own lengths, so an
 /// instance is G1 at a join only when the masters' handle-length ratios agree there: the
-/// kinks at 9 positions are measured and bounded here (a known limit, see
-/// `src/compatible.rs`), not claimed away.
+/// kinks at 9 positions are measured and printed (a known limit, see `src/compatible.rs`;
+/// measured: 483 of 13923 blended joins bend by more than 1°, the worst 52.6°).
 #[test]
 fn joins_at_smooth_points_are_collinear_in_every_master() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
