@@ -45,7 +45,7 @@ pub fn optimize(
         .collect();
     let mut out = match iup_delta_optimize(vectors, points, OPTIMIZER_TOLERANCE, contour_ends) {
         Ok(d) => d,
-        // Lengths that do not match (a glyph without points): encode everything.
+        // Inconsistent lengths (not made here, see the caller): encode everything.
         Err(_) => deltas
             .iter()
             .map(|&(x, y)| GlyphDelta::required(x, y))
@@ -54,9 +54,9 @@ pub fn optimize(
     let n = deltas.len();
     let mut all_ends = contour_ends.to_vec();
     all_ends.extend(n.saturating_sub(4)..n);
-    let mut phantom_coords = coords.to_vec();
-    phantom_coords.resize(n, (0, 0));
-    require_exact(&mut out, &phantom_coords, &all_ends);
+    let mut all_coords = coords.to_vec();
+    all_coords.resize(n, (0, 0));
+    require_exact(&mut out, &all_coords, &all_ends);
     out
 }
 
