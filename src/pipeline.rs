@@ -9,6 +9,8 @@ use std::borrow::Cow;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
+
 use crate::designspace::Location;
 use crate::family::{outline_family, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
@@ -16,9 +18,10 @@ use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::remove_overlaps_font;
+use crate::layout::Layout;
 use crate::render::{
-    encode_png, render_instances_proof, render_proof, sheet_png_files, ProofOptions, RenderError,
-    SheetOptions,
+    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_with,
+    ProofOptions, RenderError, SheetOptions,
 };
 use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
@@ -229,8 +232,10 @@ pub fn instance_outputs(
     }
     let instances = named_instances(loaded)?;
     let default_stem = output_stem(&loaded.font.info);
-    let mut files = Vec::new();
-    for ((name, font), named) in instances.iter().zip(&loaded.family.designspace.instances) {
+    let named = &loaded.family.designspace.instances;
+    // Which instances get files of their own (checked in order, before any work).
+    let mut written = Vec::new();
+    for ((name, font), named) in instances.iter().zip(named) {
         let stem = output_stem(&font.info);
         if stem == default_stem {
             let at_default = loaded
@@ -248,19 +253,32 @@ pub fn instance_outputs(
                  `style`"
             )));
         }
-        let ot = for_opentype(font, opts);
-        let ot = ot.as_ref();
-        files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(ot)?));
-        files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
-        files.push((
-            PathBuf::from(format!("{stem}.svg")),
-            svg_font(font).into_bytes(),
-        ));
+        written.push((stem, font));
     }
-    let labelled: Vec<(String, &OutlinedFont)> = instances
+    // Each instance's fonts in parallel, in order; its TTF also shapes its proof block.
+    let built: Vec<Result<InstanceFonts, PipelineError>> = written
+        .par_iter()
+        .map(|(stem, font)| instance_fonts(stem, font, opts))
+        .collect();
+    let built = built.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let mut files = Vec::new();
+    for b in &built {
+        files.extend(b.files.iter().cloned());
+    }
+    let mut layouts = Vec::with_capacity(instances.len());
+    for (name, font) in &instances {
+        let stem = output_stem(&font.info);
+        let ttf = match built.iter().find(|b| b.stem == stem) {
+            Some(b) => b.ttf.clone(),
+            // The instance at the default location: the default master's TTF is its own.
+            None => otf::ttf(font)?,
+        };
+        layouts.push((name, Layout::with_ttf(font, ttf).map_err(RenderError::from)?));
+    }
+    let labelled: Vec<(String, &Layout<'_>)> = layouts
         .iter()
-        .zip(&loaded.family.designspace.instances)
-        .map(|((name, font), named)| {
+        .zip(named)
+        .map(|((name, layout), named)| {
             let at: Vec<String> = loaded
                 .family
                 .designspace
@@ -274,12 +292,42 @@ pub fn instance_outputs(
                     )
                 })
                 .collect();
-            (format!("{name} ({})", at.join(", ")), font)
+            (format!("{name} ({})", at.join(", ")), layout)
         })
         .collect();
-    let proof = render_instances_proof(&labelled, &instances_proof_options(&opts.proof))?;
+    let proof = render_instances_proof_with(&labelled, &instances_proof_options(&opts.proof))?;
     files.push((PathBuf::from("proof-instances.png"), encode_png(&proof)?));
     Ok(files)
+}
+
+/// One named instance's static fonts: `<stem>.ttf`, `.otf` and `.svg`, and its TTF.
+struct InstanceFonts {
+    stem: String,
+    ttf: Vec<u8>,
+    files: Vec<OutputFile>,
+}
+
+fn instance_fonts(
+    stem: &str,
+    font: &OutlinedFont,
+    opts: &BuildOptions,
+) -> Result<InstanceFonts, PipelineError> {
+    let ot = for_opentype(font, opts);
+    let ot = ot.as_ref();
+    let (ttf, (otf, svg)) = rayon::join(
+        || otf::ttf(ot),
+        || rayon::join(|| otf::otf(ot), || svg_font(font).into_bytes()),
+    );
+    let ttf = ttf?;
+    Ok(InstanceFonts {
+        stem: stem.to_string(),
+        files: vec![
+            (PathBuf::from(format!("{stem}.ttf")), ttf.clone()),
+            (PathBuf::from(format!("{stem}.otf")), otf?),
+            (PathBuf::from(format!("{stem}.svg")), svg),
+        ],
+        ttf,
+    })
 }
 
 /// The variable font of a font with masters, `<Family>[<axis tags>].ttf` and `.woff2`
@@ -367,30 +415,78 @@ pub type OutputFile = (PathBuf, Vec<u8>);
 
 /// Every output of a build, rendered in memory. This is the one list of build outputs;
 /// add a new output here.
+///
+/// The work runs in parallel (rayon): the text outputs (SVG, UFO, specimen) beside the
+/// binary ones, and among those the sheet pages, the proof, the OTF and the WOFF2 beside
+/// each other. The TTF is built once, and the proof and the sheet labels are shaped on it
+/// (its overlaps removed changes no position a shaper reads: advances, `cmap`, GSUB and
+/// GPOS are the same). Each output is a pure function of `font` and `opts`, and the list
+/// keeps its order, so the bytes do not depend on the thread count.
 pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFile>, PipelineError> {
-    let mut files = svg_outputs(font);
-    for (name, png) in sheet_png_files(font, &opts.sheet, "sheet")? {
-        files.push((PathBuf::from(name), png));
-    }
-    files.push((
-        PathBuf::from("proof.png"),
-        encode_png(&render_proof(font, &opts.proof)?)?,
-    ));
     let stem = output_stem(&font.info);
-    let ot = for_opentype(font, opts);
-    let ot = ot.as_ref();
-    let ttf = otf::ttf(ot)?;
-    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    let (binary, text) = rayon::join(
+        || opentype_and_images(font, opts),
+        || -> Result<_, PipelineError> {
+            let (svg, ufo) = rayon::join(|| svg_outputs(font), || crate::ufo::output_files(font));
+            Ok((svg, ufo?))
+        },
+    );
+    let (svg, ufo) = text?;
+    let Binary {
+        sheets,
+        proof,
+        ttf,
+        otf,
+        woff2,
+    } = binary?;
+    let mut files = svg;
+    files.extend(sheets.into_iter().map(|(name, png)| (PathBuf::from(name), png)));
+    files.push((PathBuf::from("proof.png"), proof));
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
-    files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
+    files.push((PathBuf::from(format!("{stem}.otf")), otf));
     files.push((PathBuf::from(format!("{stem}.woff2")), woff2));
-    files.extend(crate::ufo::output_files(font)?);
+    files.extend(ufo);
     let (woff2_name, otf_name) = (format!("{stem}.woff2"), format!("{stem}.otf"));
     files.push((
         PathBuf::from("specimen.html"),
         otf::specimen_html_sources(font, &[&woff2_name, &otf_name]).into_bytes(),
     ));
     Ok(files)
+}
+
+/// The binary outputs of [`outputs`]: the PNGs and the fonts.
+struct Binary {
+    sheets: Vec<(String, Vec<u8>)>,
+    proof: Vec<u8>,
+    ttf: Vec<u8>,
+    otf: Vec<u8>,
+    woff2: Vec<u8>,
+}
+
+/// The TTF once, then in parallel: the sheet pages and the proof shaped on it, its WOFF2,
+/// and the OTF.
+fn opentype_and_images(font: &OutlinedFont, opts: &BuildOptions) -> Result<Binary, PipelineError> {
+    let ot = for_opentype(font, opts);
+    let ot = ot.as_ref();
+    let ttf = otf::ttf(ot)?;
+    // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
+    let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
+    let ((sheets, proof), (woff2, otf)) = rayon::join(
+        || {
+            rayon::join(
+                || sheet_png_files_with(&layout, &opts.sheet, "sheet"),
+                || encode_png(&render_proof_with(&layout, &opts.proof)?),
+            )
+        },
+        || rayon::join(|| otf::woff2_from_ttf(&ttf), || otf::otf(ot)),
+    );
+    Ok(Binary {
+        sheets: sheets?,
+        proof: proof?,
+        otf: otf?,
+        woff2: woff2?,
+        ttf,
+    })
 }
 
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless

@@ -6,7 +6,10 @@
 //! 1. **Stage.** Missing folders are created (and remembered). Each file's bytes go to a
 //!    new temporary file in its final folder, created exclusively (`O_EXCL`) under an
 //!    unpredictable name (`.xglyph-PID-RANDOM.tmp`, by [`tempfile`]), so a planted file or
-//!    link at a guessed name is never opened or followed. Each file is flushed to disk.
+//!    link at a guessed name is never opened or followed. The staged files are flushed to
+//!    disk. An output whose file already holds exactly its bytes (a regular file, not a
+//!    link) is not staged at all: a rebuild rewrites only what changed, and a build that
+//!    changes nothing writes nothing.
 //! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
 //!    system; a link at the final name is replaced, never followed). A file it replaces is
 //!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file
@@ -204,7 +207,13 @@ impl Transaction {
             if cleaned.insert(dir.to_path_buf()) {
                 remove_stale(dir, &files);
             }
-            self.stage(path, bytes)?;
+            if !unchanged(path, bytes) {
+                self.stage(path, bytes)?;
+            }
+        }
+        if self.staged.is_empty() {
+            // Every output already holds its bytes: nothing to write, nothing to flush.
+            return Ok(());
         }
         self.sync_staged()?;
         // On an error the staged files not yet renamed are dropped, which removes them.
@@ -217,7 +226,7 @@ impl Transaction {
             }
             self.rename_into_place(temp, path)?;
         }
-        sync_dirs(&self.committed);
+        sync_renames(&self.committed);
         Ok(())
     }
 
@@ -458,6 +467,19 @@ fn process_alive(pid: u32) -> bool {
     proc.join(pid.to_string()).exists()
 }
 
+/// Whether `path` is a regular file (not a link) holding exactly `bytes` already: then the
+/// commit leaves it alone (no staging, no rename, no flush), so a rebuild that changes one
+/// glyph rewrites only the files that glyph is in. Any doubt (unreadable, a link, another
+/// length) counts as changed.
+fn unchanged(path: &Path, bytes: &[u8]) -> bool {
+    match fs::symlink_metadata(path) {
+        Ok(meta) if meta.is_file() && meta.len() == bytes.len() as u64 => {
+            fs::read(path).is_ok_and(|old| old == bytes)
+        }
+        _ => false,
+    }
+}
+
 /// The folder of `path` (empty for a bare file name, meaning the current folder).
 fn parent(path: &Path) -> &Path {
     path.parent().unwrap_or(Path::new(""))
@@ -471,11 +493,33 @@ fn error(path: &Path, kind: WriteErrorKind) -> WriteError {
     }
 }
 
-/// Flushes the renames: syncs each folder that received a file (Unix; elsewhere a no-op).
-fn sync_dirs(committed: &[Committed]) {
+/// Flushes the renames (errors ignored: the files are in place, only their durability
+/// across a power cut is at stake). On Linux one `syncfs` per file system, as for the data
+/// ([`Transaction::sync_staged`]): the bundled typeface's build spent 1.1 s in seven folder
+/// `fsync`s on a busy disk, each one a journal commit of its own. Elsewhere each folder
+/// that received a file is synced (Unix; a no-op on other systems).
+fn sync_renames(committed: &[Committed]) {
     let mut dirs: Vec<&Path> = committed.iter().map(|c| parent(&c.path)).collect();
     dirs.sort();
     dirs.dedup();
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let mut synced = std::collections::HashSet::new();
+        for d in dirs {
+            let Ok(f) = File::open(if d.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                d
+            }) else {
+                continue;
+            };
+            if f.metadata().is_ok_and(|m| synced.insert(m.dev())) {
+                let _ = rustix::fs::syncfs(&f);
+            }
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
     for d in dirs {
         let d = if d.as_os_str().is_empty() {
             Path::new(".")

@@ -277,9 +277,19 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         keep_overlaps: args.keep_overlaps,
         ..BuildOptions::default()
     };
-    let mut files = pipeline::outputs(&loaded.font, &opts)?;
-    files.extend(pipeline::instance_outputs(&loaded, &opts)?);
-    let variable = pipeline::variable_outputs(&loaded)?;
+    // The three groups of outputs on every core (rayon); errors in this order.
+    let ((files, instance_files), variable) = rayon::join(
+        || {
+            rayon::join(
+                || pipeline::outputs(&loaded.font, &opts),
+                || pipeline::instance_outputs(&loaded, &opts),
+            )
+        },
+        || pipeline::variable_outputs(&loaded),
+    );
+    let mut files = files?;
+    files.extend(instance_files?);
+    let variable = variable?;
     if let Some((var_files, _)) = &variable {
         replace_outputs(&mut files, var_files);
     }

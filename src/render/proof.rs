@@ -194,17 +194,41 @@ pub fn render_instances_proof(
     fonts: &[(String, &OutlinedFont)],
     opts: &ProofOptions,
 ) -> Result<Pixmap, RenderError> {
+    let layouts = fonts
+        .iter()
+        .map(|(label, font)| Ok((label.clone(), Layout::new(font)?)))
+        .collect::<Result<Vec<_>, RenderError>>()?;
+    let layouts: Vec<(String, &Layout<'_>)> = layouts.iter().map(|(l, s)| (l.clone(), s)).collect();
+    render_instances_proof_with(&layouts, opts)
+}
+
+/// [`render_instances_proof`] with each font's shaper already built. The blocks are set in
+/// parallel (rayon), and stacked in order.
+pub fn render_instances_proof_with(
+    fonts: &[(String, &Layout<'_>)],
+    opts: &ProofOptions,
+) -> Result<Pixmap, RenderError> {
+    use rayon::prelude::*;
     let Some((_, first)) = fonts.first() else {
         return Err(RenderError::NoGlyphs);
     };
     let opts = ProofOptions {
-        text: Some(opts.text.clone().unwrap_or_else(|| default_text(first))),
+        text: Some(
+            opts.text
+                .clone()
+                .unwrap_or_else(|| default_text(first.font())),
+        ),
         ..opts.clone()
     };
+    check_sizes(&opts)?;
     let label_h = (LABEL_EM * 1.5).ceil();
+    let rendered: Vec<Result<Pixmap, RenderError>> = fonts
+        .par_iter()
+        .map(|(_, layout)| proof_pixmap(layout, &opts))
+        .collect();
     let mut blocks = Vec::with_capacity(fonts.len());
-    for (label, font) in fonts {
-        blocks.push((label, render_proof(font, &opts)?));
+    for ((label, _), block) in fonts.iter().zip(rendered) {
+        blocks.push((label, block?));
     }
     let width = blocks
         .iter()
