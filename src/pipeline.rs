@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
+use crate::cache::FitCache;
 use crate::designspace::Location;
 use crate::family::{outline_family, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
@@ -189,19 +190,38 @@ pub fn instance(
     location: &Location,
     style: Option<&str>,
 ) -> Result<OutlinedFont, PipelineError> {
+    instance_with(loaded, location, style, OutlineOptions::default())
+}
+
+/// [`instance`] with a fit cache (the instance's blended contours are keyed like any
+/// other: a rebuild refits only those that changed).
+pub fn instance_with(
+    loaded: &Loaded,
+    location: &Location,
+    style: Option<&str>,
+    opts: OutlineOptions<'_>,
+) -> Result<OutlinedFont, PipelineError> {
     let mut font = loaded.family.instance_at(location)?;
     if let Some(style) = style {
         font.info.style = style.to_string();
     }
-    Ok(outline_font_with(
-        &font,
-        loaded.font.tolerance,
-        OutlineOptions::default(),
-    ))
+    Ok(outline_font_with(&font, loaded.font.tolerance, opts))
 }
 
 /// Every named instance of a font with masters, fitted statically, in `font.toml` order.
 pub fn named_instances(loaded: &Loaded) -> Result<Vec<(String, OutlinedFont)>, PipelineError> {
+    named_instances_with(loaded, None)
+}
+
+/// [`named_instances`] with fits from `cache`.
+pub fn named_instances_with(
+    loaded: &Loaded,
+    cache: Option<&FitCache>,
+) -> Result<Vec<(String, OutlinedFont)>, PipelineError> {
+    let opts = OutlineOptions {
+        cache,
+        progress: None,
+    };
     loaded
         .family
         .designspace
@@ -210,7 +230,7 @@ pub fn named_instances(loaded: &Loaded) -> Result<Vec<(String, OutlinedFont)>, P
         .map(|i| {
             Ok((
                 i.name.clone(),
-                instance(loaded, &i.location, Some(&i.name))?,
+                instance_with(loaded, &i.location, Some(&i.name), opts)?,
             ))
         })
         .collect()
@@ -227,10 +247,19 @@ pub fn instance_outputs(
     loaded: &Loaded,
     opts: &BuildOptions,
 ) -> Result<Vec<OutputFile>, PipelineError> {
+    instance_outputs_with(loaded, opts, None)
+}
+
+/// [`instance_outputs`] with the instances' fits from `cache`.
+pub fn instance_outputs_with(
+    loaded: &Loaded,
+    opts: &BuildOptions,
+    cache: Option<&FitCache>,
+) -> Result<Vec<OutputFile>, PipelineError> {
     if !loaded.family.is_variable() || loaded.family.designspace.instances.is_empty() {
         return Ok(Vec::new());
     }
-    let instances = named_instances(loaded)?;
+    let instances = named_instances_with(loaded, cache)?;
     let default_stem = output_stem(&loaded.font.info);
     let named = &loaded.family.designspace.instances;
     // Which instances get files of their own (checked in order, before any work).

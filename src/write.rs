@@ -35,6 +35,7 @@ use std::fmt;
 use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use tempfile::{Builder, NamedTempFile};
 
@@ -77,6 +78,8 @@ pub enum WriteErrorKind {
     Folder(io::Error),
     /// The file system refused to write or rename an output file.
     Io(io::Error),
+    /// Ctrl-C arrived while the set was being written ([`exit_on_interrupt`]).
+    Interrupted,
 }
 
 impl fmt::Display for WriteError {
@@ -98,6 +101,7 @@ impl fmt::Display for WriteError {
                 write!(f, "cannot create the folder {path}: {}", reason(e))
             }
             WriteErrorKind::Io(e) => write!(f, "cannot write {path}: {}", reason(e)),
+            WriteErrorKind::Interrupted => write!(f, "interrupted while writing {path}"),
         }?;
         if let Some(rollback) = &self.rollback {
             write!(f, "; and the rollback failed: {rollback}")?;
@@ -157,6 +161,7 @@ impl OutputSet {
     }
 
     fn commit_with(self, mut tx: Transaction) -> Result<(), WriteError> {
+        let _committing = Committing::start();
         let result = tx.run(self.files);
         match result {
             Ok(()) => {
@@ -207,6 +212,7 @@ impl Transaction {
             if cleaned.insert(dir.to_path_buf()) {
                 remove_stale(dir, &files);
             }
+            check_interrupt(path)?;
             if !unchanged(path, bytes) {
                 self.stage(path, bytes)?;
             }
@@ -224,6 +230,7 @@ impl Transaction {
                 let injected = io::Error::other("injected failure");
                 return Err(error(&path, WriteErrorKind::Io(injected)));
             }
+            check_interrupt(&path)?;
             self.rename_into_place(temp, path)?;
         }
         sync_renames(&self.committed);
@@ -372,6 +379,51 @@ impl Transaction {
             }
         }
     }
+}
+
+/// Set by the Ctrl-C handler of [`exit_on_interrupt`].
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+/// Commits under way in this process.
+static COMMITTING: AtomicUsize = AtomicUsize::new(0);
+
+/// Makes Ctrl-C (SIGINT, and SIGTERM) leave the outputs as they were, for a command that
+/// writes with [`OutputSet`]: outside a commit the process exits at once with status 130
+/// (nothing is written before the commit); during one, the commit stops at its next file,
+/// rolls back (removing its temporary files, restoring what it replaced) and fails with
+/// [`WriteErrorKind::Interrupted`], and the command exits. Call it once, early; an error
+/// means a handler was already set (the outputs then stay whole files, as after a kill).
+pub fn exit_on_interrupt() -> Result<(), ctrlc::Error> {
+    ctrlc::set_handler(|| {
+        // SeqCst on both sides: either this sees the commit, or the commit sees the flag
+        // before it writes anything.
+        INTERRUPTED.store(true, Ordering::SeqCst);
+        if COMMITTING.load(Ordering::SeqCst) == 0 {
+            std::process::exit(130);
+        }
+    })
+}
+
+/// A commit in progress, for [`exit_on_interrupt`]'s handler.
+struct Committing;
+
+impl Committing {
+    fn start() -> Self {
+        COMMITTING.fetch_add(1, Ordering::SeqCst);
+        Committing
+    }
+}
+
+impl Drop for Committing {
+    fn drop(&mut self) {
+        COMMITTING.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+fn check_interrupt(path: &Path) -> Result<(), WriteError> {
+    if INTERRUPTED.load(Ordering::SeqCst) {
+        return Err(error(path, WriteErrorKind::Interrupted));
+    }
+    Ok(())
 }
 
 /// Puts `c.path` back as it was: the backup over it, or else removes the new file.

@@ -69,6 +69,8 @@ pub struct RenderArgs {
 
 /// Runs `xglyph render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
     check_flags(&args)?;
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let at_font = match &args.at {
@@ -116,7 +118,9 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     if let Some(proof) = proof.map_err(|e| proof_flags(e, &proof_opts))? {
         files.push((PathBuf::from("proof.png"), proof));
     }
-    write_outputs(&args.font.out, &files)?;
+    super::build::show_phase(&format!("writing {} files", files.len()), || {
+        write_outputs(&args.font.out, &files)
+    })?;
     for (path, _) in &files {
         outln!("wrote {}", args.font.out.join(path).display());
     }

@@ -29,6 +29,8 @@ pub struct SvgArgs {
 
 /// Runs `xglyph svg`.
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let at_font = match &args.at {
         Some(at) => {
@@ -39,7 +41,9 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
         None => None,
     };
     let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
-    write_outputs(&args.font.out, &files)?;
+    super::build::show_phase(&format!("writing {} files", files.len()), || {
+        write_outputs(&args.font.out, &files)
+    })?;
     outln!(
         "wrote {} files to {} (SVG font and {} glyph SVGs)",
         files.len(),

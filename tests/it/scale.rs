@@ -303,31 +303,41 @@ fn run(threads: usize, args: &[&std::ffi::OsStr]) {
 fn outputs_are_the_same_bytes_on_1_and_4_threads() {
     let glyphs = repo("glyphs");
     let tmp = scratch("threads");
-    for command in ["build", "svg", "render"] {
+    // `build` renders its outputs in parallel (the instances' fonts and proof blocks too);
+    // `render --cell 32 --columns 1` makes three sheet pages, rendered in parallel.
+    for (k, command) in [
+        &["build"][..],
+        &["svg"],
+        &["render"],
+        &["render", "--overlay", "--cell", "32", "--columns", "1"],
+        &["render", "--at", "wght=550"],
+    ]
+    .iter()
+    .enumerate()
+    {
         let outs: Vec<_> = [1, 4]
             .iter()
             .map(|&threads| {
-                let out = tmp.join(format!("{command}-{threads}"));
-                run(
-                    threads,
-                    &[
-                        command.as_ref(),
-                        glyphs.as_os_str(),
-                        "-o".as_ref(),
-                        out.as_os_str(),
-                    ],
-                );
+                let out = tmp.join(format!("{k}-{threads}"));
+                let mut args: Vec<&std::ffi::OsStr> = vec![command[0].as_ref()];
+                args.extend([glyphs.as_os_str(), "-o".as_ref(), out.as_os_str()]);
+                args.extend(command[1..].iter().map(|a| std::ffi::OsStr::new(a)));
+                run(threads, &args);
                 output_files(&out)
             })
             .collect();
-        assert!(outs[0].len() >= 2, "{command}: {} files", outs[0].len());
+        assert!(outs[0].len() >= 2, "{command:?}: {} files", outs[0].len());
+        if command.contains(&"--columns") {
+            let pages: Vec<_> = outs[0].keys().filter(|n| n.starts_with("sheet-")).collect();
+            assert_eq!(pages.len(), 3, "{pages:?}");
+        }
         assert_eq!(
             outs[0].keys().collect::<Vec<_>>(),
             outs[1].keys().collect::<Vec<_>>(),
-            "{command}"
+            "{command:?}"
         );
         for (name, bytes) in &outs[0] {
-            assert!(outs[1][name] == *bytes, "{command}: {name} differs");
+            assert!(outs[1][name] == *bytes, "{command:?}: {name} differs");
         }
     }
 }
@@ -351,15 +361,21 @@ fn a_build_from_the_cache_writes_the_same_bytes() {
     build(&cold);
     let cache = cold.join(xglyph::cache::CACHE_FILE);
     let (_, outcome) = xglyph::cache::FitCache::load(&cache);
-    // One entry per contour as drawn: composites place their bases' fits.
-    let (font, _) = xglyph::source::load_font(&glyphs).unwrap();
-    let drawn: std::collections::BTreeSet<String> = font
-        .glyphs
+    // One entry per contour as drawn: composites place their bases' fits. The default
+    // master's contours, and the named instances' (their static fonts are fitted through
+    // the cache too).
+    let (family, _) = xglyph::source::load_family(&glyphs).unwrap();
+    let mut fonts = vec![family.default.clone()];
+    for named in &family.designspace.instances {
+        fonts.push(family.instance_at(&named.location).unwrap());
+    }
+    let drawn: std::collections::BTreeSet<String> = fonts
         .iter()
+        .flat_map(|f| &f.glyphs)
         .flat_map(|g| &g.contours)
         .map(|c| format!("{:?}", c.spline().points()))
         .collect();
-    assert!(drawn.len() > 130, "{}", drawn.len());
+    assert!(drawn.len() > 3 * 130, "{}", drawn.len());
     assert!(
         matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n == drawn.len()),
         "{outcome:?}, {} contours drawn",
