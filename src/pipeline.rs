@@ -545,9 +545,15 @@ pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
 
 /// Writes `files` (relative paths) under `out`, all or none ([`OutputSet`]).
 pub fn write_outputs(out: &Path, files: &[OutputFile]) -> Result<(), PipelineError> {
+    write_output_files(out, files.to_vec())
+}
+
+/// [`write_outputs`] taking the files, so that their bytes are not copied (a CJK font's
+/// outputs are hundreds of megabytes).
+pub fn write_output_files(out: &Path, files: Vec<OutputFile>) -> Result<(), PipelineError> {
     let mut set = OutputSet::new();
     for (path, bytes) in files {
-        set.add(out.join(path), bytes.clone());
+        set.add(out.join(path), bytes);
     }
     set.commit().map_err(|error| PipelineError::Write {
         dir: out.to_path_buf(),

@@ -322,15 +322,13 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     if let Some((var_files, _)) = &variable {
         replace_outputs(&mut files, var_files);
     }
-    show_phase(&format!("writing {} files", files.len()), || {
-        pipeline::write_outputs(&args.font.out, &files)
-    })?;
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
-    out!(
-        "{}",
-        summary(&Summary::new(&loaded.font), &family, &args.font.out, &files)
-    );
+    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
+    show_phase(&format!("writing {} files", files.len()), || {
+        pipeline::write_output_files(&args.font.out, files)
+    })?;
+    out!("{report}");
     if loaded.family.is_variable() {
         outln!("{}", masters_line(&loaded.family));
     }

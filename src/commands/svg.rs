@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::instance::{parse_location, style_at};
-use crate::pipeline::{instance, svg_outputs, write_outputs};
+use crate::pipeline::{instance, svg_outputs, write_output_files};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -41,14 +41,14 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
         None => None,
     };
     let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
-    super::build::show_phase(&format!("writing {} files", files.len()), || {
-        write_outputs(&args.font.out, &files)
+    let count = files.len();
+    super::build::show_phase(&format!("writing {count} files"), || {
+        write_output_files(&args.font.out, files)
     })?;
     outln!(
-        "wrote {} files to {} (SVG font and {} glyph SVGs)",
-        files.len(),
+        "wrote {count} files to {} (SVG font and {} glyph SVGs)",
         args.font.out.display(),
-        files.len() - 1
+        count - 1
     );
     Ok(ExitCode::SUCCESS)
 }
