@@ -8,9 +8,9 @@
 
 use std::collections::BTreeSet;
 
-use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
+use tiny_skia::{Color, Pixmap};
 
-use super::draw::{fill_glyph, Placement};
+use super::draw::{fill_glyph, put_opaque, Placement};
 use super::{white_pixmap, RenderError};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
@@ -252,14 +252,7 @@ pub fn render_instances_proof_with(
             Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
         );
         y += label_h;
-        img.draw_pixmap(
-            0,
-            y as i32,
-            block.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
-        );
+        put_opaque(&mut img, &block, 0, y as u32);
         y += f64::from(block.height());
     }
     Ok(img)

@@ -13,9 +13,9 @@
 //! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
 use kurbo::Point;
-use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
+use tiny_skia::{Color, Pixmap};
 
-use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
+use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement};
 use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
@@ -214,13 +214,11 @@ fn render_page(
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
         let img = render_cell(font, layout, geometry, index, opts)?;
-        sheet.draw_pixmap(
-            ((k % columns) * cell) as i32,
-            ((k / columns) * cell) as i32,
-            img.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
+        put_opaque(
+            &mut sheet,
+            &img,
+            ((k % columns) * cell) as u32,
+            ((k / columns) * cell) as u32,
         );
     }
     Ok(sheet)
