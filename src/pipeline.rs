@@ -15,14 +15,14 @@ use crate::cache::FitCache;
 use crate::designspace::Location;
 use crate::family::{outline_family, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
+use crate::layout::Layout;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::remove_overlaps_font;
-use crate::layout::Layout;
 use crate::render::{
-    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_with,
-    ProofOptions, RenderError, SheetOptions,
+    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_with, ProofOptions,
+    RenderError, SheetOptions,
 };
 use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
@@ -302,7 +302,10 @@ pub fn instance_outputs_with(
             // The instance at the default location: the default master's TTF is its own.
             None => otf::ttf(font)?,
         };
-        layouts.push((name, Layout::with_ttf(font, ttf).map_err(RenderError::from)?));
+        layouts.push((
+            name,
+            Layout::with_ttf(font, ttf).map_err(RenderError::from)?,
+        ));
     }
     let labelled: Vec<(String, &Layout<'_>)> = layouts
         .iter()
@@ -469,7 +472,11 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
         woff2,
     } = binary?;
     let mut files = svg;
-    files.extend(sheets.into_iter().map(|(name, png)| (PathBuf::from(name), png)));
+    files.extend(
+        sheets
+            .into_iter()
+            .map(|(name, png)| (PathBuf::from(name), png)),
+    );
     files.push((PathBuf::from("proof.png"), proof));
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
     files.push((PathBuf::from(format!("{stem}.otf")), otf));

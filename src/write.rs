@@ -322,7 +322,8 @@ impl Transaction {
         // Linux flushes the whole file system once instead (`sync_staged`).
         #[cfg(not(target_os = "linux"))]
         temp.as_file().sync_all().map_err(io_err)?;
-        self.staged.push((temp.into_temp_path(), path.to_path_buf()));
+        self.staged
+            .push((temp.into_temp_path(), path.to_path_buf()));
         Ok(())
     }
 

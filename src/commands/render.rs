@@ -6,8 +6,8 @@ use std::process::ExitCode;
 use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::instance::parse_location;
-use crate::pipeline::{self, write_outputs};
 use crate::layout::Layout;
+use crate::pipeline::{self, write_outputs};
 use crate::render::{
     encode_png, render_proof_with, sheet_png_files_with, ProofOptions, RenderError, SheetOptions,
     MAX_AREA, MAX_SIDE,

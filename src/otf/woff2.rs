@@ -18,8 +18,7 @@ pub const LARGE_SFNT: usize = 1 << 20;
 /// The WOFF2 file holding the font `sfnt` (a TTF or OTF file).
 pub fn woff2(sfnt: &[u8]) -> Result<Vec<u8>, OtfError> {
     let quality = if sfnt.len() > LARGE_SFNT { 9 } else { 11 };
-    encode(sfnt, BrotliQuality::from(quality))
-        .map_err(|e| OtfError::Table(format!("WOFF2: {e}")))
+    encode(sfnt, BrotliQuality::from(quality)).map_err(|e| OtfError::Table(format!("WOFF2: {e}")))
 }
 
 #[cfg(test)]

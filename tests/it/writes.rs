@@ -332,8 +332,14 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
     // One glyph edited (the apex of `A` moves up by 10 units).
     let a = font.join("A_.toml");
     let source = fs::read_to_string(&a).unwrap();
-    fs::write(&a, source.replace("[280, 700, 0], [360, 700, 0]", "[280, 710, 0], [360, 710, 0]"))
-        .unwrap();
+    fs::write(
+        &a,
+        source.replace(
+            "[280, 700, 0], [360, 700, 0]",
+            "[280, 710, 0], [360, 710, 0]",
+        ),
+    )
+    .unwrap();
     let result = build(&font, &out);
     assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
     let second = inodes(&out);
@@ -364,10 +370,22 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
         }
     }
     // `A` is in its own SVG, the fonts and the images; `o` and `V` are not touched.
-    for name in ["svg/A_.svg", "sheet.png", "proof.png", "MiniTest-Regular.ttf"] {
-        assert!(replaced.contains(&name), "{name} not rewritten: {replaced:?}");
+    for name in [
+        "svg/A_.svg",
+        "sheet.png",
+        "proof.png",
+        "MiniTest-Regular.ttf",
+    ] {
+        assert!(
+            replaced.contains(&name),
+            "{name} not rewritten: {replaced:?}"
+        );
     }
-    for name in ["svg/o.svg", "svg/V_.svg", "MiniTest-Regular.ufo/glyphs/o.glif"] {
+    for name in [
+        "svg/o.svg",
+        "svg/V_.svg",
+        "MiniTest-Regular.ufo/glyphs/o.glif",
+    ] {
         assert!(kept.contains(&name), "{name} rewritten: {kept:?}");
     }
 }
