@@ -321,7 +321,7 @@ fn outputs_are_the_same_bytes_on_1_and_4_threads() {
                 let out = tmp.join(format!("{k}-{threads}"));
                 let mut args: Vec<&std::ffi::OsStr> = vec![command[0].as_ref()];
                 args.extend([glyphs.as_os_str(), "-o".as_ref(), out.as_os_str()]);
-                args.extend(command[1..].iter().map(|a| std::ffi::OsStr::new(a)));
+                args.extend(command[1..].iter().map(std::ffi::OsStr::new));
                 run(threads, &args);
                 output_files(&out)
             })
