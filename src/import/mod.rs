@@ -11,11 +11,13 @@
 //! Glyphs are fitted in parallel on rayon's pool, each on its own, so the output does not
 //! depend on the thread count; [`Progress`] reports the count as they finish.
 //!
-//! Tolerance budget: with an import tolerance `T` (default 1/1000 em), the fitter aims at
-//! [`FIT_SHARE`]` · T`, coordinates are then rounded to a decimal grid of at most `T / 10`
-//! (a hundred times finer if the coarse grid would break the bound) and the rounded
-//! contour is re-measured independently, which must stay within [`IMPORT_SHARE`]` · T`
-//! (the report warns otherwise); the written `tolerance` (the build's Bézier fitting
+//! Tolerance budget: with an import tolerance `T` (default 1/1000 em), coordinates are
+//! rounded to a decimal grid of at most `T / 10` (a hundred times finer if the coarse grid
+//! would break the bound), the fitter aims at [`IMPORT_SHARE`]` · T` less what that
+//! rounding can cost (at most [`FIT_SHARE`]` · T`), and every rounded contour is
+//! re-measured independently: it is accepted only within [`IMPORT_SHARE`]` · T`, else
+//! fitted again tighter (more points), else written as a polyline of the original, else
+//! dropped and counted in the report. The written `tolerance` (the build's Bézier fitting
 //! tolerance) is [`BUILD_SHARE`]` · T`. So import followed by build stays within `T` of
 //! the original (triangle inequality on the two-sided distance).
 
@@ -43,8 +45,9 @@ use crate::source::check_tolerance_flag;
 use crate::xspline::{ControlPoint, XSpline};
 use report::{GlyphReport, Report};
 
-/// The share of the tolerance the fitter aims at (measured by sampling).
-pub const FIT_SHARE: f64 = 0.65;
+/// The most of the tolerance the fitter aims at (measured by sampling): the import
+/// bound less the rounding's reach ([`grid_for`]), when that is less.
+pub const FIT_SHARE: f64 = 0.72;
 /// The share the rounded, re-measured contours must stay within.
 pub const IMPORT_SHARE: f64 = 0.75;
 /// The share written as the font's build tolerance.
@@ -374,17 +377,25 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
     FittedGlyph { glyph, report: row }
 }
 
-/// Fit targets tried in turn, as shares of the tolerance: the first fit whose rounded
-/// contour measures within [`IMPORT_SHARE`] is kept. The fitter measures by sampling, and
-/// rounding moves every point, so a fit can pass its own measure and still miss the bound
-/// (8 of the first 2,000 CJK glyphs of WenQuanYi Zen Hei did, by up to 3.5 T): a tighter
-/// target then buys more points.
-const RETRY_SHARES: [f64; 3] = [FIT_SHARE, 0.4, 0.2];
+/// Fit targets tried after the first (see [`import_contour`]), as shares of the tolerance,
+/// when a fit's rounded contour measures above the bound: a tighter target buys more
+/// points. The fitter measures by sampling, so a fit can pass its own measure and still
+/// miss; on the 2,000 CJK glyphs U+4E00–U+55CF none does today (each retry is a guard).
+const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
+
+/// The first fit target: the bound less the most that rounding to `grid` can move a curve
+/// point (half the grid cell's diagonal: the fitter's shapes are all in 0..1, whose
+/// blending weights are non-negative and sum to one), and at most [`FIT_SHARE`]` · T`
+/// where the rounding costs less than the bound's margin over it.
+fn first_target(tolerance: f64, grid: f64) -> f64 {
+    (IMPORT_SHARE * tolerance - grid * std::f64::consts::FRAC_1_SQRT_2)
+        .min(FIT_SHARE * tolerance)
+}
 
 /// Fits one original contour and rounds it, and measures the result independently
 /// ([`fit::contour_error`]): the first candidate within `IMPORT_SHARE · tolerance` is
 /// returned, so nothing over the bound is ever accepted. Candidates, in order: the fit at
-/// each of [`RETRY_SHARES`], each rounded to `grid`, then to a grid a hundred times finer
+/// [`first_target`], then at each of [`RETRY_SHARES`], each rounded to `grid`, then to a grid a hundred times finer
 /// (rounding can flatten a sliver into a spike the loader refuses); last, the original
 /// flattened into a polyline of sharp points ([`fit::polyline_xspline`]). `None` when the
 /// contour encloses nothing or no candidate holds (the caller drops and counts it).
@@ -402,8 +413,10 @@ fn import_contour(
             (error <= bound).then_some(Measured { spline, error })
         })
     };
-    for (k, share) in RETRY_SHARES.iter().enumerate() {
-        match fit::fit_xspline(&cut, share * tolerance) {
+    let targets = std::iter::once(first_target(tolerance, grid))
+        .chain(RETRY_SHARES.iter().map(|share| share * tolerance));
+    for (k, target) in targets.enumerate() {
+        match fit::fit_xspline(&cut, target) {
             Some(fitted) => {
                 if let Some(measured) = measure(&fitted.points) {
                     return Some(measured);
