@@ -45,9 +45,12 @@ use crate::source::check_tolerance_flag;
 use crate::xspline::{ControlPoint, XSpline};
 use report::{GlyphReport, Report};
 
-/// The most of the tolerance the fitter aims at (measured by sampling): the import
-/// bound less the rounding's reach ([`grid_for`]), when that is less.
-pub const FIT_SHARE: f64 = 0.72;
+/// The most of the tolerance the fitter aims at (measured by sampling): less when the
+/// import bound less the rounding's reach ([`grid_for`]) is less. Aiming higher (up to
+/// that reach, 0.68 T at 1/1000 em) saves a few points (3281 against 3285 on the 64 CJK
+/// glyphs) but lets one interior point replace two where a line meets a curve, and the
+/// X-spline then turns by up to 5° at joins the original has smooth (DejaVu `y`).
+pub const FIT_SHARE: f64 = 0.65;
 /// The share the rounded, re-measured contours must stay within.
 pub const IMPORT_SHARE: f64 = 0.75;
 /// The share written as the font's build tolerance.
@@ -385,8 +388,7 @@ const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
 
 /// The first fit target: the bound less the most that rounding to `grid` can move a curve
 /// point (half the grid cell's diagonal: the fitter's shapes are all in 0..1, whose
-/// blending weights are non-negative and sum to one), and at most [`FIT_SHARE`]` · T`
-/// where the rounding costs less than the bound's margin over it.
+/// blending weights are non-negative and sum to one), at most [`FIT_SHARE`]` · T`.
 fn first_target(tolerance: f64, grid: f64) -> f64 {
     (IMPORT_SHARE * tolerance - grid * std::f64::consts::FRAC_1_SQRT_2)
         .min(FIT_SHARE * tolerance)
