@@ -390,8 +390,7 @@ const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
 /// point (half the grid cell's diagonal: the fitter's shapes are all in 0..1, whose
 /// blending weights are non-negative and sum to one), at most [`FIT_SHARE`]` · T`.
 fn first_target(tolerance: f64, grid: f64) -> f64 {
-    (IMPORT_SHARE * tolerance - grid * std::f64::consts::FRAC_1_SQRT_2)
-        .min(FIT_SHARE * tolerance)
+    (IMPORT_SHARE * tolerance - grid * std::f64::consts::FRAC_1_SQRT_2).min(FIT_SHARE * tolerance)
 }
 
 /// Fits one original contour and rounds it, and measures the result independently

@@ -57,7 +57,10 @@ fn a_contour_whose_first_fit_misses_is_refitted_within_the_bound() {
         line.close_path();
         let original = BezPath::from_path_segments(original.segs.iter().copied());
         let d = paths::two_sided(&line, &original, 32);
-        assert!(d <= bound + 1e-3, "a contour is {d} units away (bound {bound})");
+        assert!(
+            d <= bound + 1e-3,
+            "a contour is {d} units away (bound {bound})"
+        );
         worst = worst.max(d);
     }
     // The importer's own measure agrees with this one (both sample densely).
