@@ -383,7 +383,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
 /// Fit targets tried after the first (see [`import_contour`]), as shares of the tolerance,
 /// when a fit's rounded contour measures above the bound: a tighter target buys more
 /// points. The fitter measures by sampling, so a fit can pass its own measure and still
-/// miss; on the 2,000 CJK glyphs U+4E00–U+55CF none does today (each retry is a guard).
+/// miss (each retry is a guard; on the 2,000 CJK glyphs U+4E00–U+55CF no glyph is over).
 const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
 
 /// The first fit target: the bound less the most that rounding to `grid` can move a curve
