@@ -1,5 +1,5 @@
 //! Every imported contour is within the import bound (`IMPORT_SHARE · T`) of its original,
-//! measured here independently of the importer, including contours whose first fit missed.
+//! measured here independently of the importer.
 //!
 //! The fixture is one glyph's outline, not the font: U+5318 (匘) of WenQuanYi Zen Hei
 //! (Debian fonts-wqy-zenhei 0.9.45, first font of the .ttc, 1024-unit em; GPL-2 with the
