@@ -395,8 +395,17 @@ pub fn variable_outputs(
                 .collect()
         })
         .collect();
-    let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
-    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    // The font and its WOFF2 on one core, the UFOs on another (rayon); the same bytes
+    // whatever the thread count.
+    let (fonts, ufos) = rayon::join(
+        || -> Result<_, PipelineError> {
+            let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
+            let woff2 = otf::woff2_from_ttf(&ttf)?;
+            Ok((ttf, woff2))
+        },
+        || crate::ufo::designspace::output_files(&family, &loaded.family),
+    );
+    let (ttf, woff2) = fonts?;
     let tags: Vec<&str> = family
         .designspace
         .axes
@@ -417,10 +426,7 @@ pub fn variable_outputs(
     ];
     // One UFO per master from the same compatible outlines, and the `.designspace`; the
     // default master's UFO replaces the static one of [`outputs`].
-    files.extend(crate::ufo::designspace::output_files(
-        &family,
-        &loaded.family,
-    )?);
+    files.extend(ufos?);
     Ok(Some((files, summary)))
 }
 
