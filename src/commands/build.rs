@@ -105,7 +105,7 @@ fn show_progress<T>(progress: &Progress, work: impl FnOnce() -> T) -> T {
 }
 
 /// Runs `work`, meanwhile printing `what` and the seconds spent on stderr when it is a
-/// terminal, as [`show_progress`] does: rendering and writing a 20,000-glyph font take
+/// terminal, as `show_progress` does: rendering and writing a 20,000-glyph font take
 /// seconds too.
 pub fn show_phase<T>(what: &str, work: impl FnOnce() -> T) -> T {
     let start = Instant::now();
