@@ -203,18 +203,39 @@ pub fn fit_compatible(
     let mut spans = Vec::new();
     let mut guess = 1.0;
     let searched: Vec<usize> = (0..fitter.searched).collect();
-    for piece in &pieces {
+    // The contour's last smooth piece ends where its first starts (no edge between).
+    let closes = match (pieces.first(), pieces.last()) {
+        (Some(Stretch::Smooth { start, .. }), Some(Stretch::Smooth { end, .. })) => {
+            fitter.joins(*end, *start)
+        }
+        _ => false,
+    };
+    let last_smooth = pieces
+        .iter()
+        .rposition(|p| matches!(p, Stretch::Smooth { .. }));
+    for (k, piece) in pieces.iter().enumerate() {
         if let Stretch::Smooth { start, end } = *piece {
+            let before = spans
+                .last()
+                .filter(|s: &&Span| fitter.joins(s.b, start))
+                .map(|s| s.cubics.clone());
+            let after = if closes && Some(k) == last_smooth {
+                Closing::First
+            } else {
+                Closing::Open
+            };
             fitter.cover(
                 (start, end),
                 (start, end),
                 &searched,
                 &mut guess,
                 &mut spans,
+                before,
+                after,
             );
         }
     }
-    let spans = fitter.verify(spans);
+    let spans = fitter.verify(spans, closes);
     Ok(fitter.assemble(&pieces, &spans, positions.len()))
 }
 
@@ -415,9 +436,20 @@ impl<'a> Fitter<'a> {
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sampled
     /// (lower-bound) error over the masters: the search's cheap error. The other probes are
     /// only measured (their sampled error costs nearly a measure and saved no trials).
-    fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64)) -> (Vec<CubicBez>, f64) {
+    ///
+    /// At a smooth join with a span already fitted (`ends`), the cubics' handles there are
+    /// set to the neighbour's directions with one ratio of lengths in every master
+    /// ([`match_start`], [`match_end`]): the sampled error is the polished cubics', the
+    /// measure that takes the span is the matched cubics'.
+    fn trial(
+        &self,
+        a: f64,
+        b: f64,
+        (t0, t1): (f64, f64),
+        ends: Ends<'_>,
+    ) -> (Vec<CubicBez>, f64) {
         let mut worst: f64 = 0.0;
-        let cubics: Vec<CubicBez> = self
+        let mut cubics: Vec<CubicBez> = self
             .masters
             .iter()
             .map(|spline| {
@@ -427,6 +459,12 @@ impl<'a> Fitter<'a> {
                 cubic
             })
             .collect();
+        if let Some(before) = ends.before {
+            match_start(&mut cubics, before);
+        }
+        if let Some(after) = ends.after {
+            match_end(&mut cubics, after);
+        }
         (cubics, worst)
     }
 
@@ -505,8 +543,15 @@ impl<'a> Fitter<'a> {
     }
 
     /// The span `[a, a + h]` fitted and measured at the probes `checks`, if it fits there.
-    fn fitted(&self, a: f64, h: f64, stretch: (f64, f64), checks: &[usize]) -> Result<Span, f64> {
-        let (cubics, sampled) = self.trial(a, a + h, stretch);
+    fn fitted(
+        &self,
+        a: f64,
+        h: f64,
+        stretch: (f64, f64),
+        checks: &[usize],
+        ends: Ends<'_>,
+    ) -> Result<Span, f64> {
+        let (cubics, sampled) = self.trial(a, a + h, stretch, ends);
         if sampled > self.goal {
             return Err(sampled);
         }
@@ -526,6 +571,12 @@ impl<'a> Fitter<'a> {
     /// `err ~ h^p`, bracketed between the longest span that fitted and the shortest that
     /// did not, on sampled errors; only a span about to be taken is measured. (Written
     /// again here rather than shared: the static fitter's search is tied to one curve.)
+    ///
+    /// `before`: the cubics of the span that ends at `from`, if it joins there smoothly;
+    /// `after`: those of the span that starts at `to`. Every span's handles are matched at
+    /// its joins (see [`Fitter::trial`]): with `before` or the span just taken at its start,
+    /// with `after` (or, for `Closing::First`, the first span in `spans`) at `to`.
+    #[allow(clippy::too_many_arguments)]
     fn cover(
         &self,
         (from, t1): (f64, f64),
@@ -533,11 +584,24 @@ impl<'a> Fitter<'a> {
         checks: &[usize],
         guess: &mut f64,
         spans: &mut Vec<Span>,
+        before: Option<Vec<CubicBez>>,
+        after: Closing,
     ) {
         let goal = self.goal;
         let mut a = from;
+        let mut before = before;
         while t1 - a > 1e-12 * (1.0 + t1.abs()) {
             let rest = t1 - a;
+            let after: Option<Vec<CubicBez>> = match &after {
+                Closing::Open => None,
+                Closing::Given(cubics) => Some(cubics.clone()),
+                Closing::First => spans.first().map(|s| s.cubics.clone()),
+            };
+            // The neighbours a span `[a, a + h]` matches at its ends.
+            let ends = |h: f64| Ends {
+                before: before.as_deref(),
+                after: if h >= rest { after.as_deref() } else { None },
+            };
             let mut h = guess.min(rest);
             // The longest span that fitted (measured when it was taken) and the shortest
             // that did not.
@@ -545,7 +609,7 @@ impl<'a> Fitter<'a> {
             let mut fails: Option<f64> = None;
             let mut last: Option<(f64, f64)> = None;
             for _ in 0..fit::MAX_TRIES {
-                let (cubics, sampled) = self.trial(a, a + h, stretch);
+                let (cubics, sampled) = self.trial(a, a + h, stretch, ends(h));
                 let mut err = sampled;
                 let taken = sampled <= goal && (h >= rest || sampled >= fit::NEAR_GOAL * goal);
                 let mut measured = None;
@@ -603,15 +667,16 @@ impl<'a> Fitter<'a> {
                     if self.measure(&mut span, checks.iter().copied()) <= goal {
                         span
                     } else {
-                        self.shortest(a, 0.5 * h, stretch, checks)
+                        self.shortest(a, 0.5 * h, stretch, checks, ends(0.5 * h))
                     }
                 }
-                None => self.shortest(a, h, stretch, checks),
+                None => self.shortest(a, h, stretch, checks, ends(h)),
             };
             let h = span.b - span.a;
             // No sliver at the stretch's end (see `fit::SLIVER`).
             let span = if h < rest && rest - h < fit::SLIVER * rest {
-                self.fitted(a, rest, stretch, checks).unwrap_or(span)
+                self.fitted(a, rest, stretch, checks, ends(rest))
+                    .unwrap_or(span)
             } else {
                 span
             };
@@ -620,6 +685,7 @@ impl<'a> Fitter<'a> {
                 *guess = h;
             }
             a = span.b;
+            before = Some(span.cubics.clone());
             spans.push(span);
         }
     }
@@ -629,33 +695,77 @@ impl<'a> Fitter<'a> {
     /// Below [`SHORTEST_BLEND_SPAN`] only the masters bind: a blend that still fails is one
     /// whose curve strays from the blend of the masters' curves, which no shorter span
     /// mends (verification reports it).
-    fn shortest(&self, a: f64, mut h: f64, stretch: (f64, f64), checks: &[usize]) -> Span {
+    /// `ends` applies to `[a, a + h]`; a shorter span matches only the start.
+    fn shortest(
+        &self,
+        a: f64,
+        mut h: f64,
+        stretch: (f64, f64),
+        checks: &[usize],
+        ends: Ends<'_>,
+    ) -> Span {
         let masters: Vec<usize> = (0..self.masters.len()).collect();
         let mut checks = checks;
+        let mut ends = ends;
         loop {
-            match self.fitted(a, h, stretch, checks) {
+            match self.fitted(a, h, stretch, checks, ends) {
                 Ok(span) => return span,
                 Err(_) if h < SHORTEST_BLEND_SPAN && checks.len() > masters.len() => {
                     checks = &masters;
                 }
                 Err(_) if h < 1e-9 => {
-                    let (cubics, _) = self.trial(a, a + h, stretch);
+                    let (cubics, _) = self.trial(a, a + h, stretch, ends);
                     let mut span = self.span(a, a + h, stretch, cubics);
                     self.measure(&mut span, checks.iter().copied());
                     return span;
                 }
-                Err(_) => h *= 0.5,
+                Err(_) => {
+                    h *= 0.5;
+                    ends.after = None;
+                }
             }
         }
     }
 
     /// Measures every span at the probes it was not measured at (see [`Fitter::verify_span`]).
-    fn verify(&self, spans: Vec<Span>) -> Vec<Span> {
-        let mut out = Vec::with_capacity(spans.len());
-        for span in spans {
-            self.verify_span(span, 0, &mut out);
+    ///
+    /// A refit matches its neighbours' handles at its ends, as the cover did: the span
+    /// verified before it and the one still to verify after it (around the contour when
+    /// `closes`: the last span before the first, the first verified after the last).
+    fn verify(&self, spans: Vec<Span>, closes: bool) -> Vec<Span> {
+        let mut out: Vec<Span> = Vec::with_capacity(spans.len());
+        let last = spans
+            .last()
+            .filter(|_| closes)
+            .map(|s| (s.b, s.cubics.clone()));
+        let mut queue = spans.into_iter().peekable();
+        while let Some(span) = queue.next() {
+            let before = match out.last() {
+                Some(p) => self.joins(p.b, span.a).then(|| p.cubics.clone()),
+                None => last
+                    .as_ref()
+                    .filter(|(b, _)| self.joins(*b, span.a))
+                    .map(|(_, c)| c.clone()),
+            };
+            let after = match queue.peek() {
+                Some(next) => self.joins(span.b, next.a).then(|| next.cubics.clone()),
+                None if closes => out
+                    .first()
+                    .filter(|f| self.joins(span.b, f.a))
+                    .map(|f| f.cubics.clone()),
+                None => None,
+            };
+            self.verify_span(span, 0, before, after, &mut out);
         }
         out
+    }
+
+    /// Whether a span ending at `b` and one starting at `a` meet (the same parameter, up
+    /// to whole turns of the contour).
+    fn joins(&self, b: f64, a: f64) -> bool {
+        let n = self.masters[0].segment_count() as f64;
+        let d = (b - a).rem_euclid(n);
+        d < 1e-9 || n - d < 1e-9
     }
 
     /// Measures `span` at the probes it was not measured at; if it fails at some, covers it
@@ -664,7 +774,16 @@ impl<'a> Fitter<'a> {
     /// where it does not, the blend strays from the masters' curves by more than the goal
     /// and no cut mends it, so the span stays and `max_error` reports it. At most
     /// [`MAX_REFITS`] rounds; spans shorter than twice [`SHORTEST_BLEND_SPAN`] stay.
-    fn verify_span(&self, mut span: Span, round: usize, out: &mut Vec<Span>) {
+    ///
+    /// `before` and `after`: the neighbours' cubics the refit matches at its ends.
+    fn verify_span(
+        &self,
+        mut span: Span,
+        round: usize,
+        before: Option<Vec<CubicBez>>,
+        after: Option<Vec<CubicBez>>,
+        out: &mut Vec<Span>,
+    ) {
         let count = self.probes.len();
         let unmeasured: Vec<usize> = (0..count).filter(|&k| span.errors[k].is_nan()).collect();
         let err = self.measure(&mut span, unmeasured);
@@ -684,6 +803,8 @@ impl<'a> Fitter<'a> {
             &checks,
             &mut guess,
             &mut pieces,
+            before.clone(),
+            after.clone().map_or(Closing::Open, Closing::Given),
         );
         // The worst error at the failing probes, as a multiple of their goals.
         let worst = |s: &Span| {
@@ -692,13 +813,23 @@ impl<'a> Fitter<'a> {
                 .map(|&k| s.errors[k] / self.goal_at(k))
                 .fold(0.0, f64::max)
         };
-        let after = pieces.iter().map(worst).fold(0.0, f64::max);
-        if failing.is_empty() || (after > 1.0 && after > REFIT_GAIN * worst(&span)) {
+        let refit = pieces.iter().map(worst).fold(0.0, f64::max);
+        if failing.is_empty() || (refit > 1.0 && refit > REFIT_GAIN * worst(&span)) {
             out.push(span);
             return;
         }
-        for piece in pieces {
-            self.verify_span(piece, round + 1, out);
+        let mut queue = pieces.into_iter().enumerate().peekable();
+        while let Some((i, piece)) = queue.next() {
+            // The previous piece as verified (or its refit's last piece).
+            let before = match i {
+                0 => before.clone(),
+                _ => out.last().map(|p| p.cubics.clone()),
+            };
+            let after = match queue.peek() {
+                Some((_, next)) => Some(next.cubics.clone()),
+                None => after.clone(),
+            };
+            self.verify_span(piece, round + 1, before, after, out);
         }
     }
 
@@ -760,6 +891,103 @@ impl<'a> Fitter<'a> {
             segments,
             between_masters,
         }
+    }
+}
+
+/// The cubics of the spans next to a span, whose handles it matches at their joins.
+#[derive(Clone, Copy, Default)]
+struct Ends<'n> {
+    /// The span ending where this one starts.
+    before: Option<&'n [CubicBez]>,
+    /// The span starting where this one ends.
+    after: Option<&'n [CubicBez]>,
+}
+
+/// What the last span of a cover matches at its end.
+enum Closing {
+    /// Nothing (the stretch ends at a cut, or its neighbour is not fitted yet).
+    Open,
+    /// These cubics (a refit's neighbour).
+    Given(Vec<CubicBez>),
+    /// The first span of the contour (a contour smooth all round).
+    First,
+}
+
+/// Handles shorter than this (font units) have no direction of their own.
+const SHORT_HANDLE: f64 = 1e-9;
+/// Largest sine of the angle between two handles that count as collinear.
+const COLLINEAR: f64 = 1e-7;
+
+/// Sets the start handles of `cubics` (one per master) so that at the join with `before`
+/// the in-handle is `r` times the out-handle in **every** master, with one `r`: then the
+/// blend of the handles at any weights is `r` times the blended out-handle, collinear (a
+/// smooth point stays smooth at every position, not only at the masters). `r` is the
+/// geometric mean of the masters' own ratios (the least change of log lengths); each
+/// out-handle takes the in-handle's direction. Nothing changes at a join that is not
+/// smooth in every master (a cusp, or a sharp point), or where every handle is short.
+fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) {
+    let ins: Vec<Vec2> = before.iter().map(|c| c.p3 - c.p2).collect();
+    let outs: Vec<Vec2> = cubics.iter().map(|c| c.p1 - c.p0).collect();
+    if let Some(lengths) = matched(&ins, &outs, false) {
+        for ((cubic, handle), length) in cubics.iter_mut().zip(&ins).zip(lengths) {
+            cubic.p1 = cubic.p0 + unit(*handle) * length;
+        }
+    }
+}
+
+/// [`match_start`] at the end of `cubics`, against the start handles of `after`.
+fn match_end(cubics: &mut [CubicBez], after: &[CubicBez]) {
+    let outs: Vec<Vec2> = after.iter().map(|c| c.p1 - c.p0).collect();
+    let ins: Vec<Vec2> = cubics.iter().map(|c| c.p3 - c.p2).collect();
+    if let Some(lengths) = matched(&ins, &outs, true) {
+        for ((cubic, handle), length) in cubics.iter_mut().zip(&outs).zip(lengths) {
+            cubic.p2 = cubic.p3 - unit(*handle) * length;
+        }
+    }
+}
+
+/// The new lengths of the handles on one side of a join (`outs` unless `set_ins`) for one
+/// ratio `|in| / |out|` in every master; `None` when the join is not smooth in every master
+/// or no master has two handles to take a ratio from.
+fn matched(ins: &[Vec2], outs: &[Vec2], set_ins: bool) -> Option<Vec<f64>> {
+    let mut log_ratio = 0.0;
+    let mut count = 0;
+    for (i, o) in ins.iter().zip(outs) {
+        let (li, lo) = (i.hypot(), o.hypot());
+        if li <= SHORT_HANDLE || lo <= SHORT_HANDLE {
+            continue;
+        }
+        if i.dot(*o) <= 0.0 || i.cross(*o).abs() > COLLINEAR * li * lo {
+            return None;
+        }
+        log_ratio += (li / lo).ln();
+        count += 1;
+    }
+    if count == 0 {
+        return None;
+    }
+    let ratio = (log_ratio / count as f64).exp();
+    Some(
+        ins.iter()
+            .zip(outs)
+            .map(|(i, o)| {
+                if set_ins {
+                    ratio * o.hypot()
+                } else {
+                    i.hypot() / ratio
+                }
+            })
+            .collect(),
+    )
+}
+
+/// `v` scaled to length 1 (zero stays zero).
+fn unit(v: Vec2) -> Vec2 {
+    let length = v.hypot();
+    if length > 0.0 {
+        v / length
+    } else {
+        v
     }
 }
 
