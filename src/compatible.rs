@@ -459,11 +459,15 @@ impl<'a> Fitter<'a> {
                 cubic
             })
             .collect();
-        if let Some(before) = ends.before {
-            match_start(&mut cubics, before);
-        }
+        let moved = ends
+            .before
+            .is_some_and(|before| match_start(&mut cubics, before));
         if let Some(after) = ends.after {
             match_end(&mut cubics, after);
+        } else if moved {
+            for (cubic, spline) in cubics.iter_mut().zip(self.masters) {
+                *cubic = refit_end(spline, a, b, *cubic);
+            }
         }
         (cubics, worst)
     }
@@ -921,18 +925,73 @@ const COLLINEAR: f64 = 1e-7;
 /// Sets the start handles of `cubics` (one per master) so that at the join with `before`
 /// the in-handle is `r` times the out-handle in **every** master, with one `r`: then the
 /// blend of the handles at any weights is `r` times the blended out-handle, collinear (a
-/// smooth point stays smooth at every position, not only at the masters). `r` is the
-/// geometric mean of the masters' own ratios (the least change of log lengths); each
-/// out-handle takes the in-handle's direction. Nothing changes at a join that is not
+/// smooth point stays smooth at every position, not only at the masters). `r` is chosen
+/// by [`matched`]; each out-handle takes the in-handle's direction. Nothing changes at a join that is not
 /// smooth in every master (a cusp, or a sharp point), or where every handle is short.
-fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) {
+/// Whether it changed anything.
+fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) -> bool {
     let ins: Vec<Vec2> = before.iter().map(|c| c.p3 - c.p2).collect();
     let outs: Vec<Vec2> = cubics.iter().map(|c| c.p1 - c.p0).collect();
-    if let Some(lengths) = matched(&ins, &outs, false) {
-        for ((cubic, handle), length) in cubics.iter_mut().zip(&ins).zip(lengths) {
-            cubic.p1 = cubic.p0 + unit(*handle) * length;
+    let Some(lengths) = matched(&ins, &outs, false) else {
+        return false;
+    };
+    for ((cubic, handle), length) in cubics.iter_mut().zip(&ins).zip(lengths) {
+        cubic.p1 = cubic.p0 + unit(*handle) * length;
+    }
+    true
+}
+
+/// Samples of the curve when refitting a span's end handle ([`refit_end`]).
+const REFIT_SAMPLES: usize = 16;
+
+/// `cubic` (fitted to `[a, b]` of `spline`) with its end handle's length refitted by least
+/// squares to the curve's samples, its start handle kept: after [`match_start`] moved the
+/// start handle, the polished end handle no longer balances it. Kept only if the largest
+/// distance from the samples to the cubic drops. (Hand-written: [`fit`]'s polish moves
+/// both handles, and a matched handle must stay.)
+fn refit_end(spline: &XSpline, a: f64, b: f64, cubic: CubicBez) -> CubicBez {
+    let direction = unit(cubic.p3 - cubic.p2);
+    if direction == Vec2::ZERO {
+        return cubic;
+    }
+    let points: Vec<Point> = (1..REFIT_SAMPLES)
+        .map(|i| spline.eval(a + (b - a) * i as f64 / REFIT_SAMPLES as f64))
+        .collect();
+    let mut params: Vec<f64> = (1..REFIT_SAMPLES)
+        .map(|i| i as f64 / REFIT_SAMPLES as f64)
+        .collect();
+    let worst = |c: &CubicBez, params: &mut [f64]| -> f64 {
+        let mut worst: f64 = 0.0;
+        for (u, p) in params.iter_mut().zip(&points) {
+            *u = fit::project_onto(c, *p, *u, PROJECT_STEPS);
+            worst = worst.max(c.eval(*u).distance(*p));
+        }
+        worst
+    };
+    let before = worst(&cubic, &mut params);
+    let mut best = (before, cubic);
+    let mut candidate = cubic;
+    for _ in 0..2 {
+        // With q = p3 - β d: B(u) = base(u) - β d B2(u), B2 = 3u²(1 - u).
+        let (mut num, mut den) = (0.0, 0.0);
+        for (u, p) in params.iter().zip(&points) {
+            let b2 = 3.0 * u * u * (1.0 - u);
+            let with_q_at_end = CubicBez::new(candidate.p0, candidate.p1, candidate.p3, candidate.p3);
+            let base = with_q_at_end.eval(*u);
+            num += b2 * direction.dot(base - *p);
+            den += b2 * b2;
+        }
+        if den <= 0.0 {
+            break;
+        }
+        let length = (num / den).max(0.0);
+        candidate.p2 = candidate.p3 - direction * length;
+        let err = worst(&candidate, &mut params);
+        if err < best.0 {
+            best = (err, candidate);
         }
     }
+    best.1
 }
 
 /// [`match_start`] at the end of `cubics`, against the start handles of `after`.
@@ -949,34 +1008,34 @@ fn match_end(cubics: &mut [CubicBez], after: &[CubicBez]) {
 /// The new lengths of the handles on one side of a join (`outs` unless `set_ins`) for one
 /// ratio `|in| / |out|` in every master; `None` when the join is not smooth in every master
 /// or no master has two handles to take a ratio from.
+///
+/// The ratio moves the handles being set least in the least-squares sense, in font units
+/// (a cubic's error grows with how far a handle moves, not by what factor: a ratio from
+/// relative changes lets a master with a nearly vanishing handle pull the others' far).
 fn matched(ins: &[Vec2], outs: &[Vec2], set_ins: bool) -> Option<Vec<f64>> {
-    let mut log_ratio = 0.0;
-    let mut count = 0;
+    // Σ |i|·|o|, and Σ |fixed side|² (`ins` fixed: out = |i| / r; `outs` fixed: in = r |o|).
+    let (mut cross, mut fixed) = (0.0, 0.0);
     for (i, o) in ins.iter().zip(outs) {
         let (li, lo) = (i.hypot(), o.hypot());
-        if li <= SHORT_HANDLE || lo <= SHORT_HANDLE {
-            continue;
-        }
-        if i.dot(*o) <= 0.0 || i.cross(*o).abs() > COLLINEAR * li * lo {
+        if li > SHORT_HANDLE
+            && lo > SHORT_HANDLE
+            && (i.dot(*o) <= 0.0 || i.cross(*o).abs() > COLLINEAR * li * lo)
+        {
             return None;
         }
-        log_ratio += (li / lo).ln();
-        count += 1;
+        cross += li * lo;
+        fixed += if set_ins { lo * lo } else { li * li };
     }
-    if count == 0 {
+    if cross <= 0.0 || fixed <= 0.0 {
         return None;
     }
-    let ratio = (log_ratio / count as f64).exp();
+    // Setting outs: |o'| = q |i| with q = Σ|i||o| / Σ|i|²; setting ins: |i'| = r |o| with
+    // r = Σ|i||o| / Σ|o|².
+    let scale = cross / fixed;
     Some(
         ins.iter()
             .zip(outs)
-            .map(|(i, o)| {
-                if set_ins {
-                    ratio * o.hypot()
-                } else {
-                    i.hypot() / ratio
-                }
-            })
+            .map(|(i, o)| scale * if set_ins { o.hypot() } else { i.hypot() })
             .collect(),
     )
 }
