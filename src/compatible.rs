@@ -444,13 +444,7 @@ impl<'a> Fitter<'a> {
     /// set to the neighbour's directions with one ratio of lengths in every master
     /// ([`match_start`], [`match_end`]): the sampled error is the polished cubics', the
     /// measure that takes the span is the matched cubics'.
-    fn trial(
-        &self,
-        a: f64,
-        b: f64,
-        (t0, t1): (f64, f64),
-        ends: Ends<'_>,
-    ) -> (Vec<CubicBez>, f64) {
+    fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64), ends: Ends<'_>) -> (Vec<CubicBez>, f64) {
         let mut worst: f64 = 0.0;
         let mut cubics: Vec<CubicBez> = self
             .masters
@@ -979,7 +973,8 @@ fn refit_end(spline: &XSpline, a: f64, b: f64, cubic: CubicBez) -> CubicBez {
         let (mut num, mut den) = (0.0, 0.0);
         for (u, p) in params.iter().zip(&points) {
             let b2 = 3.0 * u * u * (1.0 - u);
-            let with_q_at_end = CubicBez::new(candidate.p0, candidate.p1, candidate.p3, candidate.p3);
+            let with_q_at_end =
+                CubicBez::new(candidate.p0, candidate.p1, candidate.p3, candidate.p3);
             let base = with_q_at_end.eval(*u);
             num += b2 * direction.dot(base - *p);
             den += b2 * b2;

@@ -548,7 +548,11 @@ fn families_have_no_kinks_at_any_checked_position() {
             .iter()
             .map(|l| outlined.weights(l))
             .collect();
-        assert!(positions.len() >= 11, "{dir}: {} positions", positions.len());
+        assert!(
+            positions.len() >= 11,
+            "{dir}: {} positions",
+            positions.len()
+        );
         let (mut smooth, mut worst) = (0usize, 0.0f64);
         for (g, glyph) in outlined.default.glyphs.iter().enumerate() {
             let paths: Vec<&BezPath> = std::iter::once(&glyph.path)
