@@ -456,14 +456,25 @@ impl<'a> Fitter<'a> {
                 cubic
             })
             .collect();
-        let moved = ends
+        let moved_start = ends
             .before
             .is_some_and(|before| match_start(&mut cubics, before));
-        if let Some(after) = ends.after {
-            match_end(&mut cubics, after);
-        } else if moved {
+        let moved_end = ends
+            .after
+            .is_some_and(|after| match_end(&mut cubics, after));
+        if moved_start || moved_end {
+            // The matched cubics' own sampled error, so that the search does not take a
+            // span on the polished cubics' error and then fail to measure it.
             for (cubic, spline) in cubics.iter_mut().zip(self.masters) {
-                *cubic = refit_end(spline, a, b, *cubic);
+                let points = curve_samples(spline, a, b);
+                let err = if moved_end {
+                    sampled_distance(&points, cubic)
+                } else {
+                    let (refit, err) = refit_end(&points, *cubic);
+                    *cubic = refit;
+                    err
+                };
+                worst = worst.max(err);
             }
         }
         (cubics, worst)
@@ -941,66 +952,83 @@ fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) -> bool {
 /// Samples of the curve when refitting a span's end handle ([`refit_end`]).
 const REFIT_SAMPLES: usize = 16;
 
-/// `cubic` (fitted to `[a, b]` of `spline`) with its end handle's length refitted by least
-/// squares to the curve's samples, its start handle kept: after [`match_start`] moved the
-/// start handle, the polished end handle no longer balances it. Kept only if the largest
-/// distance from the samples to the cubic drops. (Hand-written: [`fit`]'s polish moves
-/// both handles, and a matched handle must stay.)
-fn refit_end(spline: &XSpline, a: f64, b: f64, cubic: CubicBez) -> CubicBez {
+/// Points of `[a, b]` of `spline` inside the span, evenly spaced in its parameter.
+fn curve_samples(spline: &XSpline, a: f64, b: f64) -> Vec<Point> {
+    (1..REFIT_SAMPLES)
+        .map(|i| spline.eval(a + (b - a) * i as f64 / REFIT_SAMPLES as f64))
+        .collect()
+}
+
+/// The largest distance from `points` to `cubic` (a lower bound of the span's error, as
+/// [`fit::fit_span`]'s sampled error is).
+fn sampled_distance(points: &[Point], cubic: &CubicBez) -> f64 {
+    let mut params = uniform_params();
+    nearest(points, &mut params, cubic)
+}
+
+/// Guesses of the cubic's parameters for [`curve_samples`].
+fn uniform_params() -> Vec<f64> {
+    (1..REFIT_SAMPLES)
+        .map(|i| i as f64 / REFIT_SAMPLES as f64)
+        .collect()
+}
+
+/// Projects `points` onto `cubic` from `params` (updated) and returns the largest distance.
+fn nearest(points: &[Point], params: &mut [f64], cubic: &CubicBez) -> f64 {
+    let mut worst: f64 = 0.0;
+    for (u, p) in params.iter_mut().zip(points) {
+        *u = fit::project_onto(cubic, *p, *u, PROJECT_STEPS);
+        worst = worst.max(cubic.eval(*u).distance(*p));
+    }
+    worst
+}
+
+/// `cubic` with its end handle's length refitted by least squares to `points` (the span's
+/// [`curve_samples`]), its start handle kept, and the largest distance from the points:
+/// after [`match_start`] moved the start handle, the polished end handle no longer
+/// balances it. The refit is kept only if that distance drops. (Hand-written: [`fit`]'s
+/// polish moves both handles, and a matched handle must stay.)
+fn refit_end(points: &[Point], cubic: CubicBez) -> (CubicBez, f64) {
+    let mut params = uniform_params();
+    let before = nearest(points, &mut params, &cubic);
     let direction = unit(cubic.p3 - cubic.p2);
     if direction == Vec2::ZERO {
-        return cubic;
+        return (cubic, before);
     }
-    let points: Vec<Point> = (1..REFIT_SAMPLES)
-        .map(|i| spline.eval(a + (b - a) * i as f64 / REFIT_SAMPLES as f64))
-        .collect();
-    let mut params: Vec<f64> = (1..REFIT_SAMPLES)
-        .map(|i| i as f64 / REFIT_SAMPLES as f64)
-        .collect();
-    let worst = |c: &CubicBez, params: &mut [f64]| -> f64 {
-        let mut worst: f64 = 0.0;
-        for (u, p) in params.iter_mut().zip(&points) {
-            *u = fit::project_onto(c, *p, *u, PROJECT_STEPS);
-            worst = worst.max(c.eval(*u).distance(*p));
-        }
-        worst
-    };
-    let before = worst(&cubic, &mut params);
-    let mut best = (before, cubic);
+    let mut best = (cubic, before);
     let mut candidate = cubic;
+    // With q = p3 - β d: B(u) = base(u) - β d B2(u), B2 = 3u²(1 - u).
+    let base = CubicBez::new(cubic.p0, cubic.p1, cubic.p3, cubic.p3);
     for _ in 0..2 {
-        // With q = p3 - β d: B(u) = base(u) - β d B2(u), B2 = 3u²(1 - u).
         let (mut num, mut den) = (0.0, 0.0);
-        for (u, p) in params.iter().zip(&points) {
+        for (u, p) in params.iter().zip(points) {
             let b2 = 3.0 * u * u * (1.0 - u);
-            let with_q_at_end =
-                CubicBez::new(candidate.p0, candidate.p1, candidate.p3, candidate.p3);
-            let base = with_q_at_end.eval(*u);
-            num += b2 * direction.dot(base - *p);
+            num += b2 * direction.dot(base.eval(*u) - *p);
             den += b2 * b2;
         }
         if den <= 0.0 {
             break;
         }
-        let length = (num / den).max(0.0);
-        candidate.p2 = candidate.p3 - direction * length;
-        let err = worst(&candidate, &mut params);
-        if err < best.0 {
-            best = (err, candidate);
+        candidate.p2 = cubic.p3 - direction * (num / den).max(0.0);
+        let err = nearest(points, &mut params, &candidate);
+        if err < best.1 {
+            best = (candidate, err);
         }
     }
-    best.1
+    best
 }
 
 /// [`match_start`] at the end of `cubics`, against the start handles of `after`.
-fn match_end(cubics: &mut [CubicBez], after: &[CubicBez]) {
+fn match_end(cubics: &mut [CubicBez], after: &[CubicBez]) -> bool {
     let outs: Vec<Vec2> = after.iter().map(|c| c.p1 - c.p0).collect();
     let ins: Vec<Vec2> = cubics.iter().map(|c| c.p3 - c.p2).collect();
-    if let Some(lengths) = matched(&ins, &outs, true) {
-        for ((cubic, handle), length) in cubics.iter_mut().zip(&outs).zip(lengths) {
-            cubic.p2 = cubic.p3 - unit(*handle) * length;
-        }
+    let Some(lengths) = matched(&ins, &outs, true) else {
+        return false;
+    };
+    for ((cubic, handle), length) in cubics.iter_mut().zip(&outs).zip(lengths) {
+        cubic.p2 = cubic.p3 - unit(*handle) * length;
     }
+    true
 }
 
 /// The new lengths of the handles on one side of a join (`outs` unless `set_ins`) for one
