@@ -445,37 +445,42 @@ impl<'a> Fitter<'a> {
     /// ([`match_start`], [`match_end`]): the sampled error is the polished cubics', the
     /// measure that takes the span is the matched cubics'.
     fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64), ends: Ends<'_>) -> (Vec<CubicBez>, f64) {
-        let mut worst: f64 = 0.0;
-        let mut cubics: Vec<CubicBez> = self
+        let (polished, sampled): (Vec<CubicBez>, Vec<f64>) = self
             .masters
             .iter()
             .map(|spline| {
                 let d0 = fit::direction(spline, a, t0, t1);
-                let (cubic, sampled) = fit::fit_span(spline, a, b, d0, t0, t1, self.goal);
-                worst = worst.max(sampled);
-                cubic
+                fit::fit_span(spline, a, b, d0, t0, t1, self.goal)
             })
-            .collect();
+            .unzip();
+        let mut cubics = polished.clone();
         let moved_start = ends
             .before
             .is_some_and(|before| match_start(&mut cubics, before));
         let moved_end = ends
             .after
             .is_some_and(|after| match_end(&mut cubics, after));
-        if moved_start || moved_end {
-            // The matched cubics' own sampled error, so that the search does not take a
-            // span on the polished cubics' error and then fail to measure it.
-            for (cubic, spline) in cubics.iter_mut().zip(self.masters) {
-                let points = curve_samples(spline, a, b);
-                let err = if moved_end {
-                    sampled_distance(&points, cubic)
-                } else {
-                    let (refit, err) = refit_end(&points, *cubic);
-                    *cubic = refit;
-                    err
-                };
-                worst = worst.max(err);
+        let mut worst: f64 = 0.0;
+        for (j, spline) in self.masters.iter().enumerate() {
+            // Moving a handle by δ moves no point of the cubic farther than 4/9 δ (the
+            // largest Bernstein weight of an inner control point).
+            let (old, new) = (polished[j], cubics[j]);
+            let shift = BASIS_PEAK * ((new.p1 - old.p1).hypot() + (new.p2 - old.p2).hypot());
+            if shift <= SMALL_SHIFT * self.goal {
+                worst = worst.max(sampled[j] + shift);
+                continue;
             }
+            // The matched cubic's own sampled error, so that the search does not take a
+            // span on the polished cubic's error and then fail to measure it.
+            let points = curve_samples(spline, a, b);
+            let err = if moved_end || !moved_start {
+                sampled_distance(&points, &cubics[j])
+            } else {
+                let (refit, err) = refit_end(&points, cubics[j]);
+                cubics[j] = refit;
+                err
+            };
+            worst = worst.max(err);
         }
         (cubics, worst)
     }
@@ -949,6 +954,11 @@ fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) -> bool {
     true
 }
 
+/// The largest value of the Bernstein basis functions of an inner control point (4/9).
+const BASIS_PEAK: f64 = 4.0 / 9.0;
+/// A matched cubic moved by at most this fraction of the goal keeps the polished one's
+/// sampled error plus the shift; a larger move is sampled again.
+const SMALL_SHIFT: f64 = 0.25;
 /// Samples of the curve when refitting a span's end handle ([`refit_end`]).
 const REFIT_SAMPLES: usize = 16;
 
