@@ -43,7 +43,7 @@
 //!   (each span matches the neighbour fitted before it, [`match_start`] and [`match_end`]),
 //!   so the blended handles are collinear at any weights. Matching moves handle lengths
 //!   away from the polished ones, which costs segments: on the bundled glyphs with the
-//!   synthetic bold, 1866 instead of 1548 (1.23× the static count of the more demanding
+//!   synthetic bold, 1845 instead of 1548 (1.22× the static count of the more demanding
 //!   master; the issue allows 1.25×). A join at a cusp of only some masters (a cut shared
 //!   by all) is not smooth in those and is left as it is.
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
