@@ -40,11 +40,10 @@
 //!   every master the blend is exact.
 //! - Joins inside a smooth stretch are G1 in every master, and G1 at every position: at
 //!   each such join the in-handle is the same multiple of the out-handle in every master
-//!   (each span matches the neighbour fitted before it, [`match_start`] and [`match_end`]),
-//!   so the blended handles are collinear at any weights. Matching moves handle lengths
-//!   away from the polished ones, which costs segments: on the bundled glyphs with the
-//!   synthetic bold, 1845 instead of 1548 (1.22× the static count of the more demanding
-//!   master; the issue allows 1.25×). A join at a cusp of only some masters (a cut shared
+//!   (each span matches the neighbour fitted before it), so the blended handles are
+//!   collinear at any weights. Matching moves handle lengths away from the polished ones,
+//!   which costs segments: on the bundled glyphs with the synthetic bold, 1845 against 1516
+//!   static segments of the more demanding master (1.22×; the issue allows 1.25×). A join at a cusp of only some masters (a cut shared
 //!   by all) is not smooth in those and is left as it is.
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
 //!   refitted as long as that helps.
