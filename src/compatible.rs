@@ -441,8 +441,10 @@ impl<'a> Fitter<'a> {
     ///
     /// At a smooth join with a span already fitted (`ends`), the cubics' handles there are
     /// set to the neighbour's directions with one ratio of lengths in every master
-    /// ([`match_start`], [`match_end`]): the sampled error is the polished cubics', the
-    /// measure that takes the span is the matched cubics'.
+    /// ([`match_start`], [`match_end`]). The sampled error is then the polished cubic's
+    /// plus 4/9 of how far its handles moved, or where they moved by more than
+    /// [`SMALL_SHIFT`] of the goal, the matched cubic's own (after [`refit_end`] where only
+    /// the start was matched). The measure that takes a span is always the matched cubics'.
     fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64), ends: Ends<'_>) -> (Vec<CubicBez>, f64) {
         let (polished, sampled): (Vec<CubicBez>, Vec<f64>) = self
             .masters
@@ -938,9 +940,9 @@ const COLLINEAR: f64 = 1e-7;
 /// the in-handle is `r` times the out-handle in **every** master, with one `r`: then the
 /// blend of the handles at any weights is `r` times the blended out-handle, collinear (a
 /// smooth point stays smooth at every position, not only at the masters). `r` is chosen
-/// by [`matched`]; each out-handle takes the in-handle's direction. Nothing changes at a join that is not
-/// smooth in every master (a cusp, or a sharp point), or where every handle is short.
-/// Whether it changed anything.
+/// by [`matched`]; each out-handle takes the in-handle's direction. Nothing changes at a
+/// join that is not smooth in every master (a cusp, or a sharp point), or where every
+/// handle is short. Returns whether it changed anything.
 fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) -> bool {
     let ins: Vec<Vec2> = before.iter().map(|c| c.p3 - c.p2).collect();
     let outs: Vec<Vec2> = cubics.iter().map(|c| c.p1 - c.p0).collect();
