@@ -63,6 +63,17 @@ const POLISH_ROUNDS: usize = 6;
 const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
 /// Fewest curve samples per polished span.
 const MIN_POLISH_SAMPLES: usize = 6;
+/// A trial span short of the stretch's end whose worst sample distance falls below this
+/// fraction of [`NEAR_GOAL`] (after [`LOW_ROUND`] rounds) stops polishing: it fits, but is
+/// too short to be taken, and only steers the span search (the polish only lowers it).
+const LOW_EXIT: f64 = 0.8;
+/// Polish rounds before a short trial may stop by [`LOW_EXIT`].
+const LOW_ROUND: usize = 1;
+/// The next cubic's first span is the last one scaled by `(target / err)^GUESS_POWER`
+/// (the error law `err ~ h^5`, aimed at the search's target), within [`GUESS_RANGE`].
+const GUESS_POWER: f64 = 0.2;
+/// Bounds of that scale.
+const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
@@ -258,19 +269,25 @@ fn fit_stretch(
         let rest = t1 - a;
         let mut h = guess.min(rest);
         // The longest span that fitted: (span, cubic, error, whether it was measured).
-        let mut fits: Option<(f64, CubicBez, f64, bool)> = None;
+        let mut fits: Option<(f64, CubicBez, f64, bool, Samples)> = None;
         let mut fails: Option<f64> = None;
         let mut last: Option<(f64, f64)> = None;
         for _ in 0..MAX_TRIES {
-            let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+            let low = if h < rest {
+                LOW_EXIT * NEAR_GOAL * goal
+            } else {
+                0.0
+            };
+            let (cubic, sampled, samples) =
+                fit_span_sampled(spline, a, a + h, d0, t0, t1, goal, low);
             let mut err = sampled;
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
             if taken {
-                err = measure_within(spline, a, a + h, &cubic, goal);
+                err = measure_within(spline, &samples, &cubic, goal);
             }
             if err <= goal {
-                fits = Some((h, cubic, err, taken));
+                fits = Some((h, cubic, err, taken, samples));
                 if taken {
                     break;
                 }
@@ -313,9 +330,9 @@ fn fit_stretch(
             h = next;
         }
         let (h, cubic, err) = match fits {
-            Some((h, cubic, err, true)) => (h, cubic, err),
-            Some((h, cubic, _, false)) => {
-                let err = measure_within(spline, a, a + h, &cubic, goal);
+            Some((h, cubic, err, true, _)) => (h, cubic, err),
+            Some((h, cubic, _, false, samples)) => {
+                let err = measure_within(spline, &samples, &cubic, goal);
                 if err <= goal {
                     (h, cubic, err)
                 } else {
@@ -331,9 +348,18 @@ fn fit_stretch(
         };
         path.curve_to(cubic.p1, cubic.p2, cubic.p3);
         max_error = max_error.max(err);
-        // A span cut short by the stretch's end says nothing about the next one.
+        // A span cut short by the stretch's end says nothing about the next one. Otherwise
+        // the next first try is this span, corrected by the error law for how far its
+        // error was from the search's target.
         if h < rest || h > *guess {
-            *guess = h;
+            let target = 0.5 * (1.0 + NEAR_GOAL) * goal;
+            *guess = if err > 0.0 {
+                h * (target / err)
+                    .powf(GUESS_POWER)
+                    .clamp(GUESS_RANGE.0, GUESS_RANGE.1)
+            } else {
+                h
+            };
         }
         a += h;
         d0 = direction(spline, a, t0, t1);
@@ -354,11 +380,11 @@ fn whole_rest(
     t0: f64,
     goal: f64,
 ) -> Option<(f64, CubicBez, f64)> {
-    let (cubic, sampled) = fit_span(spline, a, t1, d0, t0, t1, goal);
+    let (cubic, sampled, samples) = fit_span_sampled(spline, a, t1, d0, t0, t1, goal, 0.0);
     if sampled > goal {
         return None;
     }
-    let err = measure_within(spline, a, t1, &cubic, goal);
+    let err = measure_within(spline, &samples, &cubic, goal);
     (err <= goal).then_some((t1 - a, cubic, err))
 }
 
@@ -373,9 +399,9 @@ fn shortest_fit(
     goal: f64,
 ) -> (f64, CubicBez, f64) {
     loop {
-        let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+        let (cubic, sampled, samples) = fit_span_sampled(spline, a, a + h, d0, t0, t1, goal, 0.0);
         let err = if sampled <= goal {
-            measure_within(spline, a, a + h, &cubic, goal)
+            measure_within(spline, &samples, &cubic, goal)
         } else {
             sampled
         };
@@ -524,6 +550,39 @@ impl Samples {
         samples
     }
 
+    /// The measure's samples from the polish's: twice as dense (the polish's samples are
+    /// every second one, so at least [`SAMPLES_PER_SEGMENT`] per unit and [`MIN_SAMPLES`]
+    /// in all), refined where the curve turns fast. The same samples as [`Samples::new`]
+    /// at that count, bit for bit: `(b - a) * 2k / 2m` is `(b - a) * k / m` exactly.
+    fn doubled(spline: &XSpline, coarse: &Samples) -> Samples {
+        let m = coarse.len() - 1;
+        let n = 2 * m;
+        let (a, b) = (coarse.t[0], coarse.t[m]);
+        let mut samples = Samples {
+            t: Vec::with_capacity(n + 1),
+            p: Vec::with_capacity(n + 1),
+            d: Vec::with_capacity(n + 1),
+        };
+        let mut cursor = Cursor::new(spline);
+        let first = (coarse.t[0], coarse.p[0], coarse.d[0]);
+        samples.push(first);
+        let mut previous = first;
+        for i in 1..=n {
+            let next = if i % 2 == 0 {
+                let k = i / 2;
+                (coarse.t[k], coarse.p[k], coarse.d[k])
+            } else {
+                let t = a + (b - a) * i as f64 / n as f64;
+                let (p, d) = cursor.eval_deriv(t);
+                (t, p, d)
+            };
+            samples.refine(&mut cursor, previous, next, MAX_REFINE);
+            samples.push(next);
+            previous = next;
+        }
+        samples
+    }
+
     fn push(&mut self, (t, p, d): (f64, Point, Vec2)) {
         self.t.push(t);
         self.p.push(p);
@@ -599,6 +658,22 @@ pub(crate) fn fit_span(
     t1: f64,
     goal: f64,
 ) -> (CubicBez, f64) {
+    let (cubic, sampled, _) = fit_span_sampled(spline, a, b, d0, t0, t1, goal, 0.0);
+    (cubic, sampled)
+}
+
+/// [`fit_span`], also returning the polish's curve samples: [`measure_within`] takes them
+/// as every second one of its own.
+fn fit_span_sampled(
+    spline: &XSpline,
+    a: f64,
+    b: f64,
+    d0: Vec2,
+    t0: f64,
+    t1: f64,
+    goal: f64,
+    low: f64,
+) -> (CubicBez, f64, Samples) {
     let samples = Samples::new(
         spline,
         a,
@@ -612,7 +687,7 @@ pub(crate) fn fit_span(
     let d1 = direction(spline, b, t0, t1);
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
-        return (CubicBez::new(p0, p0, p3, p3), 0.0);
+        return (CubicBez::new(p0, p0, p3, p3), 0.0, samples);
     }
     // The Hermite cubic of the span: handles from the curve's own derivatives; its
     // parameter runs with the curve's, so the samples' parameters start uniform.
@@ -620,7 +695,8 @@ pub(crate) fn fit_span(
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
     let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal)
+    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal, low);
+    (cubic, sampled, samples)
 }
 
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
@@ -638,6 +714,7 @@ fn polish(
     beta: f64,
     u0: &[f64],
     goal: f64,
+    low: f64,
 ) -> (CubicBez, f64) {
     let n = samples.len();
     // Handles never vanish (a zero handle would take the end's tangent from the other
@@ -656,7 +733,8 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in 0..n {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, dist) = poly.project_steps(samples.p[i], u[i], 3);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3);
+            let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
             if round >= LAWSON_AFTER {
@@ -665,7 +743,7 @@ fn polish(
             if dist <= 0.0 {
                 continue;
             }
-            let normal = (samples.p[i].to_vec2() - poly.eval(ui)) / dist;
+            let normal = -r / dist;
             let mt = 1.0 - ui;
             let j0 = 3.0 * mt * mt * ui * normal.dot(d0);
             let j1 = -3.0 * mt * ui * ui * normal.dot(d1);
@@ -694,7 +772,7 @@ fn polish(
                 || (round >= LAWSON_AFTER && worst > HOPELESS_MINIMAX * goal);
             best = Some((alpha, beta, worst, step.0, step.1));
             damping = 1.0;
-            if stalled || hopeless {
+            if stalled || hopeless || (round >= LOW_ROUND && worst < low) {
                 break;
             }
         } else {
@@ -772,7 +850,13 @@ impl Poly {
     }
 
     /// [`Poly::project`] with at most `steps` Newton steps.
-    fn project_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, f64) {
+    fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
+        let (u, r) = self.residual_steps(p, u, steps);
+        (u, r.hypot())
+    }
+
+    /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length.
+    fn residual_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, Vec2) {
         let p = p.to_vec2();
         for _ in 0..steps {
             let r = self.eval(u) - p;
@@ -789,7 +873,7 @@ impl Poly {
                 break;
             }
         }
-        (u, (self.eval(u) - p).hypot())
+        (u, self.eval(u) - p)
     }
 }
 
@@ -820,8 +904,8 @@ const GAP_STEPS: usize = 4;
 /// have found at most this. As in [`measure`], the top peaks are then also checked
 /// against the true curve, in both directions (the Hermite pieces' own error, O(h^4)).
 /// Rounding in the bound is relative 1e-13, far inside the acceptance's 4 % margin.
-fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64) -> f64 {
-    let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
+fn measure_within(spline: &XSpline, polished: &Samples, cubic: &CubicBez, goal: f64) -> f64 {
+    let samples = &Samples::doubled(spline, polished);
     let poly = Poly::new(cubic);
     let (u, near) = project_samples(samples, &poly);
     let pieces = hermite_pieces(samples);
@@ -1240,10 +1324,11 @@ mod tests {
             for h in [0.2, 0.3, 0.4, 0.6, 0.9, 1.2] {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
-                let (cubic, _) = fit_span(&spline, a, b, d0, start, end, 0.48);
+                let (cubic, _, samples) =
+                    fit_span_sampled(&spline, a, b, d0, start, end, 0.48, 0.0);
                 let golden = measure(&spline, a, b, &cubic);
                 for goal in [0.48, 1.05 * golden] {
-                    let err = measure_within(&spline, a, b, &cubic, goal);
+                    let err = measure_within(&spline, &samples, &cubic, goal);
                     assert!(err >= golden * (1.0 - 1e-6), "{err} < {golden}");
                     if golden <= goal {
                         assert!(err <= goal, "{err} > {goal} >= {golden}");
