@@ -74,6 +74,9 @@ const LOW_ROUND: usize = 1;
 const GUESS_POWER: f64 = 0.2;
 /// Bounds of that scale.
 const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
+/// The polish's projections stop when a Newton step moves the parameter less than this
+/// (the distance is then off by the square of it, relatively).
+const POLISH_NEWTON_DONE: f64 = 1e-7;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
@@ -262,6 +265,7 @@ fn fit_stretch(
 ) -> f64 {
     let goal = tolerance * SAFETY;
     let mut max_error: f64 = 0.0;
+    let mut grid = Grid::new(spline, t0);
     let mut a = t0;
     // The direction at the start of the next cubic (the previous one's end direction).
     let mut d0 = direction(spline, a, t0, t1);
@@ -278,8 +282,9 @@ fn fit_stretch(
             } else {
                 0.0
             };
+            let samples = grid.samples(a, a + h);
             let (cubic, sampled, samples) =
-                fit_span_sampled(spline, a, a + h, d0, t0, t1, goal, low);
+                fit_span_sampled(spline, samples, d0, t0, t1, goal, low);
             let mut err = sampled;
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
@@ -336,13 +341,13 @@ fn fit_stretch(
                 if err <= goal {
                     (h, cubic, err)
                 } else {
-                    shortest_fit(spline, a, 0.5 * h, d0, t0, t1, goal)
+                    shortest_fit(spline, &mut grid, a, 0.5 * h, d0, t0, t1, goal)
                 }
             }
-            None => shortest_fit(spline, a, h, d0, t0, t1, goal),
+            None => shortest_fit(spline, &mut grid, a, h, d0, t0, t1, goal),
         };
         let (h, cubic, err) = if h < rest && rest - h < SLIVER * rest {
-            whole_rest(spline, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
+            whole_rest(spline, &mut grid, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
         } else {
             (h, cubic, err)
         };
@@ -374,13 +379,15 @@ pub(crate) const SLIVER: f64 = 0.05;
 /// The cubic for the whole rest `[a, t1]` of a stretch, if it passes the measure.
 fn whole_rest(
     spline: &XSpline,
+    grid: &mut Grid,
     a: f64,
     t1: f64,
     d0: Vec2,
     t0: f64,
     goal: f64,
 ) -> Option<(f64, CubicBez, f64)> {
-    let (cubic, sampled, samples) = fit_span_sampled(spline, a, t1, d0, t0, t1, goal, 0.0);
+    let samples = grid.samples(a, t1);
+    let (cubic, sampled, samples) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
     if sampled > goal {
         return None;
     }
@@ -389,8 +396,10 @@ fn whole_rest(
 }
 
 /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
+#[allow(clippy::too_many_arguments)]
 fn shortest_fit(
     spline: &XSpline,
+    grid: &mut Grid,
     a: f64,
     mut h: f64,
     d0: Vec2,
@@ -399,7 +408,8 @@ fn shortest_fit(
     goal: f64,
 ) -> (f64, CubicBez, f64) {
     loop {
-        let (cubic, sampled, samples) = fit_span_sampled(spline, a, a + h, d0, t0, t1, goal, 0.0);
+        let samples = grid.samples(a, a + h);
+        let (cubic, sampled, samples) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
         let err = if sampled <= goal {
             measure_within(spline, &samples, &cubic, goal)
         } else {
@@ -498,6 +508,92 @@ impl<'a> Cursor<'a> {
     }
 }
 
+/// Curve samples of one stretch for the polish, on uniform grids from the stretch's start
+/// (one per number of samples per unit), each grid point evaluated once: the span search
+/// tries several spans from one start, and the next cubic's trials cover the same curve,
+/// so most of a trial's samples were already taken.
+struct Grid<'a> {
+    cursor: Cursor<'a>,
+    t0: f64,
+    /// Per level `j` (spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^j)`), the points taken.
+    levels: Vec<Vec<Option<(Point, Vec2)>>>,
+    /// The last span start sampled.
+    start: Option<(f64, Point, Vec2)>,
+}
+
+impl<'a> Grid<'a> {
+    fn new(spline: &'a XSpline, t0: f64) -> Grid<'a> {
+        Grid {
+            cursor: Cursor::new(spline),
+            t0,
+            levels: Vec::new(),
+            start: None,
+        }
+    }
+
+    /// The polish's samples of `[a, b]`: its two ends (exact curve points), and between
+    /// them the points of the coarsest grid that puts at least [`MIN_POLISH_SAMPLES`]
+    /// steps in the span, leaving out those within a quarter step of an end. At most
+    /// `1 / POLISH_SAMPLES_PER_SEGMENT` apart, so [`Samples::doubled`] has at most
+    /// `1 / SAMPLES_PER_SEGMENT`, and at least [`MIN_POLISH_SAMPLES`] steps.
+    fn samples(&mut self, a: f64, b: f64) -> Samples {
+        let h = b - a;
+        let mut level = 0;
+        let mut per = POLISH_SAMPLES_PER_SEGMENT;
+        while h * per < MIN_POLISH_SAMPLES as f64 && level < MAX_GRID_LEVEL {
+            level += 1;
+            per *= 2.0;
+        }
+        if h * per < MIN_POLISH_SAMPLES as f64 {
+            // Shorter than the finest grid resolves: uniform samples, as `fit_span` takes.
+            return Samples::new(
+                self.cursor.spline,
+                a,
+                b,
+                POLISH_SAMPLES_PER_SEGMENT,
+                MIN_POLISH_SAMPLES,
+                false,
+            );
+        }
+        if self.levels.len() <= level {
+            self.levels.resize_with(level + 1, Vec::new);
+        }
+        let first = ((a - self.t0) * per + 0.25).ceil().max(0.0) as usize;
+        let last = ((b - self.t0) * per - 0.25).floor().max(0.0) as usize;
+        let mut samples = Samples {
+            t: Vec::with_capacity(last + 3 - first.min(last + 1)),
+            p: Vec::with_capacity(last + 3 - first.min(last + 1)),
+            d: Vec::with_capacity(last + 3 - first.min(last + 1)),
+        };
+        // The cursor's point is `XSpline::eval`'s, bit for bit; a span's start is shared by
+        // the trials of one search.
+        let start = match self.start {
+            Some(start) if start.0 == a => start,
+            _ => {
+                let (p, d) = self.cursor.eval_deriv(a);
+                (a, p, d)
+            }
+        };
+        self.start = Some(start);
+        samples.push(start);
+        let points = &mut self.levels[level];
+        if points.len() <= last {
+            points.resize(last + 1, None);
+        }
+        for k in first..=last {
+            let t = self.t0 + k as f64 / per;
+            let (p, d) = *points[k].get_or_insert_with(|| self.cursor.eval_deriv(t));
+            samples.push((t, p, d));
+        }
+        let (p, d) = self.cursor.eval_deriv(b);
+        samples.push((b, p, d));
+        samples
+    }
+}
+
+/// Finest polish grid: spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^MAX_GRID_LEVEL)`.
+const MAX_GRID_LEVEL: usize = 12;
+
 /// Samples of the curve on one span, with derivatives: enough to measure a cubic against
 /// (between samples the curve is taken as the cubic Hermite interpolant, whose error is
 /// O(h^4) in the sample step, far below any useful tolerance at this density).
@@ -557,7 +653,6 @@ impl Samples {
     fn doubled(spline: &XSpline, coarse: &Samples) -> Samples {
         let m = coarse.len() - 1;
         let n = 2 * m;
-        let (a, b) = (coarse.t[0], coarse.t[m]);
         let mut samples = Samples {
             t: Vec::with_capacity(n + 1),
             p: Vec::with_capacity(n + 1),
@@ -572,7 +667,7 @@ impl Samples {
                 let k = i / 2;
                 (coarse.t[k], coarse.p[k], coarse.d[k])
             } else {
-                let t = a + (b - a) * i as f64 / n as f64;
+                let t = 0.5 * (coarse.t[i / 2] + coarse.t[i / 2 + 1]);
                 let (p, d) = cursor.eval_deriv(t);
                 (t, p, d)
             };
@@ -658,22 +753,6 @@ pub(crate) fn fit_span(
     t1: f64,
     goal: f64,
 ) -> (CubicBez, f64) {
-    let (cubic, sampled, _) = fit_span_sampled(spline, a, b, d0, t0, t1, goal, 0.0);
-    (cubic, sampled)
-}
-
-/// [`fit_span`], also returning the polish's curve samples: [`measure_within`] takes them
-/// as every second one of its own.
-fn fit_span_sampled(
-    spline: &XSpline,
-    a: f64,
-    b: f64,
-    d0: Vec2,
-    t0: f64,
-    t1: f64,
-    goal: f64,
-    low: f64,
-) -> (CubicBez, f64, Samples) {
     let samples = Samples::new(
         spline,
         a,
@@ -682,7 +761,23 @@ fn fit_span_sampled(
         MIN_POLISH_SAMPLES,
         false,
     );
+    let (cubic, sampled, _) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
+    (cubic, sampled)
+}
+
+/// [`fit_span`], also returning the polish's curve samples: [`measure_within`] takes them
+/// as every second one of its own.
+fn fit_span_sampled(
+    spline: &XSpline,
+    samples: Samples,
+    d0: Vec2,
+    t0: f64,
+    t1: f64,
+    goal: f64,
+    low: f64,
+) -> (CubicBez, f64, Samples) {
     let last = samples.len() - 1;
+    let (a, b) = (samples.t[0], samples.t[last]);
     let (p0, p3) = (samples.p[0], samples.p[last]);
     let d1 = direction(spline, b, t0, t1);
     if samples.p.iter().all(|p| *p == p0) {
@@ -733,7 +828,7 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in 0..n {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, POLISH_NEWTON_DONE);
             let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
@@ -849,14 +944,22 @@ impl Poly {
         self.project_steps(p, u, 6)
     }
 
-    /// [`Poly::project`] with at most `steps` Newton steps.
-    fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
-        let (u, r) = self.residual_steps(p, u, steps);
+    /// [`Poly::project`], stopping at a step below [`POLISH_NEWTON_DONE`]: for pairings,
+    /// where any parameter gives a valid bound and a near one a tight bound.
+    fn project_loose(&self, p: Point, u: f64) -> (f64, f64) {
+        let (u, r) = self.residual_steps(p, u, 6, POLISH_NEWTON_DONE);
         (u, r.hypot())
     }
 
-    /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length.
-    fn residual_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, Vec2) {
+    /// [`Poly::project`] with at most `steps` Newton steps.
+    fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
+        let (u, r) = self.residual_steps(p, u, steps, 1e-10);
+        (u, r.hypot())
+    }
+
+    /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length,
+    /// and stopping when a step is below `done_below`.
+    fn residual_steps(&self, p: Point, mut u: f64, steps: usize, done_below: f64) -> (f64, Vec2) {
         let p = p.to_vec2();
         for _ in 0..steps {
             let r = self.eval(u) - p;
@@ -867,7 +970,7 @@ impl Poly {
                 break;
             }
             let next = (u - r.dot(d1) / denom).clamp(0.0, 1.0);
-            let done = (next - u).abs() < 1e-10;
+            let done = (next - u).abs() < done_below;
             u = next;
             if done {
                 break;
@@ -907,7 +1010,7 @@ const GAP_STEPS: usize = 4;
 fn measure_within(spline: &XSpline, polished: &Samples, cubic: &CubicBez, goal: f64) -> f64 {
     let samples = &Samples::doubled(spline, polished);
     let poly = Poly::new(cubic);
-    let (u, near) = project_samples(samples, &poly);
+    let (u, near) = project_samples_ahead(samples, &poly);
     let pieces = hermite_pieces(samples);
     let n = samples.len();
     let paired = |i: usize| match i {
@@ -997,7 +1100,9 @@ fn paired_gap(
     if gap <= goal || splits == 0 {
         return (gap, at);
     }
-    let um = cubic.project(piece.eval(0.5).to_point(), 0.5 * (u0 + u1)).0;
+    let um = cubic
+        .project_loose(piece.eval(0.5).to_point(), 0.5 * (u0 + u1))
+        .0;
     let left = paired_gap(&piece.along(0.0, 0.5), cubic, u0, um, goal, splits - 1);
     let right = paired_gap(&piece.along(0.5, 0.5), cubic, um, u1, goal, splits - 1);
     if left.0 >= right.0 {
@@ -1084,6 +1189,44 @@ fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
         near[i] = d;
         largest = largest.max(d);
         guess = ui;
+    }
+    (u, near)
+}
+
+/// [`project_samples`] for [`measure_within`], whose bound holds for any pairing of
+/// samples with cubic parameters (a closer projection only makes it tighter): each sample
+/// starts from the parameters of the two before it, extrapolated in proportion to the
+/// curve parameter, which the cubic follows closely; the retry stays as in
+/// [`project_samples`].
+fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
+    let n = samples.len();
+    let mut u = vec![0.0; n];
+    let mut near = vec![0.0; n];
+    let mut largest: f64 = 0.0;
+    let span = samples.t[n - 1] - samples.t[0];
+    for i in 0..n {
+        let guess = match i {
+            0 => 0.0,
+            1 => (samples.t[1] - samples.t[0]) / span,
+            _ => {
+                let (dt0, dt1) = (
+                    samples.t[i - 1] - samples.t[i - 2],
+                    samples.t[i] - samples.t[i - 1],
+                );
+                (u[i - 1] + (u[i - 1] - u[i - 2]) * (dt1 / dt0)).clamp(0.0, 1.0)
+            }
+        };
+        let (mut ui, mut d) = poly.project_loose(samples.p[i], guess);
+        if i > 0 && i + 1 < n && d > largest && (ui <= 0.0 || ui >= 1.0) {
+            let share = (samples.t[i] - samples.t[0]) / span;
+            let alt = poly.project_loose(samples.p[i], share);
+            if alt.1 < d {
+                (ui, d) = alt;
+            }
+        }
+        u[i] = ui;
+        near[i] = d;
+        largest = largest.max(d);
     }
     (u, near)
 }
@@ -1324,8 +1467,9 @@ mod tests {
             for h in [0.2, 0.3, 0.4, 0.6, 0.9, 1.2] {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
+                let samples = Grid::new(&spline, start).samples(a, b);
                 let (cubic, _, samples) =
-                    fit_span_sampled(&spline, a, b, d0, start, end, 0.48, 0.0);
+                    fit_span_sampled(&spline, samples, d0, start, end, 0.48, 0.0);
                 let golden = measure(&spline, a, b, &cubic);
                 for goal in [0.48, 1.05 * golden] {
                     let err = measure_within(&spline, &samples, &cubic, goal);
