@@ -74,9 +74,9 @@ const LOW_ROUND: usize = 1;
 const GUESS_POWER: f64 = 0.2;
 /// Bounds of that scale.
 const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
-/// The polish's projections stop when a Newton step moves the parameter less than this
-/// (the distance is then off by the square of it, relatively).
-const POLISH_NEWTON_DONE: f64 = 1e-7;
+/// Projections for pairings ([`Poly::project_loose`]) stop when a Newton step moves the
+/// parameter less than this (the distance is then off by about its square).
+const PAIRING_NEWTON_DONE: f64 = 1e-7;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
@@ -284,7 +284,7 @@ fn fit_stretch(
             };
             let samples = grid.samples(a, a + h);
             let (cubic, sampled, samples) =
-                fit_span_sampled(spline, samples, d0, t0, t1, goal, low);
+                fit_span_sampled(spline, (a, a + h), samples, d0, t0, t1, goal, low);
             let mut err = sampled;
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
@@ -387,7 +387,8 @@ fn whole_rest(
     goal: f64,
 ) -> Option<(f64, CubicBez, f64)> {
     let samples = grid.samples(a, t1);
-    let (cubic, sampled, samples) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
+    let (cubic, sampled, samples) =
+        fit_span_sampled(spline, (a, t1), samples, d0, t0, t1, goal, 0.0);
     if sampled > goal {
         return None;
     }
@@ -409,7 +410,8 @@ fn shortest_fit(
 ) -> (f64, CubicBez, f64) {
     loop {
         let samples = grid.samples(a, a + h);
-        let (cubic, sampled, samples) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
+        let (cubic, sampled, samples) =
+            fit_span_sampled(spline, (a, a + h), samples, d0, t0, t1, goal, 0.0);
         let err = if sampled <= goal {
             measure_within(spline, &samples, &cubic, goal)
         } else {
@@ -425,6 +427,18 @@ fn shortest_fit(
 /// Tangent direction at `t` inside the stretch `[t0, t1]`, one-sided at the stretch ends
 /// (where a sharp point may sit and the derivative vanishes). Always a finite unit vector.
 pub(crate) fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
+    direction_with(spline, t, t0, t1, || spline.eval_deriv(t).1)
+}
+
+/// [`direction`], with the curve's derivative at `t` from `deriv` (a sample's, when the
+/// caller has one: the same value).
+fn direction_with(
+    spline: &XSpline,
+    t: f64,
+    t0: f64,
+    t1: f64,
+    deriv: impl FnOnce() -> Vec2,
+) -> Vec2 {
     let n = spline.segment_count();
     let at_knot = (t - t.round()).abs() < 1e-12;
     let exact = if at_knot && (t - t0).abs() < 1e-12 {
@@ -434,7 +448,7 @@ pub(crate) fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
             .segment((t.round() as usize + n - 1) % n)
             .end_direction()
     } else {
-        let d = spline.eval_deriv(t).1;
+        let d = deriv();
         let len = d.hypot();
         if len > 1e-9 * spline.extent() {
             d / len
@@ -761,7 +775,7 @@ pub(crate) fn fit_span(
         MIN_POLISH_SAMPLES,
         false,
     );
-    let (cubic, sampled, _) = fit_span_sampled(spline, samples, d0, t0, t1, goal, 0.0);
+    let (cubic, sampled, _) = fit_span_sampled(spline, (a, b), samples, d0, t0, t1, goal, 0.0);
     (cubic, sampled)
 }
 
@@ -769,6 +783,7 @@ pub(crate) fn fit_span(
 /// as every second one of its own.
 fn fit_span_sampled(
     spline: &XSpline,
+    span: (f64, f64),
     samples: Samples,
     d0: Vec2,
     t0: f64,
@@ -777,9 +792,16 @@ fn fit_span_sampled(
     low: f64,
 ) -> (CubicBez, f64, Samples) {
     let last = samples.len() - 1;
-    let (a, b) = (samples.t[0], samples.t[last]);
+    let (a, b) = span;
     let (p0, p3) = (samples.p[0], samples.p[last]);
-    let d1 = direction(spline, b, t0, t1);
+    // The grid's last sample is at `b` exactly; `Samples::new`'s may be off by rounding.
+    let d1 = direction_with(spline, b, t0, t1, || {
+        if samples.t[last] == b {
+            samples.d[last]
+        } else {
+            spline.eval_deriv(b).1
+        }
+    });
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
         return (CubicBez::new(p0, p0, p3, p3), 0.0, samples);
@@ -828,7 +850,7 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in 0..n {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, POLISH_NEWTON_DONE);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, 1e-10);
             let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
@@ -944,10 +966,10 @@ impl Poly {
         self.project_steps(p, u, 6)
     }
 
-    /// [`Poly::project`], stopping at a step below [`POLISH_NEWTON_DONE`]: for pairings,
+    /// [`Poly::project`], stopping at a step below [`PAIRING_NEWTON_DONE`]: for pairings,
     /// where any parameter gives a valid bound and a near one a tight bound.
     fn project_loose(&self, p: Point, u: f64) -> (f64, f64) {
-        let (u, r) = self.residual_steps(p, u, 6, POLISH_NEWTON_DONE);
+        let (u, r) = self.residual_steps(p, u, 6, PAIRING_NEWTON_DONE);
         (u, r.hypot())
     }
 
@@ -1469,7 +1491,7 @@ mod tests {
                 let d0 = direction(&spline, a, start, end);
                 let samples = Grid::new(&spline, start).samples(a, b);
                 let (cubic, _, samples) =
-                    fit_span_sampled(&spline, samples, d0, start, end, 0.48, 0.0);
+                    fit_span_sampled(&spline, (a, b), samples, d0, start, end, 0.48, 0.0);
                 let golden = measure(&spline, a, b, &cubic);
                 for goal in [0.48, 1.05 * golden] {
                     let err = measure_within(&spline, &samples, &cubic, goal);
