@@ -5,7 +5,9 @@
 //! stretch is covered greedily from its start with the longest span one cubic fits; the
 //! span is predicted from the error law `err ~ h^p` rather than bisected, on the cheap
 //! sampled error of each trial; only the candidate about to be taken is measured (below),
-//! and one that fails the measure counts as a span that does not fit. A cubic keeps the
+//! and one that fails the measure counts as a span that does not fit. The trials of a
+//! stretch sample the curve on shared grids (each point evaluated once), and the measure
+//! takes a trial's samples as every second one of its own. A cubic keeps the
 //! curve's end points and exact end tangent directions (G1 joins; at a sharp point the true
 //! limit direction, which avoids hooks). It starts as the span's Hermite cubic and its two
 //! handle lengths are taken towards the minimax fit by Gauss-Newton on orthogonal
@@ -547,9 +549,8 @@ impl<'a> Grid<'a> {
 
     /// The polish's samples of `[a, b]`: its two ends (exact curve points), and between
     /// them the points of the coarsest grid that puts at least [`MIN_POLISH_SAMPLES`]
-    /// steps in the span, leaving out those within a quarter step of an end. At most
-    /// `1 / POLISH_SAMPLES_PER_SEGMENT` apart, so [`Samples::doubled`] has at most
-    /// `1 / SAMPLES_PER_SEGMENT`, and at least [`MIN_POLISH_SAMPLES`] steps.
+    /// steps in the span, leaving out those within a quarter step of an end (so at least
+    /// [`MIN_POLISH_SAMPLES`] steps, the two at the ends at most 1.25 grid steps long).
     fn samples(&mut self, a: f64, b: f64) -> Samples {
         let h = b - a;
         let mut level = 0;
@@ -660,34 +661,36 @@ impl Samples {
         samples
     }
 
-    /// The measure's samples from the polish's: twice as dense (the polish's samples are
-    /// every second one, so at least [`SAMPLES_PER_SEGMENT`] per unit and [`MIN_SAMPLES`]
-    /// in all), refined where the curve turns fast. The same samples as [`Samples::new`]
-    /// at that count, bit for bit: `(b - a) * 2k / 2m` is `(b - a) * k / m` exactly.
+    /// The measure's samples from the polish's: each step of the polish's samples cut in
+    /// two, or in more where it is longer than `1 / SAMPLES_PER_SEGMENT` (at a span's ends
+    /// the grid's step can be a quarter longer), so at most that far apart and at least
+    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast.
     fn doubled(spline: &XSpline, coarse: &Samples) -> Samples {
         let m = coarse.len() - 1;
-        let n = 2 * m;
         let mut samples = Samples {
-            t: Vec::with_capacity(n + 1),
-            p: Vec::with_capacity(n + 1),
-            d: Vec::with_capacity(n + 1),
+            t: Vec::with_capacity(2 * m + 3),
+            p: Vec::with_capacity(2 * m + 3),
+            d: Vec::with_capacity(2 * m + 3),
         };
         let mut cursor = Cursor::new(spline);
-        let first = (coarse.t[0], coarse.p[0], coarse.d[0]);
-        samples.push(first);
-        let mut previous = first;
-        for i in 1..=n {
-            let next = if i % 2 == 0 {
-                let k = i / 2;
-                (coarse.t[k], coarse.p[k], coarse.d[k])
-            } else {
-                let t = 0.5 * (coarse.t[i / 2] + coarse.t[i / 2 + 1]);
-                let (p, d) = cursor.eval_deriv(t);
-                (t, p, d)
-            };
-            samples.refine(&mut cursor, previous, next, MAX_REFINE);
-            samples.push(next);
-            previous = next;
+        let mut previous = (coarse.t[0], coarse.p[0], coarse.d[0]);
+        samples.push(previous);
+        for k in 0..m {
+            let (t0, t1) = (coarse.t[k], coarse.t[k + 1]);
+            // Rounding must not add a piece to a step of exactly the grid's length.
+            let pieces = ((t1 - t0) * SAMPLES_PER_SEGMENT - 1e-9).ceil().max(2.0) as usize;
+            for j in 1..=pieces {
+                let next = if j == pieces {
+                    (t1, coarse.p[k + 1], coarse.d[k + 1])
+                } else {
+                    let t = t0 + (t1 - t0) * j as f64 / pieces as f64;
+                    let (p, d) = cursor.eval_deriv(t);
+                    (t, p, d)
+                };
+                samples.refine(&mut cursor, previous, next, MAX_REFINE);
+                samples.push(next);
+                previous = next;
+            }
         }
         samples
     }
