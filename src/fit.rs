@@ -531,8 +531,10 @@ impl<'a> Cursor<'a> {
 struct Grid<'a> {
     cursor: Cursor<'a>,
     t0: f64,
-    /// Per level `j` (spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^j)`), the points taken.
-    levels: Vec<Vec<Option<(Point, Vec2)>>>,
+    /// Per level `j` (spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^j)`), the points taken:
+    /// a window of grid indices from the first, restarted where a span lands past it (so
+    /// a fine level used at two far places of a long stretch holds only one of them).
+    levels: Vec<(usize, Vec<Option<(Point, Vec2)>>)>,
     /// The last span start sampled.
     start: Option<(f64, Point, Vec2)>,
 }
@@ -571,7 +573,7 @@ impl<'a> Grid<'a> {
             );
         }
         if self.levels.len() <= level {
-            self.levels.resize_with(level + 1, Vec::new);
+            self.levels.resize_with(level + 1, || (0, Vec::new()));
         }
         let first = ((a - self.t0) * per + 0.25).ceil().max(0.0) as usize;
         let last = ((b - self.t0) * per - 0.25).floor().max(0.0) as usize;
@@ -591,13 +593,17 @@ impl<'a> Grid<'a> {
         };
         self.start = Some(start);
         samples.push(start);
-        let points = &mut self.levels[level];
-        if points.len() <= last {
-            points.resize(last + 1, None);
+        let (origin, points) = &mut self.levels[level];
+        if points.is_empty() || first < *origin || first > *origin + points.len() {
+            *origin = first;
+            points.clear();
+        }
+        if points.len() <= last - *origin {
+            points.resize(last - *origin + 1, None);
         }
         for k in first..=last {
             let t = self.t0 + k as f64 / per;
-            let (p, d) = *points[k].get_or_insert_with(|| self.cursor.eval_deriv(t));
+            let (p, d) = *points[k - *origin].get_or_insert_with(|| self.cursor.eval_deriv(t));
             samples.push((t, p, d));
         }
         let (p, d) = self.cursor.eval_deriv(b);
@@ -782,8 +788,11 @@ pub(crate) fn fit_span(
     (cubic, sampled)
 }
 
-/// [`fit_span`], also returning the polish's curve samples: [`measure_within`] takes them
-/// as every second one of its own.
+/// [`fit_span`] on the given `samples` of `span` (the span's ends first and last), also
+/// returning them: [`measure_within`] takes them as every second one of its own. A trial
+/// short of the stretch's end stops polishing below `low` (see [`LOW_EXIT`]); zero
+/// polishes fully.
+#[allow(clippy::too_many_arguments)]
 fn fit_span_sampled(
     spline: &XSpline,
     span: (f64, f64),
