@@ -19,6 +19,8 @@ use xglyph::model::Anchor;
 use xglyph::pipeline::{self, Loaded, OutputFile};
 use xglyph::ufo;
 
+use crate::common::tools;
+
 /// The bundled font loaded, its compatible fit, and the variable outputs of a build
 /// written into `dir`.
 struct Built {
@@ -351,40 +353,16 @@ fn an_anchor_name_ufo_cannot_hold_is_an_error_naming_the_glyph() {
     );
 }
 
-/// Whether fontmake, fontc and the Python libraries are there; when not, skip (or fail
-/// under `XGLYPH_REQUIRE_TOOLS=1`).
+/// Whether fontmake, fontc, fontTools and ufoLib2 are there.
 fn tools_available() -> bool {
-    let ok = Command::new("python3")
-        .args([
-            "-c",
-            "import fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2",
-        ])
-        .status()
-        .is_ok_and(|s| s.success())
-        && ["fontmake", "fontc"].iter().all(|t| {
-            Command::new(t)
-                .arg("--help")
-                .output()
-                .is_ok_and(|o| o.status.success())
-        });
-    if !ok {
-        if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
-            panic!("XGLYPH_REQUIRE_TOOLS=1 but fontmake/fontc/fontTools/ufoLib2 are missing; pip install fontmake fontc ufoLib2");
-        }
-        println!("skipped: fontmake/fontc/fontTools/ufoLib2 not installed; XGLYPH_REQUIRE_TOOLS=1 makes this fail");
-    }
-    ok
-}
-
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().expect("runs");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{cmd:?} failed:\n{text}");
-    text
+    tools::available(
+        tools::python_imports("fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2")
+            && ["fontmake", "fontc"]
+                .iter()
+                .all(|t| tools::program_runs(t, &["--help"])),
+        "fontmake/fontc/fontTools/ufoLib2",
+        "pip install fontmake fontc ufoLib2",
+    )
 }
 
 #[test]
@@ -395,26 +373,32 @@ fn fontmake_and_fontc_build_the_designspace_and_match_xglyphs_variable_font() {
     let b = built();
     let ds = b.dir.join("XglyphSans.designspace");
     let fontmake = b.dir.join("fontmake.ttf");
-    run(Command::new("fontmake")
-        .arg("-m")
-        .arg(&ds)
-        .args(["-o", "variable", "--output-path"])
-        .arg(&fontmake));
+    tools::run(
+        Command::new("fontmake")
+            .arg("-m")
+            .arg(&ds)
+            .args(["-o", "variable", "--output-path"])
+            .arg(&fontmake),
+    );
     let fontc_dir = b.dir.join("fontc-build");
-    run(Command::new("fontc")
-        .arg("--build-dir")
-        .arg(&fontc_dir)
-        .arg(&ds));
+    tools::run(
+        Command::new("fontc")
+            .arg("--build-dir")
+            .arg(&fontc_dir)
+            .arg(&ds),
+    );
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/designspace_check.py");
     // The masters, a named instance between them, and two positions off the instances.
-    let report = run(Command::new("python3")
-        .arg(&script)
-        .arg(&ds)
-        .arg(b.dir.join("XglyphSans[wght].ttf"))
-        .arg(&fontmake)
-        .arg(fontc_dir.join("font.ttf"))
-        .arg(b.loaded.font.tolerance.to_string())
-        .args(["400", "500", "550", "650", "700"]));
+    let report = tools::run(
+        Command::new("python3")
+            .arg(&script)
+            .arg(&ds)
+            .arg(b.dir.join("XglyphSans[wght].ttf"))
+            .arg(&fontmake)
+            .arg(fontc_dir.join("font.ttf"))
+            .arg(b.loaded.font.tolerance.to_string())
+            .args(["400", "500", "550", "650", "700"]),
+    );
     println!("{report}");
     // fontTools.designspaceLib finds what font.toml says.
     for line in [

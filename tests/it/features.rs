@@ -26,6 +26,7 @@ use xglyph::outline::outline_font;
 use xglyph::source::load_font;
 
 use crate::common::cli::xglyph;
+use crate::common::tools;
 use crate::studio_browser::Browser;
 
 fn anchor(name: &str, x: f64, y: f64) -> Anchor {
@@ -98,20 +99,9 @@ fn built(font: &Font) -> (tempfile::TempDir, [PathBuf; 2]) {
     (dir, paths)
 }
 
-/// Whether python3 can import `modules`; a missing one skips (or fails under
-/// `XGLYPH_REQUIRE_TOOLS=1`).
+/// Whether python3 cannot import `modules` (the test is skipped).
 fn no_python(modules: &str, install: &str) -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", &format!("import {modules}")])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
-            panic!("XGLYPH_REQUIRE_TOOLS=1 but python3 cannot import {modules}; {install}");
-        }
-        println!("skipped: python3 cannot import {modules}; {install}; XGLYPH_REQUIRE_TOOLS=1 makes this fail");
-    }
-    !ok
+    !tools::available(tools::python_imports(modules), modules, install)
 }
 
 /// Runs a python script with arguments; its stdout as JSON.

@@ -28,6 +28,8 @@ use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{render_proof, render_proof_with, ProofOptions};
 use xglyph::source::load_font;
 
+use crate::common::tools;
+
 fn load(dir: &str) -> (Font, OutlinedFont) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
     let (font, _) = load_font(&dir).expect("font loads");
@@ -44,19 +46,13 @@ fn describe(layout: &Layout<'_>, line: &Line) -> String {
         .join(" ")
 }
 
-/// Whether uharfbuzz is there; when not, skip (or fail under `XGLYPH_REQUIRE_TOOLS=1`).
+/// Whether uharfbuzz is there.
 fn uharfbuzz_available() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import uharfbuzz"])
-        .status()
-        .is_ok_and(|s| s.success());
-    if !ok {
-        if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
-            panic!("XGLYPH_REQUIRE_TOOLS=1 but uharfbuzz is missing; pip install uharfbuzz");
-        }
-        println!("skipped: uharfbuzz not installed; XGLYPH_REQUIRE_TOOLS=1 makes this fail");
-    }
-    ok
+    tools::available(
+        tools::python_imports("uharfbuzz"),
+        "uharfbuzz",
+        "pip install uharfbuzz",
+    )
 }
 
 /// Shapes each text with HarfBuzz and prints one line per text in [`describe`]'s form.
@@ -231,18 +227,25 @@ fn with_mark_gpos(
     builder.build()
 }
 
+/// The font's TTF with a hand-made `mark` lookup: a base anchor over the x's middle at 520,
+/// and the acute's own anchor at its ink's bottom middle, 500, so that the accent's ink is
+/// centred over the x and moved up 20 units. Returns the two middles and the TTF.
+fn acute_centred_over_x(font: &OutlinedFont) -> (i16, i16, Vec<u8>) {
+    let x = font.glyph("x").expect("x");
+    let acute = font.glyph("acutecomb").expect("acutecomb");
+    let x_mid = (x.advance / 2.0).round() as i16;
+    let acute_ink = kurbo::Shape::bounding_box(&acute.path);
+    let acute_mid = ((acute_ink.x0 + acute_ink.x1) / 2.0).round() as i16;
+    let bytes = with_mark_gpos(font, "x", (x_mid, 520), "acutecomb", (acute_mid, 500));
+    (x_mid, acute_mid, bytes)
+}
+
 #[test]
 fn shaping_reads_gpos_marks_go_on_their_base() {
     let (_, font) = load("glyphs");
     // `x` has no precomposed accented form, so x + U+0301 stays two glyphs.
-    let x = font.glyph("x").expect("x");
-    let acute = font.glyph("acutecomb").expect("acutecomb");
-    // Base anchor over the x's middle at 520; the mark's own anchor at its ink's bottom
-    // middle, 500, so the accent's ink is centred over the x and moved up 20 units.
-    let x_mid = (x.advance / 2.0).round() as i16;
-    let acute_ink = kurbo::Shape::bounding_box(&acute.path);
-    let acute_mid = ((acute_ink.x0 + acute_ink.x1) / 2.0).round() as i16;
-    let bytes = with_mark_gpos(&font, "x", (x_mid, 520), "acutecomb", (acute_mid, 500));
+    let (x, acute) = (font.glyph("x").expect("x"), font.glyph("acutecomb").expect("acute"));
+    let (x_mid, acute_mid, bytes) = acute_centred_over_x(&font);
     let layout = Layout::with_ttf(&font, bytes).expect("shapes");
     let line = layout.line("x\u{301}").expect("shapes");
     let names: Vec<&str> = line
@@ -298,12 +301,7 @@ fn ink_runs(img: &Pixmap) -> Vec<(u32, u32)> {
 #[test]
 fn the_proof_draws_a_gpos_positioned_accent_over_its_base() {
     let (_, font) = load("glyphs");
-    let x = font.glyph("x").expect("x");
-    let acute = font.glyph("acutecomb").expect("acutecomb");
-    let x_mid = (x.advance / 2.0).round() as i16;
-    let acute_ink = kurbo::Shape::bounding_box(&acute.path);
-    let acute_mid = ((acute_ink.x0 + acute_ink.x1) / 2.0).round() as i16;
-    let bytes = with_mark_gpos(&font, "x", (x_mid, 520), "acutecomb", (acute_mid, 500));
+    let (x_mid, acute_mid, bytes) = acute_centred_over_x(&font);
     let opts = ProofOptions {
         text: Some("x\u{301}".into()),
         sizes: vec![200.0],

@@ -16,6 +16,7 @@ use xglyph::source::emit::font_sources;
 use xglyph::ufo;
 
 use crate::common::paths::two_sided;
+use crate::common::tools;
 
 fn glyphs_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs")
@@ -346,37 +347,16 @@ fn a_broken_ufo_is_an_error_naming_it() {
     assert!(text.contains("a.glif"), "{text}");
 }
 
-/// Whether the Python tools are there; when not, skip (or fail under
-/// `XGLYPH_REQUIRE_TOOLS=1`).
+/// Whether fontmake, fontc, FontBakery, fontTools, ufoLib2 and defcon are there.
 fn tools_available() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import fontTools, ufoLib2, defcon"])
-        .status()
-        .is_ok_and(|s| s.success())
-        && ["fontmake", "fontc", "fontbakery"].iter().all(|t| {
-            Command::new(t)
-                .arg("--help")
-                .output()
-                .is_ok_and(|o| o.status.success())
-        });
-    if !ok {
-        if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
-            panic!("XGLYPH_REQUIRE_TOOLS=1 but fontmake/fontc/ufoLib2/fontbakery are missing; pip install fontmake fontc ufoLib2 fontbakery");
-        }
-        println!("skipped: fontmake/fontc/ufoLib2/fontbakery not installed; XGLYPH_REQUIRE_TOOLS=1 makes this fail");
-    }
-    ok
-}
-
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().expect("runs");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{cmd:?} failed:\n{text}");
-    text
+    tools::available(
+        tools::python_imports("fontTools, ufoLib2, defcon")
+            && ["fontmake", "fontc", "fontbakery"]
+                .iter()
+                .all(|t| tools::program_runs(t, &["--help"])),
+        "fontmake/fontc/ufoLib2/fontbakery",
+        "pip install fontmake fontc ufoLib2 fontbakery",
+    )
 }
 
 #[test]
@@ -389,21 +369,25 @@ fn fontmake_and_fontc_build_the_export_and_match_xglyphs_ttf() {
     let ours = dir.path().join("xglyph.ttf");
     std::fs::write(&ours, xglyph::otf::ttf(&font).expect("builds")).expect("write");
     let fontmake = dir.path().join("fontmake.ttf");
-    run(Command::new("fontmake")
-        .arg("-u")
-        .arg(&path)
-        .args(["-o", "ttf", "--output-path"])
-        .arg(&fontmake));
+    tools::run(
+        Command::new("fontmake")
+            .arg("-u")
+            .arg(&path)
+            .args(["-o", "ttf", "--output-path"])
+            .arg(&fontmake),
+    );
     let fontc = dir.path().join("fontc.ttf");
-    run(Command::new("fontc").arg(&path).arg("-o").arg(&fontc));
+    tools::run(Command::new("fontc").arg(&path).arg("-o").arg(&fontc));
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/ufo_check.py");
-    let report = run(Command::new("python3")
-        .arg(&script)
-        .arg(&path)
-        .arg(&ours)
-        .arg(&fontmake)
-        .arg(&fontc)
-        .arg(font.tolerance.to_string()));
+    let report = tools::run(
+        Command::new("python3")
+            .arg(&script)
+            .arg(&path)
+            .arg(&ours)
+            .arg(&fontmake)
+            .arg(&fontc)
+            .arg(font.tolerance.to_string()),
+    );
     println!("{report}");
     assert!(report.contains("ufo_check: all passed"), "{report}");
 }
@@ -493,13 +477,15 @@ fn cli_import_of_the_export_equals_the_formatted_sources() {
     let single = info.split("\n[[axis]]").next().expect("text").trim_end();
     std::fs::write(formatted.join("font.toml"), format!("{single}\n")).expect("writes");
     let bin = env!("CARGO_BIN_EXE_xglyph");
-    run(Command::new(bin).arg("fmt").arg(&formatted));
+    tools::run(Command::new(bin).arg("fmt").arg(&formatted));
     let out = dir.path().join("imported");
-    let report = run(Command::new(bin)
-        .arg("import")
-        .arg(&ufo_path)
-        .arg("-o")
-        .arg(&out));
+    let report = tools::run(
+        Command::new(bin)
+            .arg("import")
+            .arg(&ufo_path)
+            .arg("-o")
+            .arg(&out),
+    );
     // Every glyph with contours of its own comes from its lib.
     let (bundled, _) = xglyph::load_font(&glyphs_dir()).expect("loads");
     let drawn = bundled

@@ -5,4 +5,5 @@ pub mod corpus;
 pub mod curves;
 pub mod masters;
 pub mod paths;
+pub mod tools;
 pub mod tree;

@@ -1,0 +1,45 @@
+//! The external tools some tests drive (Python packages, command-line programs). A missing
+//! tool skips the test with a printed notice, unless `XGLYPH_REQUIRE_TOOLS=1` (CI), which
+//! turns it into a failure.
+
+use std::process::Command;
+
+/// `ok`, or the skip: prints that `what` is missing and how to `install` it, or panics
+/// under `XGLYPH_REQUIRE_TOOLS=1`.
+pub fn available(ok: bool, what: &str, install: &str) -> bool {
+    if !ok {
+        if std::env::var("XGLYPH_REQUIRE_TOOLS").as_deref() == Ok("1") {
+            panic!("XGLYPH_REQUIRE_TOOLS=1 but {what} is missing; {install}");
+        }
+        println!("skipped: {what} is missing; {install}; XGLYPH_REQUIRE_TOOLS=1 makes this fail");
+    }
+    ok
+}
+
+/// Whether `python3 -c "import <modules>"` succeeds (`modules` comma-separated).
+pub fn python_imports(modules: &str) -> bool {
+    Command::new("python3")
+        .args(["-c", &format!("import {modules}")])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Whether `program args…` runs and exits 0.
+pub fn program_runs(program: &str, args: &[&str]) -> bool {
+    Command::new(program)
+        .args(args)
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Runs `cmd`, asserts it exits 0, and returns its stdout and stderr.
+pub fn run(cmd: &mut Command) -> String {
+    let out = cmd.output().expect("runs");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.status.success(), "{cmd:?} failed:\n{text}");
+    text
+}
