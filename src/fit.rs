@@ -524,6 +524,9 @@ impl<'a> Cursor<'a> {
     }
 }
 
+/// A curve point and the derivative there.
+type Sample = (Point, Vec2);
+
 /// Curve samples of one stretch for the polish, on uniform grids from the stretch's start
 /// (one per number of samples per unit), each grid point evaluated once: the span search
 /// tries several spans from one start, and the next cubic's trials cover the same curve,
@@ -534,7 +537,7 @@ struct Grid<'a> {
     /// Per level `j` (spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^j)`), the points taken:
     /// a window of grid indices from the first, restarted where a span lands past it (so
     /// a fine level used at two far places of a long stretch holds only one of them).
-    levels: Vec<(usize, Vec<Option<(Point, Vec2)>>)>,
+    levels: Vec<(usize, Vec<Option<Sample>>)>,
     /// The last span start sampled.
     start: Option<(f64, Point, Vec2)>,
 }

@@ -244,7 +244,10 @@ fn acute_centred_over_x(font: &OutlinedFont) -> (i16, i16, Vec<u8>) {
 fn shaping_reads_gpos_marks_go_on_their_base() {
     let (_, font) = load("glyphs");
     // `x` has no precomposed accented form, so x + U+0301 stays two glyphs.
-    let (x, acute) = (font.glyph("x").expect("x"), font.glyph("acutecomb").expect("acute"));
+    let (x, acute) = (
+        font.glyph("x").expect("x"),
+        font.glyph("acutecomb").expect("acute"),
+    );
     let (x_mid, acute_mid, bytes) = acute_centred_over_x(&font);
     let layout = Layout::with_ttf(&font, bytes).expect("shapes");
     let line = layout.line("x\u{301}").expect("shapes");
