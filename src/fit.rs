@@ -1234,8 +1234,9 @@ fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
 /// [`project_samples`] for [`measure_within`], whose bound holds for any pairing of
 /// samples with cubic parameters (a closer projection only makes it tighter): each sample
 /// starts from the parameters of the two before it, extrapolated in proportion to the
-/// curve parameter, which the cubic follows closely; the retry stays as in
-/// [`project_samples`].
+/// curve parameter, which the cubic follows closely; the retry from the sample's share of
+/// the span only where Newton stopped at a clamp. (Samples that coincide in floating point
+/// start from the previous parameter.)
 fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
     let n = samples.len();
     let mut u = vec![0.0; n];
@@ -1251,8 +1252,15 @@ fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>)
                     samples.t[i - 1] - samples.t[i - 2],
                     samples.t[i] - samples.t[i - 1],
                 );
-                (u[i - 1] + (u[i - 1] - u[i - 2]) * (dt1 / dt0)).clamp(0.0, 1.0)
+                u[i - 1] + (u[i - 1] - u[i - 2]) * (dt1 / dt0)
             }
+        };
+        let guess = if guess.is_finite() {
+            guess.clamp(0.0, 1.0)
+        } else if i > 0 {
+            u[i - 1]
+        } else {
+            0.0
         };
         let (mut ui, mut d) = poly.project_loose(samples.p[i], guess);
         if i > 0 && i + 1 < n && d > largest && (ui <= 0.0 || ui >= 1.0) {
