@@ -9,9 +9,16 @@
 //!
 //! Positions: the 11 evenly spaced ones of the tests (the masters included), and the
 //! masters plus their midpoint only.
+//!
+//! Before Criterion, in the same run, an **interleaved probe** over every bundled contour
+//! (143) at the 11 positions: per contour, a static fit of the Regular and a compatible fit
+//! timed alternately, best of 5 each, summed. Interleaving exposes both to the same load,
+//! which Criterion's consecutive groups do not. `XGLYPH_PROBE_ONLY=Bold` (or `="synthetic bold"`)
+//! runs that master's probe once (one round, no Criterion), for `valgrind --tool=callgrind`.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::Criterion;
 use std::hint::black_box;
+use std::time::{Duration, Instant};
 use xglyph::compatible::fit_compatible;
 use xglyph::fit::fit_contour;
 use xglyph::xspline::XSpline;
@@ -21,6 +28,72 @@ mod masters;
 
 /// Glyphs with bowls, stems, terminals and mixed `s`.
 const GLYPHS: [&str; 6] = ["a", "g", "S", "ampersand", "O", "R"];
+
+/// Contours paired with a second master.
+type Pairs = Vec<(XSpline, XSpline)>;
+
+/// Every bundled contour with its Bold master and with the synthetic bold.
+fn all_pairs() -> (Pairs, Pairs, f64) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    let (family, _) = xglyph::source::load_family(&dir).expect("the bundled glyphs load");
+    let mut bundled = Vec::new();
+    let mut synthetic = Vec::new();
+    for (light, heavy) in family.default.glyphs.iter().zip(&family.masters[0].glyphs) {
+        for (a, b) in light.contours.iter().zip(&heavy.contours) {
+            let a = a.spline().clone();
+            let made = masters::bold(&a, 30.0, 0.9).expect("a valid bold master");
+            bundled.push((a.clone(), b.spline().clone()));
+            synthetic.push((a, made));
+        }
+    }
+    (bundled, synthetic, family.default.info.tolerance)
+}
+
+/// How long `f` takes, once.
+fn time(mut f: impl FnMut() -> usize) -> Duration {
+    let start = Instant::now();
+    black_box(f());
+    start.elapsed()
+}
+
+/// The interleaved probe: Σ over contours of the best static fit of the Regular and the
+/// best compatible fit, timed alternately per contour; prints both and their ratio.
+/// `only`: `"Bold"` or `"synthetic bold"` probes that master alone.
+fn probe(rounds: usize, only: Option<&str>) {
+    let (bundled, synthetic, tolerance) = all_pairs();
+    let eleven = masters::evenly_spaced(11);
+    for (label, pairs) in [("Bold", &bundled), ("synthetic bold", &synthetic)] {
+        if only.is_some_and(|o| o != label) {
+            continue;
+        }
+        let (mut fixed, mut joint) = (Duration::ZERO, Duration::ZERO);
+        for (light, bold) in pairs {
+            let (mut one, mut two) = (Duration::MAX, Duration::MAX);
+            for _ in 0..rounds.max(1) {
+                one = one.min(time(|| {
+                    fit_contour(black_box(light), tolerance)
+                        .path
+                        .elements()
+                        .len()
+                }));
+                two = two.min(time(|| {
+                    fit_compatible(&[light, bold], black_box(&eleven), tolerance)
+                        .map_or(0, |fit| fit.segments)
+                }));
+            }
+            fixed += one;
+            joint += two;
+        }
+        println!(
+            "probe, Regular + {label}, {} contours, 11 positions: static {:.1} ms, \
+             compatible {:.1} ms, ratio {:.2}",
+            pairs.len(),
+            fixed.as_secs_f64() * 1e3,
+            joint.as_secs_f64() * 1e3,
+            joint.as_secs_f64() / fixed.as_secs_f64()
+        );
+    }
+}
 
 fn bench(c: &mut Criterion) {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
@@ -92,5 +165,13 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
-criterion_main!(benches);
+fn main() {
+    if let Some(only) = std::env::var_os("XGLYPH_PROBE_ONLY") {
+        probe(1, only.to_str());
+        return;
+    }
+    probe(5, None);
+    let mut criterion = Criterion::default().configure_from_args();
+    bench(&mut criterion);
+    criterion.final_summary();
+}

@@ -1,16 +1,26 @@
 //! A cache of fitted contours, so that a rebuild refits only the contours that changed.
 //!
-//! An entry is keyed by everything a fit depends on: the contour's control points as placed
-//! (the exact bits of every `x`, `y` and `s`) and the tolerance (its bits). The whole file
-//! is further keyed by the fitter: [`FIT_VERSION`] and a fingerprint of the fitter's output
-//! on a fixed probe contour, so that a changed fitter invalidates the cache even when
-//! nobody bumped the version. The cache lives in the output folder
-//! ([`CACHE_FILE`] in OUT), never beside the sources.
+//! Two kinds of entries:
+//! - a static fit ([`FitCache::fit`], [`fit_contour`]), keyed by everything it depends on:
+//!   the contour's control points as placed (the exact bits of every `x`, `y` and `s`) and
+//!   the tolerance (its bits);
+//! - a compatible fit of a font with masters ([`FitCache::fit_compatible`],
+//!   [`fit_compatible`]), keyed by every master's control points (bits of `x`, `y`, `s`),
+//!   the positions checked (the bits of every blend weight) and the tolerance. Its entry
+//!   holds the paths of every master and the error measured at every position, so a hit
+//!   neither fits nor checks.
+//!
+//! The whole file is further keyed by the fitters: [`FIT_VERSION`] and
+//! [`COMPATIBLE_VERSION`], and a fingerprint of each fitter's output on a fixed probe
+//! contour (and a bold master of it), so that a changed fitter invalidates the cache even
+//! when nobody bumped a version. The cache lives in the output folder ([`CACHE_FILE`] in
+//! OUT), never beside the sources.
 //!
 //! The file is not trusted. It is read whole and checked before any entry is used: magic,
 //! format version, fitter key, a CRC-32 of everything before it, every count against the
 //! bytes that remain, every number finite, every path one closed contour of lines and
-//! cubics, no duplicate key and no trailing byte. If anything is wrong the whole file is
+//! cubics, a compatible fit's paths all of the same elements with its segment count and one
+//! error per position of its key, no duplicate key and no trailing byte. If anything is wrong the whole file is
 //! ignored (every contour is refitted) and the next [`FitCache::save`] replaces it. A cached
 //! fit is bit-for-bit the fit it stored, so outputs are the same with and without the cache.
 //!
@@ -31,6 +41,7 @@ use std::sync::{Mutex, OnceLock};
 
 use kurbo::{BezPath, PathEl, Point};
 
+use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
 use crate::xspline::{ControlPoint, XSpline};
 
@@ -39,12 +50,16 @@ pub const CACHE_FILE: &str = ".xglyph-cache";
 
 /// Version of the fitter's output: bump it whenever [`crate::fit`] changes what it returns.
 /// (The fingerprint catches most changes anyway; the version makes the intent explicit.)
-pub const FIT_VERSION: u32 = 1;
+pub const FIT_VERSION: u32 = 2;
+
+/// Version of the compatible fitter's output: bump it whenever [`crate::compatible`]
+/// changes what it returns (paths, errors or the bound between the masters).
+pub const COMPATIBLE_VERSION: u32 = 1;
 
 /// First bytes of a cache file.
 const MAGIC: &[u8; 8] = b"XGLYPHFC";
 /// Layout of the file itself.
-const FORMAT_VERSION: u32 = 1;
+const FORMAT_VERSION: u32 = 2;
 
 /// What a fit depends on: the control points (bits of x, y, s) and the tolerance (bits).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -66,12 +81,44 @@ impl Key {
     }
 }
 
+/// What a compatible fit depends on: the tolerance, the positions (bits of every weight)
+/// and every master's control points (bits of x, y, s).
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+struct CompatibleKey {
+    tolerance: u64,
+    positions: Vec<Vec<u64>>,
+    masters: Vec<Vec<[u64; 3]>>,
+}
+
+impl CompatibleKey {
+    fn new(masters: &[&XSpline], positions: &[Vec<f64>], tolerance: f64) -> CompatibleKey {
+        CompatibleKey {
+            tolerance: tolerance.to_bits(),
+            positions: positions
+                .iter()
+                .map(|w| w.iter().map(|v| v.to_bits()).collect())
+                .collect(),
+            masters: masters
+                .iter()
+                .map(|m| Key::new(m, tolerance).points)
+                .collect(),
+        }
+    }
+}
+
+/// The entries of a cache file, or of one run.
+#[derive(Debug, Default)]
+struct Entries {
+    fits: BTreeMap<Key, ContourFit>,
+    compatible: BTreeMap<CompatibleKey, CompatibleFit>,
+}
+
 /// What happened to the cache file when it was loaded.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoadOutcome {
     /// There was no cache file: every contour is fitted.
     Missing,
-    /// The file was valid; it held this many entries.
+    /// The file was valid; it held this many entries (static and compatible fits).
     Loaded(usize),
     /// The file was unreadable, corrupt or stale, and is ignored; the reason.
     Ignored(String),
@@ -82,8 +129,9 @@ pub enum LoadOutcome {
 pub struct FitCache {
     /// From the file, read-only while fitting.
     loaded: HashMap<Key, ContourFit>,
+    loaded_compatible: HashMap<CompatibleKey, CompatibleFit>,
     /// Every fit handed out in this run (hits and misses): what [`FitCache::save`] writes.
-    used: Mutex<BTreeMap<Key, ContourFit>>,
+    used: Mutex<Entries>,
     hits: AtomicUsize,
     reused: AtomicUsize,
     misses: AtomicUsize,
@@ -106,10 +154,11 @@ impl FitCache {
             Err(e) => return (FitCache::new(), LoadOutcome::Ignored(e.to_string())),
         };
         match decode(&bytes) {
-            Ok(loaded) => {
-                let n = loaded.len();
+            Ok(entries) => {
+                let n = entries.fits.len() + entries.compatible.len();
                 let cache = FitCache {
-                    loaded,
+                    loaded: entries.fits.into_iter().collect(),
+                    loaded_compatible: entries.compatible.into_iter().collect(),
                     ..FitCache::default()
                 };
                 (cache, LoadOutcome::Loaded(n))
@@ -123,11 +172,11 @@ impl FitCache {
         let key = Key::new(spline, tolerance);
         if let Some(fit) = self.loaded.get(&key) {
             self.hits.fetch_add(1, Ordering::Relaxed);
-            self.lock_used().insert(key, fit.clone());
+            self.lock_used().fits.insert(key, fit.clone());
             return fit.clone();
         }
         // The same contour placed twice in this run (a component at the same offset).
-        if let Some(fit) = self.lock_used().get(&key) {
+        if let Some(fit) = self.lock_used().fits.get(&key) {
             self.reused.fetch_add(1, Ordering::Relaxed);
             return fit.clone();
         }
@@ -135,11 +184,37 @@ impl FitCache {
         // Fitted outside the lock; two threads fitting the same new contour at once both
         // get the same (deterministic) fit.
         let fit = fit_contour(spline, tolerance);
-        self.lock_used().insert(key, fit.clone());
+        self.lock_used().fits.insert(key, fit.clone());
         fit
     }
 
-    fn lock_used(&self) -> std::sync::MutexGuard<'_, BTreeMap<Key, ContourFit>> {
+    /// [`fit_compatible`]`(masters, positions, tolerance)`, from the cache when it holds
+    /// these masters at these positions; counted with the static fits in
+    /// [`FitCache::hits`], [`FitCache::reused`] and [`FitCache::misses`]. An error is
+    /// not cached (the loader refuses such masters; they are refitted every time).
+    pub fn fit_compatible(
+        &self,
+        masters: &[&XSpline],
+        positions: &[Vec<f64>],
+        tolerance: f64,
+    ) -> Result<CompatibleFit, CompatibleError> {
+        let key = CompatibleKey::new(masters, positions, tolerance);
+        if let Some(fit) = self.loaded_compatible.get(&key) {
+            self.hits.fetch_add(1, Ordering::Relaxed);
+            self.lock_used().compatible.insert(key, fit.clone());
+            return Ok(fit.clone());
+        }
+        if let Some(fit) = self.lock_used().compatible.get(&key) {
+            self.reused.fetch_add(1, Ordering::Relaxed);
+            return Ok(fit.clone());
+        }
+        self.misses.fetch_add(1, Ordering::Relaxed);
+        let fit = fit_compatible(masters, positions, tolerance)?;
+        self.lock_used().compatible.insert(key, fit.clone());
+        Ok(fit)
+    }
+
+    fn lock_used(&self) -> std::sync::MutexGuard<'_, Entries> {
         // A poisoned lock only means another thread panicked; every entry in the map was
         // inserted whole.
         self.used.lock().unwrap_or_else(|e| e.into_inner())
@@ -171,12 +246,22 @@ impl FitCache {
     }
 }
 
-/// The fitter's key: its version and the bits of its fit of a fixed probe contour (mixed
-/// sharp, approximating and interpolating points, at a tolerance that needs several cubics).
-fn fitter_key() -> (u32, u32) {
-    static KEY: OnceLock<(u32, u32)> = OnceLock::new();
+/// The fitters' key: each fitter's version and the bits of its fit of a fixed probe: a
+/// contour of mixed sharp, approximating and interpolating points at a tolerance that needs
+/// several cubics, and for the compatible fitter that contour with a bold master of the
+/// same `s` and one of other `s` values (its two ways of bounding).
+fn fitter_key() -> [u32; 4] {
+    static KEY: OnceLock<[u32; 4]> = OnceLock::new();
     *KEY.get_or_init(|| {
-        let probe = [
+        let contour = |points: &[(f64, f64, f64)]| {
+            XSpline::new(
+                points
+                    .iter()
+                    .map(|&(x, y, s)| ControlPoint::new(x, y, s))
+                    .collect(),
+            )
+        };
+        let light = [
             (0.0, 0.0, 0.0),
             (400.0, -30.0, 1.0),
             (620.0, 250.0, -1.0),
@@ -184,63 +269,125 @@ fn fitter_key() -> (u32, u32) {
             (120.0, 640.0, -0.4),
             (60.0, 320.0, 0.0),
         ];
-        let points = probe
-            .iter()
-            .map(|&(x, y, s)| ControlPoint::new(x, y, s))
-            .collect();
-        let fingerprint = match XSpline::new(points) {
+        let bold = |s_scale: f64| -> Vec<(f64, f64, f64)> {
+            light
+                .iter()
+                .map(|&(x, y, s)| (1.1 * x - 20.0, 1.05 * y - 10.0, s_scale * s))
+                .collect()
+        };
+        // A probe that XSpline's rules ever reject still gives a key that differs from any
+        // earlier one.
+        let static_print = match contour(&light) {
             Ok(spline) => {
-                let fit = fit_contour(&spline, 0.25);
-                let mut hasher = crc32fast::Hasher::new();
                 let mut bytes = Vec::new();
-                put_fit(&mut bytes, &fit);
-                hasher.update(&bytes);
-                hasher.finalize()
+                put_fit(&mut bytes, &fit_contour(&spline, 0.25));
+                crc32fast::hash(&bytes)
             }
-            // The probe is a valid contour; if XSpline's rules ever reject it, the key
-            // still differs from any earlier one.
             Err(_) => u32::MAX,
         };
-        (FIT_VERSION, fingerprint)
+        let positions: Vec<Vec<f64>> = [0.0, 0.3, 1.0].iter().map(|t| vec![1.0 - t, *t]).collect();
+        let mut bytes = Vec::new();
+        for s_scale in [1.0, 0.8] {
+            match (contour(&light), contour(&bold(s_scale))) {
+                (Ok(a), Ok(b)) => match fit_compatible(&[&a, &b], &positions, 0.25) {
+                    Ok(fit) => put_compatible_fit(&mut bytes, &fit),
+                    Err(_) => bytes.push(0xFF),
+                },
+                _ => bytes.push(0xFE),
+            }
+        }
+        [
+            FIT_VERSION,
+            static_print,
+            COMPATIBLE_VERSION,
+            crc32fast::hash(&bytes),
+        ]
     })
 }
 
 // File layout, little-endian:
-//   magic (8) | format version u32 | fit version u32 | fingerprint u32 | entry count u64
-//   entries, each: tolerance u64 | point count u32 | points (x, y, s as u64 bits)
-//                  | max_error f64 | element count u32 | elements (tag u8, points)
-//   CRC-32 of everything before it, u32
+//   magic (8) | format version u32 | fit version u32 | fit fingerprint u32
+//   | compatible version u32 | compatible fingerprint u32
+//   | static entry count u64 | static entries | compatible entry count u64 | compatible entries
+//   | CRC-32 of everything before it, u32
+// A static entry: tolerance u64 | point count u32 | points (x, y, s as u64 bits) | fit
+// A fit: max_error f64 | path
+// A path: element count u32 | elements (tag u8, points as f64 bits)
+// A compatible entry: tolerance u64 | master count u32 | point count u32 | position count u32
+//   | points (per master, x, y, s as u64 bits) | weights (per position, one per master)
+//   | segments u32 | between_masters (u8 0, or u8 1 and f64) | max_error (f64 per position)
+//   | one path per master
 
 const TAG_MOVE: u8 = 0;
 const TAG_LINE: u8 = 1;
 const TAG_CUBIC: u8 = 2;
 const TAG_CLOSE: u8 = 3;
 
-fn encode(entries: &BTreeMap<Key, ContourFit>) -> Vec<u8> {
-    let (version, fingerprint) = fitter_key();
+fn encode(entries: &Entries) -> Vec<u8> {
     let mut out = Vec::new();
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-    out.extend_from_slice(&version.to_le_bytes());
-    out.extend_from_slice(&fingerprint.to_le_bytes());
-    out.extend_from_slice(&(entries.len() as u64).to_le_bytes());
-    for (key, fit) in entries {
+    for v in fitter_key() {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out.extend_from_slice(&(entries.fits.len() as u64).to_le_bytes());
+    for (key, fit) in &entries.fits {
         out.extend_from_slice(&key.tolerance.to_le_bytes());
         out.extend_from_slice(&(key.points.len() as u32).to_le_bytes());
-        for p in &key.points {
-            p.iter()
-                .for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
-        }
+        put_points(&mut out, &key.points);
         put_fit(&mut out, fit);
+    }
+    out.extend_from_slice(&(entries.compatible.len() as u64).to_le_bytes());
+    for (key, fit) in &entries.compatible {
+        out.extend_from_slice(&key.tolerance.to_le_bytes());
+        let points = key.masters.first().map_or(0, Vec::len);
+        for count in [key.masters.len(), points, key.positions.len()] {
+            out.extend_from_slice(&(count as u32).to_le_bytes());
+        }
+        for master in &key.masters {
+            put_points(&mut out, master);
+        }
+        for weight in key.positions.iter().flatten() {
+            out.extend_from_slice(&weight.to_le_bytes());
+        }
+        put_compatible_fit(&mut out, fit);
     }
     let crc = crc32fast::hash(&out);
     out.extend_from_slice(&crc.to_le_bytes());
     out
 }
 
+fn put_points(out: &mut Vec<u8>, points: &[[u64; 3]]) {
+    for v in points.iter().flatten() {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+}
+
 fn put_fit(out: &mut Vec<u8>, fit: &ContourFit) {
     out.extend_from_slice(&fit.max_error.to_bits().to_le_bytes());
-    let elements = fit.path.elements();
+    put_path(out, &fit.path);
+}
+
+/// A compatible fit without its key (whose counts give the number of errors and paths).
+fn put_compatible_fit(out: &mut Vec<u8>, fit: &CompatibleFit) {
+    out.extend_from_slice(&(fit.segments as u32).to_le_bytes());
+    match fit.between_masters {
+        None => out.push(0),
+        Some(bound) => {
+            out.push(1);
+            out.extend_from_slice(&bound.to_bits().to_le_bytes());
+        }
+    }
+    for e in &fit.max_error {
+        out.extend_from_slice(&e.to_bits().to_le_bytes());
+    }
+    for path in &fit.paths {
+        put_path(out, path);
+    }
+}
+
+fn put_path(out: &mut Vec<u8>, path: &BezPath) {
+    let elements = path.elements();
     out.extend_from_slice(&(elements.len() as u32).to_le_bytes());
     let mut put = |tag: u8, points: &[Point]| {
         out.push(tag);
@@ -255,7 +402,7 @@ fn put_fit(out: &mut Vec<u8>, fit: &ContourFit) {
             PathEl::LineTo(p) => put(TAG_LINE, &[p]),
             PathEl::CurveTo(a, b, c) => put(TAG_CUBIC, &[a, b, c]),
             PathEl::ClosePath => put(TAG_CLOSE, &[]),
-            // The fitter writes no quadratics; an unknown tag makes the file unreadable,
+            // The fitters write no quadratics; an unknown tag makes the file unreadable,
             // so this entry is refitted next time instead of trusted.
             PathEl::QuadTo(..) => put(u8::MAX, &[]),
         }
@@ -293,6 +440,14 @@ impl Reader<'_> {
             Err("a number is not finite")
         }
     }
+    /// A finite, non-negative error or bound.
+    fn error(&mut self) -> Result<f64, &'static str> {
+        let v = self.f64()?;
+        if v < 0.0 {
+            return Err("a negative error");
+        }
+        Ok(v)
+    }
     fn point(&mut self) -> Result<Point, &'static str> {
         Ok(Point::new(self.f64()?, self.f64()?))
     }
@@ -303,9 +458,15 @@ impl Reader<'_> {
             _ => Err("a count exceeds the file's size"),
         }
     }
+    /// `count` control points (x, y, s as bits).
+    fn points(&mut self, count: usize) -> Result<Vec<[u64; 3]>, &'static str> {
+        (0..count)
+            .map(|_| Ok([self.u64()?, self.u64()?, self.u64()?]))
+            .collect()
+    }
 }
 
-fn decode(bytes: &[u8]) -> Result<HashMap<Key, ContourFit>, &'static str> {
+fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
     let (body, crc) = bytes
         .split_last_chunk::<4>()
         .ok_or("the file is truncated")?;
@@ -321,22 +482,39 @@ fn decode(bytes: &[u8]) -> Result<HashMap<Key, ContourFit>, &'static str> {
     if r.u32()? != FORMAT_VERSION {
         return Err("written by another version of xglyph");
     }
-    if (r.u32()?, r.u32()?) != fitter_key() {
+    let key = fitter_key();
+    if [r.u32()?, r.u32()?] != [key[0], key[1]] {
         return Err("written by another version of the fitter");
     }
+    if [r.u32()?, r.u32()?] != [key[2], key[3]] {
+        return Err("written by another version of the compatible fitter");
+    }
+    let mut entries = Entries::default();
     let n = r.u64()?;
-    // An entry is at least 8 + 4 + 8 + 4 bytes.
+    // A static entry is at least 8 + 4 + 8 + 4 bytes.
     let n = r.count(n, 24)?;
-    let mut entries = HashMap::with_capacity(n);
     for _ in 0..n {
         let tolerance = r.u64()?;
         let count = r.u32()?;
         let count = r.count(u64::from(count), 24)?;
-        let points = (0..count)
-            .map(|_| Ok([r.u64()?, r.u64()?, r.u64()?]))
-            .collect::<Result<Vec<_>, &'static str>>()?;
-        let fit = read_fit(&mut r)?;
-        if entries.insert(Key { tolerance, points }, fit).is_some() {
+        let points = r.points(count)?;
+        let max_error = r.error()?;
+        let path = read_path(&mut r)?;
+        let fit = ContourFit { path, max_error };
+        if entries
+            .fits
+            .insert(Key { tolerance, points }, fit)
+            .is_some()
+        {
+            return Err("a contour is stored twice");
+        }
+    }
+    let n = r.u64()?;
+    // A compatible entry is at least 8 + 3 × 4 + 4 + 1 bytes.
+    let n = r.count(n, 25)?;
+    for _ in 0..n {
+        let (key, fit) = read_compatible(&mut r)?;
+        if entries.compatible.insert(key, fit).is_some() {
             return Err("a contour is stored twice");
         }
     }
@@ -346,12 +524,71 @@ fn decode(bytes: &[u8]) -> Result<HashMap<Key, ContourFit>, &'static str> {
     Ok(entries)
 }
 
-/// A fit: its error, then one closed contour of lines and cubics.
-fn read_fit(r: &mut Reader<'_>) -> Result<ContourFit, &'static str> {
-    let max_error = r.f64()?;
-    if max_error < 0.0 {
-        return Err("a negative error");
+/// A compatible entry: its key, then a fit with one error per position and one path per
+/// master, all paths of the same elements, as many segments as it says.
+fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit), &'static str> {
+    let tolerance = r.u64()?;
+    let masters = r.u32()?;
+    let masters = r.count(u64::from(masters), 24)?;
+    let points = r.u32()?;
+    let points = r.count(u64::from(points), 24)?;
+    let positions = r.u32()?;
+    let positions = r.count(u64::from(positions), 8)?;
+    if masters == 0 {
+        return Err("a compatible fit without masters");
     }
+    r.count((masters as u64).saturating_mul(points as u64), 24)?;
+    let master_points = (0..masters)
+        .map(|_| r.points(points))
+        .collect::<Result<Vec<_>, _>>()?;
+    r.count((positions as u64).saturating_mul(masters as u64), 8)?;
+    let weights = (0..positions)
+        .map(|_| (0..masters).map(|_| r.u64()).collect())
+        .collect::<Result<Vec<Vec<u64>>, _>>()?;
+    let segments = r.u32()? as usize;
+    let between_masters = match r.u8()? {
+        0 => None,
+        1 => Some(r.error()?),
+        _ => return Err("a compatible fit is malformed"),
+    };
+    r.count(positions as u64, 8)?;
+    let max_error = (0..positions)
+        .map(|_| r.error())
+        .collect::<Result<Vec<_>, _>>()?;
+    let paths = (0..masters)
+        .map(|_| read_path(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let kinds = |p: &BezPath| -> Vec<u8> {
+        p.elements()
+            .iter()
+            .map(|el| match el {
+                PathEl::MoveTo(_) => TAG_MOVE,
+                PathEl::LineTo(_) => TAG_LINE,
+                PathEl::CurveTo(..) => TAG_CUBIC,
+                _ => TAG_CLOSE,
+            })
+            .collect()
+    };
+    let first = kinds(&paths[0]);
+    if paths[1..].iter().any(|p| kinds(p) != first) || first.len() != segments + 2 {
+        return Err("a compatible fit's paths differ in structure");
+    }
+    let key = CompatibleKey {
+        tolerance,
+        positions: weights,
+        masters: master_points,
+    };
+    let fit = CompatibleFit {
+        paths,
+        max_error,
+        between_masters,
+        segments,
+    };
+    Ok((key, fit))
+}
+
+/// One closed contour of lines and cubics.
+fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
     let count = r.u32()?;
     let count = r.count(u64::from(count), 1)?;
     if count < 2 {
@@ -369,7 +606,7 @@ fn read_fit(r: &mut Reader<'_>) -> Result<ContourFit, &'static str> {
             _ => return Err("a path is not one closed contour"),
         }
     }
-    Ok(ContourFit { path, max_error })
+    Ok(path)
 }
 
 #[cfg(test)]
@@ -395,13 +632,13 @@ mod tests {
         let fit = cache.fit(&square(), 0.5);
         let bytes = cache.to_bytes();
         let loaded = decode(&bytes).unwrap();
-        assert_eq!(loaded.len(), 1);
-        let back = loaded.values().next().unwrap();
+        assert_eq!((loaded.fits.len(), loaded.compatible.len()), (1, 0));
+        let back = loaded.fits.values().next().unwrap();
         assert_eq!(back.max_error.to_bits(), fit.max_error.to_bits());
         assert_eq!(back.path, fit.path);
         // Encoding is deterministic.
         let again = FitCache {
-            loaded,
+            loaded: loaded.fits.into_iter().collect(),
             ..FitCache::default()
         };
         again.fit(&square(), 0.5);
@@ -416,10 +653,12 @@ mod tests {
         let good = cache.to_bytes();
         // Re-sign a body whose path lost its ClosePath tag (3 -> 1): the CRC matches, the
         // structure does not.
-        let mut body = good[..good.len() - 4].to_vec();
+        // The last 8 bytes before the checksum count the compatible entries (none).
+        let mut body = good[..good.len() - 12].to_vec();
         let last = body.len() - 1;
         assert_eq!(body[last], TAG_CLOSE);
         body[last] = TAG_LINE;
+        body.extend_from_slice(&0u64.to_le_bytes());
         let crc = crc32fast::hash(&body);
         body.extend_from_slice(&crc.to_le_bytes());
         assert_eq!(

@@ -472,7 +472,9 @@ impl<'a> Fitter<'a> {
             let err = if convex && hull <= goal {
                 hull
             } else {
-                let bound = samples.bound(&span.cubics, probe, self.same_shape, goal);
+                // At a master its own samples are the probe's (bit for bit): no evaluation.
+                let linear = self.same_shape || k < self.masters.len();
+                let bound = samples.bound(&span.cubics, probe, linear, goal);
                 if bound <= goal {
                     bound
                 } else {

@@ -17,6 +17,7 @@ use std::fmt;
 use kurbo::{Affine, BezPath, PathEl, Shape, Vec2};
 use rayon::prelude::*;
 
+use crate::cache::FitCache;
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::designspace::{Designspace, Location, Region, RegionError};
 use crate::fit::fit_contour;
@@ -154,6 +155,17 @@ pub fn outline_family(
     family: &Family,
     tolerance: f64,
 ) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
+    outline_family_with(family, tolerance, None)
+}
+
+/// [`outline_family`] with fits from `cache`: the compatible fits with their checks at
+/// every position, and the static fits of every master for the summary. The result is the
+/// same with and without the cache, bit for bit.
+pub fn outline_family_with(
+    family: &Family,
+    tolerance: f64,
+    cache: Option<&FitCache>,
+) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
     let regions = family.regions().map_err(FamilyError::Regions)?;
     let ds = &family.designspace;
     let locations = check_locations(family);
@@ -178,7 +190,7 @@ pub fn outline_family(
         .collect();
     let glyphs: Vec<FittedGlyph> = order
         .par_iter()
-        .map(|&gi| fit_glyph(&fonts, &indexes, gi, &positions, tolerance))
+        .map(|&gi| fit_glyph(&fonts, &indexes, gi, &positions, tolerance, cache))
         .collect::<Result<_, _>>()?;
 
     let mut summary = FamilySummary {
@@ -246,6 +258,7 @@ fn fit_glyph(
     gi: usize,
     positions: &[Vec<f64>],
     tolerance: f64,
+    cache: Option<&FitCache>,
 ) -> Result<FittedGlyph, FamilyError> {
     let glyph = &fonts[0].glyphs[gi];
     let placed: Vec<Vec<(&Contour, (f64, f64))>> = fonts
@@ -258,7 +271,11 @@ fn fit_glyph(
         .into_par_iter()
         .map(|c| {
             let splines: Vec<&XSpline> = placed.iter().map(|p| p[c].0.spline()).collect();
-            fit_compatible(&splines, positions, tolerance).map_err(|error| FamilyError::Contour {
+            match cache {
+                Some(cache) => cache.fit_compatible(&splines, positions, tolerance),
+                None => fit_compatible(&splines, positions, tolerance),
+            }
+            .map_err(|error| FamilyError::Contour {
                 glyph: glyph.name.clone(),
                 contour: c,
                 error,
@@ -302,7 +319,13 @@ fn fit_glyph(
         .iter()
         .map(|p| {
             p.iter()
-                .map(|(c, _)| segment_count(&fit_contour(c.spline(), tolerance).path))
+                .map(|(c, _)| {
+                    let fit = match cache {
+                        Some(cache) => cache.fit(c.spline(), tolerance),
+                        None => fit_contour(c.spline(), tolerance),
+                    };
+                    segment_count(&fit.path)
+                })
                 .sum::<usize>()
         })
         .max()

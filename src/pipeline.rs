@@ -10,7 +10,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use crate::designspace::Location;
-use crate::family::{outline_family, FamilyError, FamilySummary};
+use crate::family::{outline_family_with, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
@@ -285,15 +285,17 @@ pub fn instance_outputs(
 /// The variable font of a font with masters, `<Family>[<axis tags>].ttf` and `.woff2`
 /// (the naming Google Fonts uses), plus `<Family>-<Master>.ufo` per master and
 /// `<Family>.designspace` ([`crate::ufo::designspace`]), all from the compatible outlines
-/// ([`outline_family`]), with the fit's summary. `None` for a single-master font.
+/// ([`outline_family_with`]), with the fit's summary. `None` for a single-master font. The
+/// compatible fits come from `cache` when it holds them.
 pub fn variable_outputs(
     loaded: &Loaded,
+    cache: Option<&crate::cache::FitCache>,
 ) -> Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError> {
     if !loaded.family.is_variable() {
         return Ok(None);
     }
-    let (family, summary) =
-        outline_family(&loaded.family, loaded.font.tolerance).map_err(PipelineError::Family)?;
+    let (family, summary) = outline_family_with(&loaded.family, loaded.font.tolerance, cache)
+        .map_err(PipelineError::Family)?;
     // Each master's anchors with those its components bring, as the default's
     // `placed_anchors`.
     let anchors: Vec<Vec<_>> = loaded

@@ -279,7 +279,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     };
     let mut files = pipeline::outputs(&loaded.font, &opts)?;
     files.extend(pipeline::instance_outputs(&loaded, &opts)?);
-    let variable = pipeline::variable_outputs(&loaded)?;
+    let variable = pipeline::variable_outputs(&loaded, Some(&cache))?;
     if let Some((var_files, _)) = &variable {
         replace_outputs(&mut files, var_files);
     }

@@ -57,7 +57,7 @@ use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
 pub use features::check_features;
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
-pub use variable::{variable_ttf, variable_ttf_with_anchors};
+pub use variable::{variable_ttf, variable_ttf_explicit_deltas, variable_ttf_with_anchors};
 
 /// Something the model holds that an OpenType font cannot.
 #[derive(Debug)]

@@ -1,9 +1,12 @@
-//! The fitted-contour cache (`src/cache.rs`): hits give bit-identical fits, and a corrupt,
-//! truncated or stale file is ignored (every contour refitted), never trusted.
+//! The fitted-contour cache (`src/cache.rs`): hits give bit-identical fits, static and
+//! compatible, and a corrupt, truncated or stale file is ignored (every contour refitted),
+//! never trusted; a warm build of a font with masters fits nothing and writes the same
+//! bytes.
 
 use std::path::{Path, PathBuf};
 
 use xglyph::cache::{FitCache, LoadOutcome};
+use xglyph::compatible::{fit_compatible, CompatibleFit};
 use xglyph::fit::{fit_contour, ContourFit};
 use xglyph::source::load_font;
 use xglyph::xspline::{ControlPoint, XSpline};
@@ -198,4 +201,281 @@ fn a_corrupt_or_stale_cache_is_ignored_and_rebuilt() {
     let (cache, outcome) = FitCache::load(&path);
     assert!(matches!(outcome, LoadOutcome::Ignored(_)), "{outcome:?}");
     fit_all(&cache, &splines, &direct, 0.5);
+}
+
+/// Every contour of the bundled Regular with its Bold master (unplaced, as
+/// `outline_family` fits them), and the positions a build checks.
+fn master_pairs() -> (Vec<(XSpline, XSpline)>, Vec<Vec<f64>>) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    let (family, _) = xglyph::source::load_family(&dir).expect("glyphs/ loads");
+    let bold = &family.masters[0];
+    let pairs = family
+        .default
+        .glyphs
+        .iter()
+        .zip(&bold.glyphs)
+        .flat_map(|(light, heavy)| light.contours.iter().zip(&heavy.contours))
+        .map(|(a, b)| (a.spline().clone(), b.spline().clone()))
+        .collect();
+    let regions = family.regions().unwrap();
+    let positions = xglyph::family::check_locations(&family)
+        .iter()
+        .map(|l| family.designspace.weights(&regions, l))
+        .collect();
+    (pairs, positions)
+}
+
+fn same_compatible(a: &CompatibleFit, b: &CompatibleFit) -> bool {
+    let bits = |v: &[f64]| v.iter().map(|e| e.to_bits()).collect::<Vec<_>>();
+    a.paths == b.paths
+        && bits(&a.max_error) == bits(&b.max_error)
+        && a.between_masters.map(f64::to_bits) == b.between_masters.map(f64::to_bits)
+        && a.segments == b.segments
+}
+
+#[test]
+fn compatible_fits_come_from_the_cache_bit_for_bit_and_an_edit_refits_one() {
+    let (mut pairs, positions) = master_pairs();
+    pairs.truncate(24);
+    // A pair whose `s` differs too (the other way of bounding).
+    let bold = crate::common::masters::bold(&pairs[3].0, 30.0, 0.9).unwrap();
+    pairs.push((pairs[3].0.clone(), bold));
+    let direct: Vec<CompatibleFit> = pairs
+        .iter()
+        .map(|(a, b)| fit_compatible(&[a, b], &positions, 0.5).unwrap())
+        .collect();
+    let path = temp_dir("compatible").join(".xglyph-cache");
+    let cold = FitCache::new();
+    for ((a, b), expected) in pairs.iter().zip(&direct) {
+        let fit = cold.fit_compatible(&[a, b], &positions, 0.5).unwrap();
+        assert!(same_compatible(&fit, expected));
+    }
+    let distinct = cold.misses();
+    assert_eq!(distinct + cold.reused(), pairs.len());
+    cold.save(&path).unwrap();
+    let (warm, outcome) = FitCache::load(&path);
+    assert_eq!(outcome, LoadOutcome::Loaded(distinct));
+    for (k, ((a, b), expected)) in pairs.iter().zip(&direct).enumerate() {
+        let fit = warm.fit_compatible(&[a, b], &positions, 0.5).unwrap();
+        assert!(same_compatible(&fit, expected), "pair {k}");
+    }
+    assert_eq!((warm.hits(), warm.misses()), (pairs.len(), 0));
+    assert_eq!(warm.to_bytes(), std::fs::read(&path).unwrap());
+    // Each part of the key: the smallest change to one point's `s` in the second master,
+    // one position fewer, another tolerance: a fit, not a hit.
+    let (warm, _) = FitCache::load(&path);
+    let (a, b) = &pairs[5];
+    let mut points = b.points().to_vec();
+    let k = points.iter().position(|p| p.s != 0.0).unwrap();
+    points[k].s = f64::from_bits(points[k].s.to_bits() + 1);
+    let edited = XSpline::new(points).unwrap();
+    let fit = warm.fit_compatible(&[a, &edited], &positions, 0.5).unwrap();
+    assert!(same_compatible(
+        &fit,
+        &fit_compatible(&[a, &edited], &positions, 0.5).unwrap()
+    ));
+    warm.fit_compatible(&[a, b], &positions[1..], 0.5).unwrap();
+    warm.fit_compatible(&[a, b], &positions, 0.25).unwrap();
+    assert_eq!((warm.hits(), warm.misses()), (0, 3));
+    // The static fit of a master and its compatible fit are separate entries.
+    let both = FitCache::new();
+    both.fit(a, 0.5);
+    both.fit_compatible(&[a, b], &positions, 0.5).unwrap();
+    assert_eq!(both.misses(), 2);
+    both.save(&path).unwrap();
+    assert_eq!(FitCache::load(&path).1, LoadOutcome::Loaded(2));
+}
+
+#[test]
+fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
+    let (mut pairs, positions) = master_pairs();
+    pairs.truncate(6);
+    let direct: Vec<CompatibleFit> = pairs
+        .iter()
+        .map(|(a, b)| fit_compatible(&[a, b], &positions, 0.5).unwrap())
+        .collect();
+    let path = temp_dir("compatible-corrupt").join(".xglyph-cache");
+    let good = {
+        let cache = FitCache::new();
+        for (a, b) in &pairs {
+            cache.fit_compatible(&[a, b], &positions, 0.5).unwrap();
+        }
+        cache.to_bytes()
+    };
+    let n = good.len();
+    let resign = |mut b: Vec<u8>| {
+        b.truncate(b.len() - 4);
+        let crc = crc32fast::hash(&b);
+        b.extend_from_slice(&crc.to_le_bytes());
+        b
+    };
+    let flip = |at: usize, mask: u8| {
+        let mut b = good.clone();
+        b[at] ^= mask;
+        b
+    };
+    // Header: magic 8, format 4, fit version 4 and fingerprint 4, compatible version 4
+    // (bytes 20..24) and fingerprint 4 (24..28), no static entry (28..36), then the
+    // compatible entries: the first one's tolerance (44..52) and master count (52..56).
+    assert_eq!(&good[28..36], &0u64.to_le_bytes());
+    assert_eq!(&good[52..56], &2u32.to_le_bytes());
+    let word = |at: usize| u32::from_le_bytes(good[at..at + 4].try_into().unwrap()) as usize;
+    // Then its point and position counts, its points, its weights, and its segment count.
+    let (points, count) = (word(56), word(60));
+    assert_eq!(count, positions.len());
+    let segments = 64 + 2 * points * 24 + count * 2 * 8;
+    let stored_segments = word(segments) as u32;
+    assert!(direct
+        .iter()
+        .any(|f| f.segments == stored_segments as usize));
+    let mut cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "stale compatible fitter",
+            resign(flip(20, 1)),
+            "written by another version of the compatible fitter",
+        ),
+        (
+            "stale compatible fingerprint",
+            resign(flip(26, 4)),
+            "written by another version of the compatible fitter",
+        ),
+        (
+            "no masters",
+            resign({
+                let mut b = good.clone();
+                b[52..56].copy_from_slice(&0u32.to_le_bytes());
+                b
+            }),
+            "",
+        ),
+        (
+            "a huge master count",
+            resign({
+                let mut b = good.clone();
+                b[52..56].copy_from_slice(&u32::MAX.to_le_bytes());
+                b
+            }),
+            "a count exceeds the file's size",
+        ),
+        (
+            "a segment count that does not match the paths",
+            resign({
+                let mut b = good.clone();
+                b[segments..segments + 4].copy_from_slice(&(stored_segments + 1).to_le_bytes());
+                b
+            }),
+            "a compatible fit's paths differ in structure",
+        ),
+    ];
+    for cut in [n - 1, n - 5, n - 40, n / 2, 60] {
+        cases.push(("truncated", good[..cut].to_vec(), ""));
+    }
+    for at in (44..n).step_by((n - 44) / 17) {
+        cases.push(("one bit flipped", flip(at, 0x08), ""));
+    }
+    for (what, bytes, reason) in cases {
+        std::fs::write(&path, &bytes).unwrap();
+        let (cache, outcome) = FitCache::load(&path);
+        match (&outcome, reason) {
+            (LoadOutcome::Ignored(r), "") => assert!(!r.is_empty()),
+            (LoadOutcome::Ignored(r), expected) => assert_eq!(r, expected, "{what}"),
+            _ => panic!("{what}: {outcome:?}"),
+        }
+        for (k, ((a, b), expected)) in pairs.iter().zip(&direct).enumerate() {
+            let fit = cache.fit_compatible(&[a, b], &positions, 0.5).unwrap();
+            assert!(same_compatible(&fit, expected), "{what} at {k}");
+        }
+        assert_eq!(cache.hits(), 0, "{what}: nothing came from the file");
+        // Rebuilt: the next save is the good file again.
+        cache.save(&path).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), good, "{what}");
+    }
+}
+
+/// SHA-256 of every file in `dir` but the cache, by relative path.
+fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    use sha2::{Digest, Sha256};
+    let mut out = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.file_name().unwrap() != ".xglyph-cache" {
+                let rel = path
+                    .strip_prefix(dir)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned();
+                out.insert(rel, Sha256::digest(std::fs::read(&path).unwrap()).to_vec());
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_warm_build_with_masters_fits_nothing_and_writes_the_same_bytes() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/masters");
+    let dir = temp_dir("build-masters");
+    let build = |out: &Path| {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
+            .args([
+                "build",
+                fixture.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(0), "{output:?}");
+        (
+            String::from_utf8(output.stdout).unwrap(),
+            String::from_utf8(output.stderr).unwrap(),
+        )
+    };
+    let (cold, warm) = (dir.join("cold"), dir.join("warm"));
+    let (stdout, _) = build(&cold);
+    assert!(!stdout.contains("from the cache"), "{stdout}");
+    // The file holds the default master's static fits, each master's static fits for the
+    // summary and one compatible fit per contour.
+    let (cache, outcome) = FitCache::load(&cold.join(".xglyph-cache"));
+    drop(cache);
+    let LoadOutcome::Loaded(entries) = outcome else {
+        panic!("{outcome:?}")
+    };
+    std::fs::create_dir_all(&warm).unwrap();
+    std::fs::copy(cold.join(".xglyph-cache"), warm.join(".xglyph-cache")).unwrap();
+    let (stdout, _) = build(&warm);
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("refitted"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    // Hits count every fit handed out (a contour placed twice is two hits).
+    let hits: usize = line
+        .strip_prefix("refitted 0 contours; ")
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    assert!(hits >= entries, "{line}: {entries} entries");
+    assert_eq!(output_hashes(&cold), output_hashes(&warm));
+    // The same cache written again: the same bytes.
+    assert_eq!(
+        std::fs::read(cold.join(".xglyph-cache")).unwrap(),
+        std::fs::read(warm.join(".xglyph-cache")).unwrap()
+    );
+    // A cache damaged in its compatible entries (the last bytes before the checksum) is
+    // ignored with a note, and the outputs are the same again.
+    let mut bytes = std::fs::read(warm.join(".xglyph-cache")).unwrap();
+    let at = bytes.len() - 10;
+    bytes[at] ^= 0x20;
+    std::fs::write(warm.join(".xglyph-cache"), &bytes).unwrap();
+    let (stdout, stderr) = build(&warm);
+    assert!(
+        stderr.contains("note: ignoring the fit cache") && stderr.contains("checksum"),
+        "{stderr}"
+    );
+    assert!(!stdout.contains("from the cache"), "{stdout}");
+    assert_eq!(output_hashes(&cold), output_hashes(&warm));
 }

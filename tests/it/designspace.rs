@@ -35,7 +35,7 @@ fn built() -> &'static Built {
     BUILT.get_or_init(|| {
         let glyphs = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
         let loaded = pipeline::load(&glyphs, None).expect("the bundled font loads");
-        let (files, _) = pipeline::variable_outputs(&loaded)
+        let (files, _) = pipeline::variable_outputs(&loaded, None)
             .expect("builds")
             .expect("the bundled font has masters");
         let (family, _) =

@@ -295,3 +295,89 @@ fn font_toml_licence_and_vendor_errors_name_the_place() {
     let (again, _) = xglyph::source::load_info_text(Path::new("font.toml"), &emitted).expect("ok");
     assert_eq!(again, info);
 }
+
+/// The contours of glyph `name`, as x ranges of their outline's bounding boxes, left to
+/// right, and the caret positions `GDEF` gives the glyph (none for a glyph it does not list).
+fn ligature(bytes: &[u8], name: &str) -> (Vec<(f64, f64)>, Vec<i16>) {
+    use read_fonts::tables::gdef::CaretValue;
+    use read_fonts::{FontRef, TableProvider};
+
+    let face = Face::parse(bytes, 0).expect("parses");
+    let gid = face.glyph_index_by_name(name).expect(name);
+    let path = glyph_outline(&face, gid).expect(name);
+    let mut boxes: Vec<(f64, f64)> = path
+        .elements()
+        .split(|el| matches!(el, kurbo::PathEl::ClosePath))
+        .filter(|els| !els.is_empty())
+        .map(|els| {
+            let b = kurbo::BezPath::from_vec(els.to_vec()).bounding_box();
+            (b.x0, b.x1)
+        })
+        .collect();
+    boxes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let gdef = FontRef::new(bytes).expect("reads").gdef().expect("GDEF");
+    let carets = gdef.lig_caret_list().expect("carets").expect("reads");
+    // A glyph outside the caret list's coverage has none.
+    let Some(index) = carets.coverage().unwrap().get(gid.0) else {
+        return (boxes, Vec::new());
+    };
+    let lig = carets.lig_glyphs().get(index as usize).unwrap();
+    let carets = lig
+        .caret_values()
+        .iter()
+        .map(|c| match c.unwrap() {
+            CaretValue::Format1(c) => c.coordinate(),
+            _ => panic!("{name}: a caret by position was written"),
+        })
+        .collect();
+    (boxes, carets)
+}
+
+/// Issue 18 (FontBakery `contour_count`): `fi` is f, dotless i and dot (3 contours) and `fl`
+/// is f and l (2) in the TTF and OTF, at Regular, wght 550 and Bold, so overlap removal
+/// found nothing touching. They are ligatures: the i or l stem sits closer to the f than in
+/// f + i set apart. In the default master the caret lies in the gap between f and stem.
+#[test]
+fn fi_and_fl_are_separate_contours_with_the_caret_between() {
+    use xglyph::designspace::Location;
+
+    let loaded = xglyph::pipeline::load(Path::new("glyphs"), None).expect("glyphs/ loads");
+    let at = |w: f64| Location([("wght".to_string(), w)].into_iter().collect());
+    let instance = |w| xglyph::pipeline::instance(&loaded, &at(w), None).expect("instance");
+    for (w, font) in [
+        (400.0, bundled()),
+        (550.0, instance(550.0)),
+        (700.0, instance(700.0)),
+    ] {
+        let advance = |n: &str| font.glyphs.iter().find(|g| g.name == n).expect(n).advance;
+        for (flavour, bytes) in [("TTF", ttf(&font).unwrap()), ("OTF", otf(&font).unwrap())] {
+            for (lig, second, contours) in [("fi", "i", 3), ("fl", "l", 2)] {
+                let (boxes, carets) = ligature(&bytes, lig);
+                let at = format!("{lig} at wght {w} ({flavour})");
+                assert_eq!(boxes.len(), contours, "{at}: {boxes:?}");
+                // The f, then the stem (the dot over the stem): a white gap between them.
+                let (f, stem) = (boxes[0], boxes[1]);
+                assert!(
+                    f.1 + 20.0 < stem.0,
+                    "{at}: f {f:?} touches the stem {stem:?}"
+                );
+                // Tighter than f and i side by side (the stem at f's advance + i's left side).
+                let (single, _) = ligature(&bytes, second);
+                let apart = advance("f") + single[0].0;
+                assert!(
+                    stem.0 < apart - 30.0,
+                    "{at}: stem at {}, apart {apart}",
+                    stem.0
+                );
+                if w == 400.0 {
+                    assert_eq!(carets.len(), 1, "{at}");
+                    let caret = f64::from(carets[0]);
+                    assert!(
+                        f.1 < caret && caret < stem.0,
+                        "{at}: caret {caret}, {boxes:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -351,19 +351,36 @@ fn a_build_from_the_cache_writes_the_same_bytes() {
     build(&cold);
     let cache = cold.join(xglyph::cache::CACHE_FILE);
     let (_, outcome) = xglyph::cache::FitCache::load(&cache);
-    // One entry per contour as drawn: composites place their bases' fits.
-    let (font, _) = xglyph::source::load_font(&glyphs).unwrap();
-    let drawn: std::collections::BTreeSet<String> = font
+    // One entry per contour as drawn in each master (composites place their bases' fits),
+    // and one compatible fit per distinct pair of the masters' contours as drawn.
+    let (family, _) = xglyph::source::load_family(&glyphs).unwrap();
+    let drawn = |font_glyphs: &[xglyph::model::Glyph]| -> std::collections::BTreeSet<String> {
+        font_glyphs
+            .iter()
+            .flat_map(|g| &g.contours)
+            .map(|c| format!("{:?}", c.spline().points()))
+            .collect()
+    };
+    let (regular, bold) = (
+        drawn(&family.default.glyphs),
+        drawn(&family.masters[0].glyphs),
+    );
+    let pairs: std::collections::BTreeSet<String> = family
+        .default
         .glyphs
         .iter()
-        .flat_map(|g| &g.contours)
-        .map(|c| format!("{:?}", c.spline().points()))
+        .zip(&family.masters[0].glyphs)
+        .flat_map(|(a, b)| a.contours.iter().zip(&b.contours))
+        .map(|(a, b)| format!("{:?}{:?}", a.spline().points(), b.spline().points()))
         .collect();
-    assert!(drawn.len() > 130, "{}", drawn.len());
+    assert!(regular.len() > 130, "{}", regular.len());
+    let entries = regular.len() + bold.len() + pairs.len();
     assert!(
-        matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n == drawn.len()),
-        "{outcome:?}, {} contours drawn",
-        drawn.len()
+        matches!(outcome, xglyph::cache::LoadOutcome::Loaded(n) if n == entries),
+        "{outcome:?}, {} + {} contours drawn, {} pairs",
+        regular.len(),
+        bold.len(),
+        pairs.len()
     );
     let expected = output_files(&cold);
     // Warm: every contour from the cache.

@@ -1,15 +1,16 @@
 //! The variable TTF (`otf::variable_ttf`) checked from outside, on two families built by
-//! hand:
+//! hand and the bundled typeface:
 //!
 //! - the bundled typeface (glyphs/) as the default master with a second master compatible
 //!   by construction (every point through one affine map: wider, slanted, a little lower;
 //!   advances × 1.15, kerning × 1.5 plus a pair only the Bold kerns);
 //! - a tiny `o`/`l` family with four masters on one axis (Light below the default, an
-//!   intermediate SemiBold and Bold above), so negative and intermediate regions are used.
+//!   intermediate SemiBold and Bold above), so negative and intermediate regions are used;
+//! - and, for OTS and IUP, the bundled typeface with its real Bold master (glyphs/bold/).
 //!
-//! Checked: OTS accepts the font; fontTools' `varLib.instancer` at 5 positions per family
-//! gives outlines within the quadratic accuracy plus grid rounding of the blended cubic
-//! outline, and the advances the rounded masters blend to; skrifa reads outlines (gvar)
+//! Checked: OTS accepts the font; IUP (the deltas `gvar` omits) changes no instance;
+//! fontTools' `varLib.instancer` at 5 positions per family gives outlines within the
+//! quadratic accuracy plus grid rounding of the blended cubic outline, and the advances the rounded masters blend to; skrifa reads outlines (gvar)
 //! and advances (HVAR) at several positions; Chromium lays a line out with
 //! `font-variation-settings` at each named instance to the blended width; the GPOS pair
 //! values at each master are that master's kerning.
@@ -129,6 +130,17 @@ fn bundled() -> &'static OutlinedFamily {
             ],
         };
         family(designspace, font, vec![("Bold", 700.0, glyphs, kerning)])
+    })
+}
+
+/// The bundled typeface with its own masters (glyphs/ and glyphs/bold/), as `build` fits it.
+fn typeface() -> &'static OutlinedFamily {
+    static FAMILY: OnceLock<OutlinedFamily> = OnceLock::new();
+    FAMILY.get_or_init(|| {
+        let loaded = xglyph::pipeline::load(Path::new("glyphs"), None).expect("glyphs/ loads");
+        xglyph::family::outline_family(&loaded.family, loaded.font.tolerance)
+            .expect("glyphs/ masters are compatible")
+            .0
     })
 }
 
@@ -402,7 +414,11 @@ fn ots_accepts_the_variable_fonts() {
     } else {
         vec!["python3", "-m", "ots"]
     };
-    for (name, fam) in [("bundled", bundled().clone()), ("tiny", tiny())] {
+    for (name, fam) in [
+        ("glyphs/", typeface().clone()),
+        ("bundled", bundled().clone()),
+        ("tiny", tiny()),
+    ] {
         let bytes = variable_ttf(&fam).unwrap();
         let dir = write_temp(&bytes);
         let out = Command::new(ots[0])
@@ -874,4 +890,93 @@ fn incompatible_masters_are_errors_naming_glyph_and_master() {
         variable_ttf(&fam).unwrap_err().to_string(),
         "advance of 'o' in master 'SemiBold' is 40000, outside the OpenType range 0..=32767"
     );
+}
+
+/// Compares, with fontTools, the IUP-optimized variable font `a` with the one that writes
+/// every delta (`b`): per tuple the deltas fontTools infers for `a` against `b`'s, then
+/// `varLib.instancer`'s glyf coordinates and advances at each position. Returns the JSON
+/// summary (`omitted` deltas, `mismatches`, `gvar` sizes).
+fn compare_iup(a: &[u8], b: &[u8], wghts: &[f64]) -> Value {
+    const SCRIPT: &str = r#"
+import json, sys
+from fontTools.ttLib import TTFont
+from fontTools.varLib import instancer
+a_path, b_path, locs = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
+a, b = TTFont(a_path), TTFont(b_path)
+mismatches, omitted, tuples = [], 0, 0
+glyf = a["glyf"]
+for name in a.getGlyphOrder():
+    va, vb = a["gvar"].variations.get(name, []), b["gvar"].variations.get(name, [])
+    if len(va) != len(vb):
+        mismatches.append(f"{name}: {len(va)} tuples, explicit {len(vb)}")
+        continue
+    coords, controls = glyf._getCoordinatesAndControls(name, a["hmtx"].metrics)
+    for ta, tb in zip(va, vb):
+        tuples += 1
+        omitted += sum(1 for c in ta.coordinates if c is None)
+        if ta.axes != tb.axes:
+            mismatches.append(f"{name}: regions {ta.axes} != {tb.axes}")
+        ta.calcInferredDeltas(coords, controls.endPts)
+        if list(ta.coordinates) != [tuple(map(float, c)) for c in tb.coordinates]:
+            bad = [i for i, (p, q) in enumerate(zip(ta.coordinates, tb.coordinates)) if tuple(p) != tuple(q)]
+            mismatches.append(f"{name}: inferred deltas differ at points {bad[:8]}")
+for w in locs:
+    ia = instancer.instantiateVariableFont(TTFont(a_path), {"wght": w})
+    ib = instancer.instantiateVariableFont(TTFont(b_path), {"wght": w})
+    for name in ia.getGlyphOrder():
+        ca = list(ia["glyf"][name].getCoordinates(ia["glyf"])[0])
+        cb = list(ib["glyf"][name].getCoordinates(ib["glyf"])[0])
+        if ca != cb or ia["hmtx"][name] != ib["hmtx"][name]:
+            mismatches.append(f"{name} at wght {w}: instances differ")
+print(json.dumps({"omitted": omitted, "tuples": tuples, "mismatches": mismatches,
+    "gvar": [len(a.reader["gvar"]), len(b.reader["gvar"])]}))
+"#;
+    let (da, db) = (write_temp(a), write_temp(b));
+    let out = Command::new("python3")
+        .args(["-c", SCRIPT])
+        .arg(da.path().join("var.ttf"))
+        .arg(db.path().join("var.ttf"))
+        .arg(json!(wghts).to_string())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "fontTools: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Issue 16 (as fontmake does it): `gvar` omits the deltas that interpolation of untouched
+/// points infers, and only those inferred exactly, so fontTools infers every omitted delta
+/// as the explicit one and `varLib.instancer` gives the same glyf coordinates and advances
+/// with and without IUP, at 6 positions (the masters and between them, halfway included).
+#[test]
+fn iup_keeps_every_instance_exact() {
+    if no_fonttools() {
+        return;
+    }
+    let wghts = [400.0, 437.5, 500.0, 550.0, 625.0, 700.0];
+    for (name, fam, wghts) in [
+        ("glyphs/", typeface().clone(), &wghts[..]),
+        ("bundled", bundled().clone(), &wghts[..]),
+        (
+            "tiny",
+            tiny(),
+            &[100.0, 250.0, 400.0, 500.0, 650.0, 900.0][..],
+        ),
+    ] {
+        let optimized = variable_ttf(&fam).unwrap();
+        let explicit = xglyph::otf::variable_ttf_explicit_deltas(&fam).unwrap();
+        let report = compare_iup(&optimized, &explicit, wghts);
+        eprintln!("{name}: {report}");
+        assert_eq!(report["mismatches"], json!([]), "{name}");
+        let gvar = report["gvar"].as_array().unwrap();
+        assert!(gvar[0].as_u64() <= gvar[1].as_u64(), "{name}: {report}");
+        if name == "glyphs/" {
+            // The real Bold has deltas to infer; the affine Bold of `bundled` leaves none
+            // exactly inferable, and `tiny`'s few points pack smaller without.
+            assert!(report["omitted"].as_u64().unwrap() > 0, "{name}: {report}");
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! `gvar`: per glyph and master, the point deltas (phantom points last).
 
-use write_fonts::tables::gvar::{GlyphDelta, GlyphDeltas, GlyphVariations, Gvar, Tent};
+use write_fonts::tables::gvar::{GlyphDeltas, GlyphVariations, Gvar, Tent};
 use write_fonts::types::{F2Dot14, GlyphId};
 
 use super::MasterDeltas;
@@ -23,8 +23,9 @@ fn tents(region: &Region, axis_count: usize) -> Vec<Tent> {
 }
 
 /// The `gvar` table: `deltas[glyph][master]` are the glyph's point deltas (outline points,
-/// then the four phantom points) for the master of `regions[master]`. A master whose
-/// deltas are all zero for a glyph adds no tuple.
+/// then the four phantom points) for the master of `regions[master]`, those a consumer
+/// infers marked optional ([`super::iup`]). A master whose deltas are all zero for a glyph
+/// adds no tuple.
 pub fn gvar(
     regions: &[Region],
     axis_count: u16,
@@ -37,12 +38,9 @@ pub fn gvar(
             let tuples = masters
                 .iter()
                 .zip(regions)
-                .filter(|(d, _)| d.iter().any(|&(x, y)| x != 0 || y != 0))
+                .filter(|(d, _)| d.iter().any(|d| d.x != 0 || d.y != 0))
                 .map(|(d, region)| {
-                    GlyphDeltas::new(
-                        tents(region, usize::from(axis_count)),
-                        d.iter().map(|&(x, y)| GlyphDelta::required(x, y)).collect(),
-                    )
+                    GlyphDeltas::new(tents(region, usize::from(axis_count)), d.clone())
                 })
                 .collect();
             GlyphVariations::new(GlyphId::new(gid as u32), tuples)

@@ -16,13 +16,17 @@
 //! those; the result is within grid rounding (√2/2 units) plus the quadratic accuracy of the
 //! blended cubic outline.
 //!
-//! Limits: axis maps are linear (`avar` is the identity); deltas are all written (no IUP optimisation);
+//! `gvar` omits the deltas that interpolation of untouched points infers exactly ([`iup`]),
+//! so instances are the same as with every delta written.
+//!
+//! Limits: axis maps are linear (`avar` is the identity);
 //! no legacy `kern` table (it cannot vary); the OS/2 weight class is the default's `wght`.
 
 mod avar;
 mod fvar;
 mod gvar;
 mod hvar;
+mod iup;
 pub(crate) use hvar::region_axes;
 mod naming;
 mod quadratic;
@@ -31,6 +35,7 @@ mod stat;
 use kurbo::BezPath;
 use read_fonts::tables::glyf::CurvePoint;
 use write_fonts::tables::glyf::{Contour, SimpleGlyph};
+use write_fonts::tables::gvar::GlyphDelta;
 use write_fonts::types::Tag;
 use write_fonts::BuilderError;
 
@@ -43,8 +48,9 @@ use crate::family::OutlinedFamily;
 use crate::model::Anchor;
 use naming::VariableNames;
 
-/// Per non-default master, one glyph's deltas (outline points then 4 phantom points).
-pub(crate) type MasterDeltas = Vec<Vec<(i16, i16)>>;
+/// Per non-default master, one glyph's deltas (outline points then 4 phantom points), those
+/// that IUP infers optional.
+pub(crate) type MasterDeltas = Vec<Vec<GlyphDelta>>;
 
 /// An axis tag as OpenType wants it: 1 to 4 printable ASCII characters, space-padded.
 fn tag(text: &str) -> Result<Tag, OtfError> {
@@ -66,6 +72,29 @@ pub fn variable_ttf(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
 pub fn variable_ttf_with_anchors(
     family: &OutlinedFamily,
     master_anchors: &[Vec<Vec<Anchor>>],
+) -> Result<Vec<u8>, OtfError> {
+    build(family, master_anchors, Deltas::Optimized)
+}
+
+/// [`variable_ttf`] with every point delta written (no IUP): the reference the optimized
+/// `gvar` is tested against (its instances must be the same).
+pub fn variable_ttf_explicit_deltas(family: &OutlinedFamily) -> Result<Vec<u8>, OtfError> {
+    build(family, &[], Deltas::Explicit)
+}
+
+/// Which point deltas `gvar` writes.
+#[derive(Clone, Copy, PartialEq)]
+enum Deltas {
+    /// Those a consumer cannot infer exactly ([`iup`]).
+    Optimized,
+    /// All of them.
+    Explicit,
+}
+
+fn build(
+    family: &OutlinedFamily,
+    master_anchors: &[Vec<Vec<Anchor>>],
+    kind: Deltas,
 ) -> Result<Vec<u8>, OtfError> {
     let font = &family.default;
     let designspace = &family.designspace;
@@ -110,8 +139,8 @@ pub fn variable_ttf_with_anchors(
                 )
             })?);
         }
-        let (tt, deltas) =
-            glyph_variations(&paths, &advances, font.tolerance, glyph).map_err(|e| match e {
+        let (tt, deltas) = glyph_variations(&paths, &advances, font.tolerance, glyph, kind)
+            .map_err(|e| match e {
                 Incompatible::Master(m) => OtfError::Table(format!(
                     "variable font: glyph '{}' has other path elements in master '{}' than in \
                      the default master",
@@ -214,6 +243,7 @@ fn glyph_variations(
     advances: &[u16],
     accuracy: f64,
     glyph: &super::OtGlyph,
+    kind: Deltas,
 ) -> Result<(TtGlyph, MasterDeltas), Incompatible> {
     let name = &glyph.model_name;
     let masters = quadratic::compatible_contours(paths, accuracy).map_err(Incompatible::Master)?;
@@ -244,6 +274,14 @@ fn glyph_variations(
             range: "0..=65535 points, at most 32766 contours",
         }));
     }
+    let coords: Vec<(i16, i16)> = default.iter().flatten().map(|p| (p.x, p.y)).collect();
+    let contour_ends: Vec<usize> = default
+        .iter()
+        .scan(0, |end, c| {
+            *end += c.len();
+            Some(*end - 1)
+        })
+        .collect();
     let deltas = rounded[1..]
         .iter()
         .zip(&advances[1..])
@@ -256,7 +294,10 @@ fn glyph_variations(
                 .collect();
             let advance_delta = (i32::from(advance) - i32::from(advances[0])) as i16;
             d.extend([(0, 0), (advance_delta, 0), (0, 0), (0, 0)]);
-            d
+            match kind {
+                Deltas::Optimized => iup::optimize(&d, &coords, &contour_ends),
+                Deltas::Explicit => d.iter().map(|&(x, y)| GlyphDelta::required(x, y)).collect(),
+            }
         })
         .collect();
     let tt = if points == 0 {
