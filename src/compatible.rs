@@ -51,7 +51,7 @@ use std::fmt;
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 
-use crate::fit::{self, Stretch};
+use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER_SEGMENT};
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
 
 /// Largest deviation of a position's weight sum from 1.
@@ -763,15 +763,9 @@ impl<'a> Fitter<'a> {
     }
 }
 
-/// Curve samples per unit of parameter in [`JointSamples`] (as [`fit`]'s measure).
-const SAMPLES_PER_SEGMENT: f64 = 20.0;
-/// Fewest samples per span in [`JointSamples`].
-const MIN_SAMPLES: usize = 12;
-/// Most any master's curve may turn (radians) between two joint samples before one is
-/// added between them.
-const MAX_TURN: f64 = 0.35;
-/// Most bisections of one sample step where a curve turns fast.
-const MAX_REFINE: usize = 8;
+// [`JointSamples`] samples each master as [`fit`]'s measure samples its curve: the same
+// density, fewest samples, refinement depth and turn limit (`fit::SAMPLES_PER_SEGMENT`,
+// `MIN_SAMPLES`, `MAX_REFINE`, `MAX_TURN`).
 /// Most halvings of a gap polynomial when its control points bound it above the goal.
 const GAP_HALVINGS: usize = 2;
 /// Newton steps when moving a blended pairing to a blended cubic's nearest points.
@@ -905,7 +899,7 @@ impl JointSamples {
     }
 
     /// Adds the samples strictly between `start` and `end` that keep every master's turn
-    /// between neighbours below [`MAX_TURN`], bisecting at most `depth` times.
+    /// between neighbours below [`fit::MAX_TURN`], bisecting at most `depth` times.
     fn refine(
         &mut self,
         row: &mut impl FnMut(f64) -> Vec<(Point, Vec2)>,
@@ -1304,18 +1298,6 @@ fn halve(c: &[Vec2; 4]) -> ([Vec2; 4], [Vec2; 4]) {
     let b = (m12 + m23) * 0.5;
     let mid = (a + b) * 0.5;
     ([c[0], m01, a, mid], [mid, b, m23, c[3]])
-}
-
-/// Whether a curve between two samples (points and derivatives) may turn by more than
-/// [`MAX_TURN`]: either derivative against the chord, or the two derivatives.
-fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
-    let chord = p1 - p0;
-    let cos = MAX_TURN.cos();
-    let apart = |u: Vec2, v: Vec2| {
-        let norms = u.hypot() * v.hypot();
-        norms > 0.0 && u.dot(v) < cos * norms
-    };
-    apart(d0, chord) || apart(chord, d1) || apart(d0, d1)
 }
 
 /// The parameter at which `cubics` come nearest `points` in the least-squares sense (one

@@ -37,15 +37,15 @@ use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 use crate::xspline::{Segment, XSpline};
 
 /// Curve samples per unit of parameter (one X-spline segment) when measuring a span.
-const SAMPLES_PER_SEGMENT: f64 = 20.0;
+pub(crate) const SAMPLES_PER_SEGMENT: f64 = 20.0;
 /// Fewest curve samples per measured span.
-const MIN_SAMPLES: usize = 12;
+pub(crate) const MIN_SAMPLES: usize = 12;
 /// Most the curve may turn (radians) between two samples before one is added between them.
-const MAX_TURN: f64 = 0.35;
+pub(crate) const MAX_TURN: f64 = 0.35;
 /// Shortest handle, as a fraction of the cubic's chord.
 const MIN_HANDLE: f64 = 1e-4;
 /// Most bisections of one sample step when the curve turns fast.
-const MAX_REFINE: usize = 8;
+pub(crate) const MAX_REFINE: usize = 8;
 /// Fraction of the tolerance a candidate must meet by measurement.
 pub(crate) const SAFETY: f64 = 0.96;
 /// The span search stops when the longest fitting span is known within this ratio.
@@ -752,7 +752,7 @@ impl Samples {
 /// [`MAX_TURN`]: the angle between either derivative and the chord, or between the two
 /// derivatives, exceeds it. A vanishing vector says nothing (the derivative at a sharp
 /// point at the span's end; stretches are cut at cusps, so there is none inside).
-fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
+pub(crate) fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
     let chord = p1 - p0;
     let cos = MAX_TURN.cos();
     let apart = |u: Vec2, v: Vec2| {

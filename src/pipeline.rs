@@ -9,16 +9,20 @@ use std::borrow::Cow;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
+
+use crate::cache::FitCache;
 use crate::designspace::Location;
 use crate::family::{outline_family_with, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
+use crate::layout::Layout;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::remove_overlaps_font;
 use crate::render::{
-    encode_png, render_instances_proof, render_proof, sheet_png_files, ProofOptions, RenderError,
-    SheetOptions,
+    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_with, ProofOptions,
+    RenderError, SheetOptions,
 };
 use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
@@ -186,19 +190,38 @@ pub fn instance(
     location: &Location,
     style: Option<&str>,
 ) -> Result<OutlinedFont, PipelineError> {
+    instance_with(loaded, location, style, OutlineOptions::default())
+}
+
+/// [`instance`] with a fit cache (the instance's blended contours are keyed like any
+/// other: a rebuild refits only those that changed).
+pub fn instance_with(
+    loaded: &Loaded,
+    location: &Location,
+    style: Option<&str>,
+    opts: OutlineOptions<'_>,
+) -> Result<OutlinedFont, PipelineError> {
     let mut font = loaded.family.instance_at(location)?;
     if let Some(style) = style {
         font.info.style = style.to_string();
     }
-    Ok(outline_font_with(
-        &font,
-        loaded.font.tolerance,
-        OutlineOptions::default(),
-    ))
+    Ok(outline_font_with(&font, loaded.font.tolerance, opts))
 }
 
 /// Every named instance of a font with masters, fitted statically, in `font.toml` order.
 pub fn named_instances(loaded: &Loaded) -> Result<Vec<(String, OutlinedFont)>, PipelineError> {
+    named_instances_with(loaded, None)
+}
+
+/// [`named_instances`] with fits from `cache`.
+pub fn named_instances_with(
+    loaded: &Loaded,
+    cache: Option<&FitCache>,
+) -> Result<Vec<(String, OutlinedFont)>, PipelineError> {
+    let opts = OutlineOptions {
+        cache,
+        progress: None,
+    };
     loaded
         .family
         .designspace
@@ -207,7 +230,7 @@ pub fn named_instances(loaded: &Loaded) -> Result<Vec<(String, OutlinedFont)>, P
         .map(|i| {
             Ok((
                 i.name.clone(),
-                instance(loaded, &i.location, Some(&i.name))?,
+                instance_with(loaded, &i.location, Some(&i.name), opts)?,
             ))
         })
         .collect()
@@ -224,13 +247,24 @@ pub fn instance_outputs(
     loaded: &Loaded,
     opts: &BuildOptions,
 ) -> Result<Vec<OutputFile>, PipelineError> {
+    instance_outputs_with(loaded, opts, None)
+}
+
+/// [`instance_outputs`] with the instances' fits from `cache`.
+pub fn instance_outputs_with(
+    loaded: &Loaded,
+    opts: &BuildOptions,
+    cache: Option<&FitCache>,
+) -> Result<Vec<OutputFile>, PipelineError> {
     if !loaded.family.is_variable() || loaded.family.designspace.instances.is_empty() {
         return Ok(Vec::new());
     }
-    let instances = named_instances(loaded)?;
+    let instances = named_instances_with(loaded, cache)?;
     let default_stem = output_stem(&loaded.font.info);
-    let mut files = Vec::new();
-    for ((name, font), named) in instances.iter().zip(&loaded.family.designspace.instances) {
+    let named = &loaded.family.designspace.instances;
+    // Which instances get files of their own (checked in order, before any work).
+    let mut written = Vec::new();
+    for ((name, font), named) in instances.iter().zip(named) {
         let stem = output_stem(&font.info);
         if stem == default_stem {
             let at_default = loaded
@@ -248,19 +282,35 @@ pub fn instance_outputs(
                  `style`"
             )));
         }
-        let ot = for_opentype(font, opts);
-        let ot = ot.as_ref();
-        files.push((PathBuf::from(format!("{stem}.ttf")), otf::ttf(ot)?));
-        files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
-        files.push((
-            PathBuf::from(format!("{stem}.svg")),
-            svg_font(font).into_bytes(),
+        written.push((stem, font));
+    }
+    // Each instance's fonts in parallel, in order; its TTF also shapes its proof block.
+    let built: Vec<Result<InstanceFonts, PipelineError>> = written
+        .par_iter()
+        .map(|(stem, font)| instance_fonts(stem, font, opts))
+        .collect();
+    let built = built.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let mut files = Vec::new();
+    for b in &built {
+        files.extend(b.files.iter().cloned());
+    }
+    let mut layouts = Vec::with_capacity(instances.len());
+    for (name, font) in &instances {
+        let stem = output_stem(&font.info);
+        let ttf = match built.iter().find(|b| b.stem == stem) {
+            Some(b) => b.ttf.clone(),
+            // The instance at the default location: the default master's TTF is its own.
+            None => otf::ttf(font)?,
+        };
+        layouts.push((
+            name,
+            Layout::with_ttf(font, ttf).map_err(RenderError::from)?,
         ));
     }
-    let labelled: Vec<(String, &OutlinedFont)> = instances
+    let labelled: Vec<(String, &Layout<'_>)> = layouts
         .iter()
-        .zip(&loaded.family.designspace.instances)
-        .map(|((name, font), named)| {
+        .zip(named)
+        .map(|((name, layout), named)| {
             let at: Vec<String> = loaded
                 .family
                 .designspace
@@ -274,12 +324,42 @@ pub fn instance_outputs(
                     )
                 })
                 .collect();
-            (format!("{name} ({})", at.join(", ")), font)
+            (format!("{name} ({})", at.join(", ")), layout)
         })
         .collect();
-    let proof = render_instances_proof(&labelled, &instances_proof_options(&opts.proof))?;
+    let proof = render_instances_proof_with(&labelled, &instances_proof_options(&opts.proof))?;
     files.push((PathBuf::from("proof-instances.png"), encode_png(&proof)?));
     Ok(files)
+}
+
+/// One named instance's static fonts: `<stem>.ttf`, `.otf` and `.svg`, and its TTF.
+struct InstanceFonts {
+    stem: String,
+    ttf: Vec<u8>,
+    files: Vec<OutputFile>,
+}
+
+fn instance_fonts(
+    stem: &str,
+    font: &OutlinedFont,
+    opts: &BuildOptions,
+) -> Result<InstanceFonts, PipelineError> {
+    let ot = for_opentype(font, opts);
+    let ot = ot.as_ref();
+    let (ttf, (otf, svg)) = rayon::join(
+        || otf::ttf(ot),
+        || rayon::join(|| otf::otf(ot), || svg_font(font).into_bytes()),
+    );
+    let ttf = ttf?;
+    Ok(InstanceFonts {
+        stem: stem.to_string(),
+        files: vec![
+            (PathBuf::from(format!("{stem}.ttf")), ttf.clone()),
+            (PathBuf::from(format!("{stem}.otf")), otf?),
+            (PathBuf::from(format!("{stem}.svg")), svg),
+        ],
+        ttf,
+    })
 }
 
 /// The variable font of a font with masters, `<Family>[<axis tags>].ttf` and `.woff2`
@@ -315,8 +395,17 @@ pub fn variable_outputs(
                 .collect()
         })
         .collect();
-    let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
-    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    // The font and its WOFF2 on one core, the UFOs on another (rayon); the same bytes
+    // whatever the thread count.
+    let (fonts, ufos) = rayon::join(
+        || -> Result<_, PipelineError> {
+            let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
+            let woff2 = otf::woff2_from_ttf(&ttf)?;
+            Ok((ttf, woff2))
+        },
+        || crate::ufo::designspace::output_files(&family, &loaded.family),
+    );
+    let (ttf, woff2) = fonts?;
     let tags: Vec<&str> = family
         .designspace
         .axes
@@ -337,10 +426,7 @@ pub fn variable_outputs(
     ];
     // One UFO per master from the same compatible outlines, and the `.designspace`; the
     // default master's UFO replaces the static one of [`outputs`].
-    files.extend(crate::ufo::designspace::output_files(
-        &family,
-        &loaded.family,
-    )?);
+    files.extend(ufos?);
     Ok(Some((files, summary)))
 }
 
@@ -369,30 +455,82 @@ pub type OutputFile = (PathBuf, Vec<u8>);
 
 /// Every output of a build, rendered in memory. This is the one list of build outputs;
 /// add a new output here.
+///
+/// The work runs in parallel (rayon): the text outputs (SVG, UFO, specimen) beside the
+/// binary ones, and among those the sheet pages, the proof, the OTF and the WOFF2 beside
+/// each other. The TTF is built once, and the proof and the sheet labels are shaped on it
+/// (its overlaps removed changes no position a shaper reads: advances, `cmap`, GSUB and
+/// GPOS are the same). Each output is a pure function of `font` and `opts`, and the list
+/// keeps its order, so the bytes do not depend on the thread count.
 pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFile>, PipelineError> {
-    let mut files = svg_outputs(font);
-    for (name, png) in sheet_png_files(font, &opts.sheet, "sheet")? {
-        files.push((PathBuf::from(name), png));
-    }
-    files.push((
-        PathBuf::from("proof.png"),
-        encode_png(&render_proof(font, &opts.proof)?)?,
-    ));
     let stem = output_stem(&font.info);
-    let ot = for_opentype(font, opts);
-    let ot = ot.as_ref();
-    let ttf = otf::ttf(ot)?;
-    let woff2 = otf::woff2_from_ttf(&ttf)?;
+    let (binary, text) = rayon::join(
+        || opentype_and_images(font, opts),
+        || -> Result<_, PipelineError> {
+            let (svg, ufo) = rayon::join(|| svg_outputs(font), || crate::ufo::output_files(font));
+            Ok((svg, ufo?))
+        },
+    );
+    let (svg, ufo) = text?;
+    let Binary {
+        sheets,
+        proof,
+        ttf,
+        otf,
+        woff2,
+    } = binary?;
+    let mut files = svg;
+    files.extend(
+        sheets
+            .into_iter()
+            .map(|(name, png)| (PathBuf::from(name), png)),
+    );
+    files.push((PathBuf::from("proof.png"), proof));
     files.push((PathBuf::from(format!("{stem}.ttf")), ttf));
-    files.push((PathBuf::from(format!("{stem}.otf")), otf::otf(ot)?));
+    files.push((PathBuf::from(format!("{stem}.otf")), otf));
     files.push((PathBuf::from(format!("{stem}.woff2")), woff2));
-    files.extend(crate::ufo::output_files(font)?);
+    files.extend(ufo);
     let (woff2_name, otf_name) = (format!("{stem}.woff2"), format!("{stem}.otf"));
     files.push((
         PathBuf::from("specimen.html"),
         otf::specimen_html_sources(font, &[&woff2_name, &otf_name]).into_bytes(),
     ));
     Ok(files)
+}
+
+/// The binary outputs of [`outputs`]: the PNGs and the fonts.
+struct Binary {
+    sheets: Vec<(String, Vec<u8>)>,
+    proof: Vec<u8>,
+    ttf: Vec<u8>,
+    otf: Vec<u8>,
+    woff2: Vec<u8>,
+}
+
+/// The TTF once, then in parallel: the sheet pages and the proof shaped on it, its WOFF2,
+/// and the OTF.
+fn opentype_and_images(font: &OutlinedFont, opts: &BuildOptions) -> Result<Binary, PipelineError> {
+    let ot = for_opentype(font, opts);
+    let ot = ot.as_ref();
+    let ttf = otf::ttf(ot)?;
+    // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
+    let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
+    let ((sheets, proof), (woff2, otf)) = rayon::join(
+        || {
+            rayon::join(
+                || sheet_png_files_with(&layout, &opts.sheet, "sheet"),
+                || encode_png(&render_proof_with(&layout, &opts.proof)?),
+            )
+        },
+        || rayon::join(|| otf::woff2_from_ttf(&ttf), || otf::otf(ot)),
+    );
+    Ok(Binary {
+        sheets: sheets?,
+        proof: proof?,
+        otf: otf?,
+        woff2: woff2?,
+        ttf,
+    })
 }
 
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
@@ -422,9 +560,15 @@ pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
 
 /// Writes `files` (relative paths) under `out`, all or none ([`OutputSet`]).
 pub fn write_outputs(out: &Path, files: &[OutputFile]) -> Result<(), PipelineError> {
+    write_output_files(out, files.to_vec())
+}
+
+/// [`write_outputs`] taking the files, so that their bytes are not copied (a CJK font's
+/// outputs are hundreds of megabytes).
+pub fn write_output_files(out: &Path, files: Vec<OutputFile>) -> Result<(), PipelineError> {
     let mut set = OutputSet::new();
     for (path, bytes) in files {
-        set.add(out.join(path), bytes.clone());
+        set.add(out.join(path), bytes);
     }
     set.commit().map_err(|error| PipelineError::Write {
         dir: out.to_path_buf(),

@@ -94,6 +94,30 @@ pub fn load_cached(
 /// stderr is a terminal (after the first second, so quick runs print nothing); the line is
 /// cleared at the end.
 fn show_progress<T>(progress: &Progress, work: impl FnOnce() -> T) -> T {
+    with_status_line(
+        || {
+            let total = progress.total.load(Ordering::Relaxed);
+            let done = progress.done.load(Ordering::Relaxed);
+            (total > 0).then(|| format!("fitting glyphs: {done}/{total}"))
+        },
+        work,
+    )
+}
+
+/// Runs `work`, meanwhile printing `what` and the seconds spent on stderr when it is a
+/// terminal, as `show_progress` does: rendering and writing a 20,000-glyph font take
+/// seconds too.
+pub fn show_phase<T>(what: &str, work: impl FnOnce() -> T) -> T {
+    let start = Instant::now();
+    with_status_line(
+        || Some(format!("{what}: {} s", start.elapsed().as_secs())),
+        work,
+    )
+}
+
+/// Runs `work`; when stderr is a terminal, prints `status()` (if any) on one line every
+/// 200 ms after the first second, and clears the line at the end.
+fn with_status_line<T>(status: impl Fn() -> Option<String> + Sync, work: impl FnOnce() -> T) -> T {
     if !std::io::stderr().is_terminal() {
         return work();
     }
@@ -104,15 +128,16 @@ fn show_progress<T>(progress: &Progress, work: impl FnOnce() -> T) -> T {
             let mut shown = false;
             while !finished.load(Ordering::Relaxed) {
                 std::thread::park_timeout(Duration::from_millis(200));
-                let total = progress.total.load(Ordering::Relaxed);
-                if total > 0 && start.elapsed() > Duration::from_secs(1) {
-                    let done = progress.done.load(Ordering::Relaxed);
-                    eprint!("\rfitting glyphs: {done}/{total}");
+                if start.elapsed() <= Duration::from_secs(1) {
+                    continue;
+                }
+                if let Some(line) = status() {
+                    // Back to the line start, clear it, print.
+                    eprint!("\r\x1b[K{line}");
                     shown = true;
                 }
             }
             if shown {
-                // Back to the line start and clear it.
                 eprint!("\r\x1b[K");
             }
         });
@@ -260,6 +285,8 @@ fn replace_outputs(files: &mut Vec<OutputFile>, newer: &[OutputFile]) {
 
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
     let cache_path = args.font.out.join(CACHE_FILE);
     let (cache, outcome) = FitCache::load(&cache_path);
     if let LoadOutcome::Ignored(reason) = &outcome {
@@ -277,19 +304,31 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         keep_overlaps: args.keep_overlaps,
         ..BuildOptions::default()
     };
-    let mut files = pipeline::outputs(&loaded.font, &opts)?;
-    files.extend(pipeline::instance_outputs(&loaded, &opts)?);
-    let variable = pipeline::variable_outputs(&loaded, Some(&cache))?;
+    // The three groups of outputs on every core (rayon); errors in this order.
+    let ((files, instance_files), variable) = show_phase("rendering the outputs", || {
+        rayon::join(
+            || {
+                rayon::join(
+                    || pipeline::outputs(&loaded.font, &opts),
+                    || pipeline::instance_outputs_with(&loaded, &opts, Some(&cache)),
+                )
+            },
+            || pipeline::variable_outputs(&loaded, Some(&cache)),
+        )
+    });
+    let mut files = files?;
+    files.extend(instance_files?);
+    let variable = variable?;
     if let Some((var_files, _)) = &variable {
         replace_outputs(&mut files, var_files);
     }
-    pipeline::write_outputs(&args.font.out, &files)?;
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
-    out!(
-        "{}",
-        summary(&Summary::new(&loaded.font), &family, &args.font.out, &files)
-    );
+    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
+    show_phase(&format!("writing {} files", files.len()), || {
+        pipeline::write_output_files(&args.font.out, files)
+    })?;
+    out!("{report}");
     if loaded.family.is_variable() {
         outln!("{}", masters_line(&loaded.family));
     }

@@ -6,10 +6,11 @@ use std::process::ExitCode;
 use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::instance::parse_location;
+use crate::layout::Layout;
 use crate::pipeline::{self, write_outputs};
 use crate::render::{
-    encode_png, render_proof, sheet_png_files, ProofOptions, RenderError, SheetOptions, MAX_AREA,
-    MAX_SIDE,
+    encode_png, render_proof_with, sheet_png_files_with, ProofOptions, RenderError, SheetOptions,
+    MAX_AREA, MAX_SIDE,
 };
 use crate::terminal::outln;
 
@@ -68,6 +69,8 @@ pub struct RenderArgs {
 
 /// Runs `xglyph render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
     check_flags(&args)?;
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let at_font = match &args.at {
@@ -78,33 +81,46 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         None => None,
     };
     let font = at_font.as_ref().unwrap_or(&loaded.font);
+    // One TTF shapes the sheet labels and the proof; the two images render in parallel.
+    let layout = Layout::new(font).map_err(RenderError::from)?;
+    let sheet_opts = SheetOptions {
+        cell_px: args.cell,
+        columns: args.columns,
+        overlay: args.overlay,
+    };
+    let stem = if args.overlay {
+        "sheet-overlay"
+    } else {
+        "sheet"
+    };
+    let proof_opts = ProofOptions {
+        text: args.text.map(|t| t.replace("\\n", "\n")),
+        sizes: args.sizes,
+        width_px: args.width,
+    };
+    let (sheets, proof) = rayon::join(
+        || {
+            (args.only != Some(Only::Proof))
+                .then(|| sheet_png_files_with(&layout, &sheet_opts, stem))
+                .transpose()
+        },
+        || {
+            (args.only != Some(Only::Sheet))
+                .then(|| render_proof_with(&layout, &proof_opts).and_then(|p| encode_png(&p)))
+                .transpose()
+        },
+    );
     let mut files = Vec::new();
-    if args.only != Some(Only::Proof) {
-        let opts = SheetOptions {
-            cell_px: args.cell,
-            columns: args.columns,
-            overlay: args.overlay,
-        };
-        let stem = if args.overlay {
-            "sheet-overlay"
-        } else {
-            "sheet"
-        };
-        let pages = sheet_png_files(font, &opts, stem).map_err(|e| sheet_flags(e, &opts))?;
-        for (name, png) in pages {
-            files.push((PathBuf::from(name), png));
-        }
+    let sheets = sheets.map_err(|e| sheet_flags(e, &sheet_opts))?;
+    for (name, png) in sheets.into_iter().flatten() {
+        files.push((PathBuf::from(name), png));
     }
-    if args.only != Some(Only::Sheet) {
-        let opts = ProofOptions {
-            text: args.text.map(|t| t.replace("\\n", "\n")),
-            sizes: args.sizes,
-            width_px: args.width,
-        };
-        let proof = render_proof(font, &opts).map_err(|e| proof_flags(e, &opts))?;
-        files.push((PathBuf::from("proof.png"), encode_png(&proof)?));
+    if let Some(proof) = proof.map_err(|e| proof_flags(e, &proof_opts))? {
+        files.push((PathBuf::from("proof.png"), proof));
     }
-    write_outputs(&args.font.out, &files)?;
+    super::build::show_phase(&format!("writing {} files", files.len()), || {
+        write_outputs(&args.font.out, &files)
+    })?;
     for (path, _) in &files {
         outln!("wrote {}", args.font.out.join(path).display());
     }

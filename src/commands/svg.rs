@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use super::build::load;
 use super::{CommandError, FontArgs};
 use crate::instance::{parse_location, style_at};
-use crate::pipeline::{instance, svg_outputs, write_outputs};
+use crate::pipeline::{instance, svg_outputs, write_output_files};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -29,6 +29,8 @@ pub struct SvgArgs {
 
 /// Runs `xglyph svg`.
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
     let loaded = load(&args.font.font_dir, args.font.tolerance)?;
     let at_font = match &args.at {
         Some(at) => {
@@ -39,12 +41,14 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
         None => None,
     };
     let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
-    write_outputs(&args.font.out, &files)?;
+    let count = files.len();
+    super::build::show_phase(&format!("writing {count} files"), || {
+        write_output_files(&args.font.out, files)
+    })?;
     outln!(
-        "wrote {} files to {} (SVG font and {} glyph SVGs)",
-        files.len(),
+        "wrote {count} files to {} (SVG font and {} glyph SVGs)",
         args.font.out.display(),
-        files.len() - 1
+        count - 1
     );
     Ok(ExitCode::SUCCESS)
 }

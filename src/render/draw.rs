@@ -166,3 +166,24 @@ pub fn line_px(pixmap: &mut Pixmap, a: Point, b: Point, color: Color) {
 pub fn rgb([r, g, b]: [u8; 3]) -> Color {
     Color::from_rgba8(r, g, b, 255)
 }
+
+/// Puts the opaque image `src` into `dst` with its top left corner at `(x, y)`, clipped to
+/// `dst`: a row-by-row copy. For an opaque `src` it gives exactly the pixels of tiny-skia's
+/// `draw_pixmap` (source-over with full opacity is the source), which runs every pixel
+/// through its high-precision pipeline and took a tenth of a build's CPU for the sheet.
+pub fn put_opaque(dst: &mut Pixmap, src: &Pixmap, x: u32, y: u32) {
+    debug_assert!(src.pixels().iter().all(|p| p.alpha() == u8::MAX));
+    let (dw, dh) = (dst.width(), dst.height());
+    if x >= dw || y >= dh {
+        return;
+    }
+    let width = src.width().min(dw - x) as usize;
+    let rows = src.height().min(dh - y) as usize;
+    let (src_stride, dst_stride) = (src.width() as usize * 4, dw as usize * 4);
+    let (src_data, dst_data) = (src.data(), dst.data_mut());
+    for row in 0..rows {
+        let from = row * src_stride;
+        let to = (y as usize + row) * dst_stride + x as usize * 4;
+        dst_data[to..to + width * 4].copy_from_slice(&src_data[from..from + width * 4]);
+    }
+}

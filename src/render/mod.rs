@@ -15,11 +15,12 @@ use std::fmt;
 use tiny_skia::Pixmap;
 
 pub use proof::{
-    default_text, render_instances_proof, render_proof, render_proof_with, ProofOptions,
+    default_text, render_instances_proof, render_instances_proof_with, render_proof,
+    render_proof_with, ProofOptions,
 };
 pub use sheet::{
-    page_file_names, render_sheet, render_sheet_page, sheet_order, sheet_pages, sheet_png_files,
-    SheetOptions,
+    page_file_names, render_sheet, render_sheet_page, render_sheet_page_with, sheet_order,
+    sheet_pages, sheet_png_files, sheet_png_files_with, SheetOptions,
 };
 
 /// Largest image side we allocate, in pixels.
@@ -86,8 +87,79 @@ pub fn white_pixmap(width: u64, height: u64) -> Result<Pixmap, RenderError> {
 }
 
 /// PNG bytes of a pixmap (deterministic: no time stamps or text chunks).
+///
+/// Encoded with the `png` crate's fast setting (fdeflate, adaptive row filters) rather than
+/// tiny-skia's `encode_png` (miniz at its default level), which took a fifth of a build's
+/// CPU. Our images are opaque and have few colours (anti-aliased black on white, a few
+/// guide colours), so an image of at most 256 colours is written with a palette, one byte
+/// a pixel: on the bundled typeface's sheet and proofs that is 4 to 10 times faster than
+/// tiny-skia's encoder and the files are 15 to 20 % smaller. Other opaque images are RGB;
+/// an image with a translucent pixel is RGBA, un-premultiplied.
 pub fn encode_png(pixmap: &Pixmap) -> Result<Vec<u8>, RenderError> {
-    pixmap
-        .encode_png()
-        .map_err(|e| RenderError::Png(e.to_string()))
+    let (color, palette, data) = match palette_indices(pixmap) {
+        Some((palette, indices)) => (png::ColorType::Indexed, Some(palette), indices),
+        None if pixmap.pixels().iter().all(|p| p.alpha() == u8::MAX) => {
+            let rgb = pixmap
+                .pixels()
+                .iter()
+                .flat_map(|p| [p.red(), p.green(), p.blue()])
+                .collect();
+            (png::ColorType::Rgb, None, rgb)
+        }
+        None => {
+            let rgba = pixmap
+                .pixels()
+                .iter()
+                .flat_map(|p| {
+                    let c = p.demultiply();
+                    [c.red(), c.green(), c.blue(), c.alpha()]
+                })
+                .collect();
+            (png::ColorType::Rgba, None, rgba)
+        }
+    };
+    let png_err = |e: png::EncodingError| RenderError::Png(e.to_string());
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, pixmap.width(), pixmap.height());
+    encoder.set_color(color);
+    encoder.set_depth(png::BitDepth::Eight);
+    if let Some(palette) = palette {
+        encoder.set_palette(palette);
+    }
+    encoder.set_compression(png::Compression::Fast);
+    let mut writer = encoder.write_header().map_err(png_err)?;
+    writer.write_image_data(&data).map_err(png_err)?;
+    writer.finish().map_err(png_err)?;
+    Ok(bytes)
+}
+
+/// The palette (RGB triples, in order of first appearance) and each pixel's index into it,
+/// when the image is opaque and has at most 256 colours; `None` otherwise.
+fn palette_indices(pixmap: &Pixmap) -> Option<(Vec<u8>, Vec<u8>)> {
+    let mut palette = Vec::new();
+    let mut index_of = std::collections::HashMap::new();
+    let mut indices = Vec::with_capacity(pixmap.pixels().len());
+    // Runs of one colour are long (the white background): look up only on a change.
+    let mut last: Option<(tiny_skia::PremultipliedColorU8, u8)> = None;
+    for &p in pixmap.pixels() {
+        let index = match last {
+            Some((color, index)) if color == p => index,
+            _ => {
+                if p.alpha() != u8::MAX {
+                    return None;
+                }
+                let rgb = [p.red(), p.green(), p.blue()];
+                let next = index_of.len();
+                let index = *index_of.entry(rgb).or_insert(next);
+                if index == next {
+                    palette.extend_from_slice(&rgb);
+                }
+                let index = u8::try_from(index).ok()?;
+                last = Some((p, index));
+                index
+            }
+        };
+        indices.push(index);
+    }
+    Some((palette, indices))
 }

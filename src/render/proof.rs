@@ -8,9 +8,9 @@
 
 use std::collections::BTreeSet;
 
-use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
+use tiny_skia::{Color, Pixmap};
 
-use super::draw::{fill_glyph, Placement};
+use super::draw::{fill_glyph, put_opaque, Placement};
 use super::{white_pixmap, RenderError};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
@@ -194,17 +194,41 @@ pub fn render_instances_proof(
     fonts: &[(String, &OutlinedFont)],
     opts: &ProofOptions,
 ) -> Result<Pixmap, RenderError> {
+    let layouts = fonts
+        .iter()
+        .map(|(label, font)| Ok((label.clone(), Layout::new(font)?)))
+        .collect::<Result<Vec<_>, RenderError>>()?;
+    let layouts: Vec<(String, &Layout<'_>)> = layouts.iter().map(|(l, s)| (l.clone(), s)).collect();
+    render_instances_proof_with(&layouts, opts)
+}
+
+/// [`render_instances_proof`] with each font's shaper already built. The blocks are set in
+/// parallel (rayon), and stacked in order.
+pub fn render_instances_proof_with(
+    fonts: &[(String, &Layout<'_>)],
+    opts: &ProofOptions,
+) -> Result<Pixmap, RenderError> {
+    use rayon::prelude::*;
     let Some((_, first)) = fonts.first() else {
         return Err(RenderError::NoGlyphs);
     };
     let opts = ProofOptions {
-        text: Some(opts.text.clone().unwrap_or_else(|| default_text(first))),
+        text: Some(
+            opts.text
+                .clone()
+                .unwrap_or_else(|| default_text(first.font())),
+        ),
         ..opts.clone()
     };
+    check_sizes(&opts)?;
     let label_h = (LABEL_EM * 1.5).ceil();
+    let rendered: Vec<Result<Pixmap, RenderError>> = fonts
+        .par_iter()
+        .map(|(_, layout)| proof_pixmap(layout, &opts))
+        .collect();
     let mut blocks = Vec::with_capacity(fonts.len());
-    for (label, font) in fonts {
-        blocks.push((label, render_proof(font, &opts)?));
+    for ((label, _), block) in fonts.iter().zip(rendered) {
+        blocks.push((label, block?));
     }
     let width = blocks
         .iter()
@@ -228,14 +252,7 @@ pub fn render_instances_proof(
             Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
         );
         y += label_h;
-        img.draw_pixmap(
-            0,
-            y as i32,
-            block.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
-        );
+        put_opaque(&mut img, &block, 0, y as u32);
         y += f64::from(block.height());
     }
     Ok(img)

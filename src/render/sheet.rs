@@ -13,9 +13,9 @@
 //! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
 use kurbo::Point;
-use tiny_skia::{Color, Pixmap, PixmapPaint, Transform};
+use tiny_skia::{Color, Pixmap};
 
-use super::draw::{fill_glyph, line_px, rgb, stroke_glyph, Placement};
+use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement};
 use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
@@ -124,14 +124,26 @@ pub fn sheet_png_files(
     opts: &SheetOptions,
     stem: &str,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
+    sheet_png_files_with(&Layout::new(font)?, opts, stem)
+}
+
+/// [`sheet_png_files`] with a shaper already built (its TTF built once for every page, and
+/// for the proof too: [`Layout::with_ttf`]).
+pub fn sheet_png_files_with(
+    layout: &Layout<'_>,
+    opts: &SheetOptions,
+    stem: &str,
+) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
     use rayon::prelude::*;
-    let pages = sheet_pages(font, opts)?;
+    let pages = sheet_pages(layout.font(), opts)?;
     let names = page_file_names(stem, pages.len());
+    // One scale for every page (the whole font's ink), computed once.
+    let geometry = CellGeometry::new(layout.font(), opts.cell_px);
     names
         .into_par_iter()
         .zip(pages.par_iter())
         .map(|(name, order)| {
-            let png = super::encode_png(&render_sheet_page(font, opts, order)?)?;
+            let png = super::encode_png(&render_page(layout, &geometry, opts, order)?)?;
             Ok((name, png))
         })
         .collect()
@@ -168,7 +180,27 @@ pub fn render_sheet_page(
     opts: &SheetOptions,
     order: &[usize],
 ) -> Result<Pixmap, RenderError> {
+    render_sheet_page_with(&Layout::new(font)?, opts, order)
+}
+
+/// [`render_sheet_page`] with a shaper already built.
+pub fn render_sheet_page_with(
+    layout: &Layout<'_>,
+    opts: &SheetOptions,
+    order: &[usize],
+) -> Result<Pixmap, RenderError> {
     check_options(opts)?;
+    let geometry = CellGeometry::new(layout.font(), opts.cell_px);
+    render_page(layout, &geometry, opts, order)
+}
+
+fn render_page(
+    layout: &Layout<'_>,
+    geometry: &CellGeometry,
+    opts: &SheetOptions,
+    order: &[usize],
+) -> Result<Pixmap, RenderError> {
+    let font = layout.font();
     if order.is_empty() {
         return Err(RenderError::NoGlyphs);
     }
@@ -179,18 +211,14 @@ pub fn render_sheet_page(
     let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
     let rows = n.div_ceil(columns);
     let mut sheet = white_pixmap(columns * cell, rows * cell)?;
-    let geometry = CellGeometry::new(font, opts.cell_px);
-    let layout = Layout::new(font)?;
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
-        let img = render_cell(font, &layout, &geometry, index, opts)?;
-        sheet.draw_pixmap(
-            ((k % columns) * cell) as i32,
-            ((k / columns) * cell) as i32,
-            img.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
+        let img = render_cell(font, layout, geometry, index, opts)?;
+        put_opaque(
+            &mut sheet,
+            &img,
+            ((k % columns) * cell) as u32,
+            ((k / columns) * cell) as u32,
         );
     }
     Ok(sheet)

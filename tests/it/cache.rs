@@ -182,13 +182,7 @@ fn a_corrupt_or_stale_cache_is_ignored_and_rebuilt() {
     }
     let unique = distinct(&splines);
     for (what, bytes, reason) in cases {
-        std::fs::write(&path, &bytes).unwrap();
-        let (cache, outcome) = FitCache::load(&path);
-        match (&outcome, reason) {
-            (LoadOutcome::Ignored(r), "") => assert!(!r.is_empty()),
-            (LoadOutcome::Ignored(r), expected) => assert_eq!(r, expected, "{what}"),
-            _ => panic!("{what}: {outcome:?}"),
-        }
+        let cache = load_ignored(&path, &bytes, what, reason);
         fit_all(&cache, &splines, &direct, 0.5);
         assert_eq!(cache.misses(), unique, "{what}: nothing came from the file");
         // Rebuilt: the next save is the good file again.
@@ -374,13 +368,7 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
         cases.push(("one bit flipped", flip(at, 0x08), ""));
     }
     for (what, bytes, reason) in cases {
-        std::fs::write(&path, &bytes).unwrap();
-        let (cache, outcome) = FitCache::load(&path);
-        match (&outcome, reason) {
-            (LoadOutcome::Ignored(r), "") => assert!(!r.is_empty()),
-            (LoadOutcome::Ignored(r), expected) => assert_eq!(r, expected, "{what}"),
-            _ => panic!("{what}: {outcome:?}"),
-        }
+        let cache = load_ignored(&path, &bytes, what, reason);
         for (k, ((a, b), expected)) in pairs.iter().zip(&direct).enumerate() {
             let fit = cache.fit_compatible(&[a, b], &positions, 0.5).unwrap();
             assert!(same_compatible(&fit, expected), "{what} at {k}");
@@ -478,4 +466,17 @@ fn a_warm_build_with_masters_fits_nothing_and_writes_the_same_bytes() {
     );
     assert!(!stdout.contains("from the cache"), "{stdout}");
     assert_eq!(output_hashes(&cold), output_hashes(&warm));
+}
+
+/// Writes `bytes` as the cache file at `path` and loads it: the load must ignore the file,
+/// for `reason` (any reason when empty). Returns the (empty) cache.
+fn load_ignored(path: &std::path::Path, bytes: &[u8], what: &str, reason: &str) -> FitCache {
+    std::fs::write(path, bytes).unwrap();
+    let (cache, outcome) = FitCache::load(path);
+    match (&outcome, reason) {
+        (LoadOutcome::Ignored(r), "") => assert!(!r.is_empty()),
+        (LoadOutcome::Ignored(r), expected) => assert_eq!(r, expected, "{what}"),
+        _ => panic!("{what}: {outcome:?}"),
+    }
+    cache
 }

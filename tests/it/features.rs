@@ -14,7 +14,6 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use kurbo::Shape;
 use serde_json::{json, Value};
@@ -104,22 +103,6 @@ fn no_python(modules: &str, install: &str) -> bool {
     !tools::available(tools::python_imports(modules), modules, install)
 }
 
-/// Runs a python script with arguments; its stdout as JSON.
-fn python_json(script: &str, args: &[&Path]) -> Value {
-    let out = Command::new("python3")
-        .arg("-c")
-        .arg(script)
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "python: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
 /// fontTools: GDEF glyph classes by name, and every MarkBasePos / MarkMarkPos lookup as
 /// `{"type": ..., "marks": {glyph: [x, y]}, "bases": {glyph: [x, y]}}` (one class each).
 const READ_LAYOUT: &str = r#"
@@ -166,7 +149,7 @@ fn fonttools_reads_gdef_classes_and_mark_anchors() {
     }
     let font = test_font();
     let (_dir, paths) = built(&font);
-    let read = python_json(READ_LAYOUT, &[&paths[0], &paths[1]]);
+    let read = tools::python_json::<Value>(READ_LAYOUT, &[&paths[0], &paths[1]]);
     for (flavour, layout) in ["TTF", "OTF"].iter().zip(read.as_array().unwrap()) {
         let classes = &layout["classes"];
         // 1 base, 2 ligature, 3 mark (GDEF GlyphClassDef).
@@ -237,19 +220,7 @@ print(json.dumps(out))
 "#;
 
 fn shape(path: &Path, texts: &[&str]) -> Vec<Vec<(String, i64, i64, i64)>> {
-    let out = Command::new("python3")
-        .arg("-c")
-        .arg(SHAPE)
-        .arg(path)
-        .arg(json!(texts).to_string())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "uharfbuzz: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    tools::python_json(SHAPE, &[&path, &json!(texts).to_string()])
 }
 
 #[test]
@@ -548,7 +519,7 @@ for w in (400, 550, 700):
     out.append(res)
 print(json.dumps(out))
 "#;
-    let read = python_json(SCRIPT, &[&path]);
+    let read = tools::python_json::<Value>(SCRIPT, &[&path]);
     // Default, halfway (the blend is linear on one axis: weight 0.5), Bold.
     assert_eq!(
         read,

@@ -13,6 +13,7 @@ mod features;
 mod fit;
 mod fit_count;
 mod flatten;
+mod import_bound;
 mod import_font;
 mod import_malformed;
 mod import_output;

@@ -38,6 +38,7 @@ use xglyph::otf::{glyph_order, variable_ttf};
 use xglyph::outline::{OutlinedFont, OutlinedGlyph};
 
 use crate::common::paths;
+use crate::common::tools;
 use crate::studio_browser::Browser;
 
 /// Largest distance grid rounding can move a point of a Bézier curve (√2/2 units).
@@ -477,19 +478,14 @@ for i, w in enumerate(locs):
     kerning.append(pairs)
 print(json.dumps(kerning))
 "#;
-    let out = Command::new("python3")
-        .args(["-c", SCRIPT])
-        .arg(dir.path().join("var.ttf"))
-        .arg(dir.path())
-        .arg(json!(wghts).to_string())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "instancer: {}",
-        String::from_utf8_lossy(&out.stderr)
+    let kerning: Vec<BTreeMap<String, i64>> = tools::python_json(
+        SCRIPT,
+        &[
+            &dir.path().join("var.ttf"),
+            &dir.path(),
+            &json!(wghts).to_string(),
+        ],
     );
-    let kerning: Vec<BTreeMap<String, i64>> = serde_json::from_slice(&out.stdout).unwrap();
     kerning
         .into_iter()
         .enumerate()
@@ -932,19 +928,14 @@ print(json.dumps({"omitted": omitted, "tuples": tuples, "mismatches": mismatches
     "gvar": [len(a.reader["gvar"]), len(b.reader["gvar"])]}))
 "#;
     let (da, db) = (write_temp(a), write_temp(b));
-    let out = Command::new("python3")
-        .args(["-c", SCRIPT])
-        .arg(da.path().join("var.ttf"))
-        .arg(db.path().join("var.ttf"))
-        .arg(json!(wghts).to_string())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "fontTools: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    tools::python_json(
+        SCRIPT,
+        &[
+            &da.path().join("var.ttf"),
+            &db.path().join("var.ttf"),
+            &json!(wghts).to_string(),
+        ],
+    )
 }
 
 /// Issue 16 (as fontmake does it): `gvar` omits the deltas that interpolation of untouched

@@ -301,3 +301,91 @@ fn a_killed_build_leaves_only_whole_files() {
     assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
     assert_eq!(tree(&out), want);
 }
+
+/// Every regular file under `dir` by relative path: its inode (a replaced file gets a new
+/// one) and its bytes.
+#[cfg(unix)]
+fn inodes(dir: &Path) -> std::collections::BTreeMap<String, (u64, Vec<u8>)> {
+    use std::os::unix::fs::MetadataExt;
+    tree(dir)
+        .into_iter()
+        .filter_map(|(name, bytes)| {
+            let meta = fs::symlink_metadata(dir.join(&name)).unwrap();
+            meta.is_file().then(|| (name, (meta.ino(), bytes)))
+        })
+        .collect()
+}
+
+#[cfg(unix)]
+#[test]
+fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
+    let dir = scratch("unchanged");
+    let out = dir.join("out");
+    let font = dir.join("font");
+    let result = build(&font, &out);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    let first = inodes(&out);
+    // Nothing changed: no file is replaced (same inode), so nothing is written.
+    let result = build(&font, &out);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    assert_eq!(inodes(&out), first);
+    // One glyph edited (the apex of `A` moves up by 10 units).
+    let a = font.join("A_.toml");
+    let source = fs::read_to_string(&a).unwrap();
+    fs::write(
+        &a,
+        source.replace(
+            "[280, 700, 0], [360, 700, 0]",
+            "[280, 710, 0], [360, 710, 0]",
+        ),
+    )
+    .unwrap();
+    let result = build(&font, &out);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    let second = inodes(&out);
+    // The result is what a build into an empty folder writes (the fit cache aside: it
+    // keeps the old fit of `A` too).
+    let not_cache = |n: &String| n != xglyph::cache::CACHE_FILE;
+    reference(&dir);
+    let fresh: Vec<_> = inodes(&dir.join("reference"))
+        .into_iter()
+        .filter(|(n, _)| not_cache(n))
+        .map(|(n, (_, b))| (n, b))
+        .collect();
+    let rebuilt: Vec<_> = second
+        .iter()
+        .filter(|(n, _)| not_cache(n))
+        .map(|(n, (_, b))| (n.clone(), b.clone()))
+        .collect();
+    assert!(rebuilt == fresh, "the rebuild differs from a fresh build");
+    let (mut replaced, mut kept) = (Vec::new(), Vec::new());
+    for (name, (ino, bytes)) in &second {
+        let (old_ino, old_bytes) = &first[name];
+        if bytes == old_bytes {
+            assert_eq!(ino, old_ino, "{name} has the same bytes but was replaced");
+            kept.push(name.as_str());
+        } else {
+            assert_ne!(ino, old_ino, "{name} changed in place, not replaced");
+            replaced.push(name.as_str());
+        }
+    }
+    // `A` is in its own SVG, the fonts and the images; `o` and `V` are not touched.
+    for name in [
+        "svg/A_.svg",
+        "sheet.png",
+        "proof.png",
+        "MiniTest-Regular.ttf",
+    ] {
+        assert!(
+            replaced.contains(&name),
+            "{name} not rewritten: {replaced:?}"
+        );
+    }
+    for name in [
+        "svg/o.svg",
+        "svg/V_.svg",
+        "MiniTest-Regular.ufo/glyphs/o.glif",
+    ] {
+        assert!(kept.contains(&name), "{name} rewritten: {kept:?}");
+    }
+}

@@ -2,6 +2,7 @@
 //! tool skips the test with a printed notice, unless `XGLYPH_REQUIRE_TOOLS=1` (CI), which
 //! turns it into a failure.
 
+use std::ffi::OsStr;
 use std::process::Command;
 
 /// `ok`, or the skip: prints that `what` is missing and how to `install` it, or panics
@@ -42,4 +43,20 @@ pub fn run(cmd: &mut Command) -> String {
     );
     assert!(out.status.success(), "{cmd:?} failed:\n{text}");
     text
+}
+
+/// Runs the Python `script` with `args`, asserts it exits 0, and parses its stdout as JSON.
+pub fn python_json<T: serde::de::DeserializeOwned>(script: &str, args: &[&dyn AsRef<OsStr>]) -> T {
+    let out = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .args(args.iter().map(|a| a.as_ref()))
+        .output()
+        .expect("python3 runs");
+    assert!(
+        out.status.success(),
+        "python: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
 }
