@@ -879,7 +879,7 @@ fn fit_span_sampled(
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
     let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal, stop);
+    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, u, goal, stop);
     (cubic, sampled, samples)
 }
 
@@ -896,7 +896,7 @@ fn polish(
     d1: Vec2,
     alpha: f64,
     beta: f64,
-    u0: &[f64],
+    mut u: Vec<f64>,
     goal: f64,
     stop: Stop,
 ) -> (CubicBez, f64) {
@@ -905,7 +905,6 @@ fn polish(
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
     let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
-    let mut u = u0.to_vec();
     let mut w = vec![1.0 / n as f64; n];
     let cubic_of = |alpha: f64, beta: f64| CubicBez::new(p0, p0 + alpha * d0, p3 - beta * d1, p3);
     // (alpha, beta, worst sample distance, Gauss-Newton step) of the best cubic so far.
