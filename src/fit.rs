@@ -26,9 +26,9 @@
 //!
 //! Limits: the bound is proven against the samples' Hermite interpolant, whose own error
 //! (O(h^4) at 20 samples per segment) is covered only by the spot checks on the true curve,
-//! not proven. Seed hunts over 3,000 random contours of the proptest's distribution
-//! (`cargo run --release --example hunt -- 2000 7731205`, and 1000 on seed 9104417),
-//! checked with the tests' dense two-sided checker, measured at most 0.9600 of the
+//! not proven. Seed hunts over 4,000 random contours of the proptest's distribution
+//! (`cargo run --release --example hunt -- 2000 SEED`, seeds 8120261 and 5550402),
+//! checked with the tests' dense two-sided checker, measured at most 0.9599 of the
 //! tolerance at this acceptance (earlier builds: at most 0.961; 0.990 when accepting at
 //! 99 %).
 
@@ -68,7 +68,7 @@ const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
 const MIN_POLISH_SAMPLES: usize = 6;
 /// Fewest grid steps per trial span of [`fit_contour`]'s search: polishing costs in
 /// proportion to the samples, and most spans are short enough that this minimum sets their
-/// number (6 cost 4 % more instructions on the corpus, for 2 fewer cubics).
+/// number (6 cost 3 % more instructions on the corpus, for the same cubic count).
 const MIN_GRID_STEPS: usize = 4;
 /// A trial span short of the stretch's end whose worst sample distance falls below this
 /// fraction of [`NEAR_GOAL`] (after [`LOW_ROUND`] rounds) stops polishing: it fits, but is
