@@ -1565,8 +1565,9 @@ mod tests {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
                 let samples = Grid::new(&spline, start).samples(a, b);
+                let stop = Stop::trial(0.0);
                 let (cubic, _, samples) =
-                    fit_span_sampled(&spline, (a, b), samples, d0, start, end, 0.48, 0.0);
+                    fit_span_sampled(&spline, (a, b), samples, d0, start, end, 0.48, stop);
                 let golden = measure(&spline, a, b, &cubic);
                 for goal in [0.48, 1.05 * golden] {
                     let err = measure_within(&spline, &samples, &cubic, goal);
