@@ -19,7 +19,7 @@ use crate::layout::Layout;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
-use crate::overlap::remove_overlaps_font;
+use crate::overlap::remove_overlaps_font_with;
 use crate::render::{
     encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
@@ -345,7 +345,7 @@ fn instance_fonts(
     font: &OutlinedFont,
     opts: &BuildOptions,
 ) -> Result<InstanceFonts, PipelineError> {
-    let ot = for_opentype(font, opts);
+    let ot = for_opentype(font, opts, &Reuse::off());
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
         || otf::ttf(ot),
@@ -536,7 +536,7 @@ fn opentype_and_images(
     stem: &str,
     reuse: &Reuse,
 ) -> Result<Binary, PipelineError> {
-    let ot = for_opentype(font, opts);
+    let ot = for_opentype(font, opts, reuse);
     let ot = ot.as_ref();
     let ttf = otf::ttf(ot)?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
@@ -590,11 +590,16 @@ fn woff2_reusing(ttf: &[u8], name: &str, reuse: &Reuse) -> Result<Vec<u8>, OtfEr
 
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
 /// `opts.keep_overlaps`.
-fn for_opentype<'a>(font: &'a OutlinedFont, opts: &BuildOptions) -> Cow<'a, OutlinedFont> {
+/// Unions made by the last build are taken from `reuse`.
+fn for_opentype<'a>(
+    font: &'a OutlinedFont,
+    opts: &BuildOptions,
+    reuse: &Reuse,
+) -> Cow<'a, OutlinedFont> {
     if opts.keep_overlaps {
         Cow::Borrowed(font)
     } else {
-        Cow::Owned(remove_overlaps_font(font))
+        Cow::Owned(remove_overlaps_font_with(font, reuse))
     }
 }
 

@@ -16,6 +16,11 @@
 //! sources stay the only source of truth; no modification time is read. Outputs are
 //! therefore byte-identical with and without this record.
 //!
+//! The same record holds outlines made from outlines: each glyph's union of overlapping
+//! contours ([`crate::overlap`]), keyed by its input outline and the union's setting, so
+//! that a rebuild unions only the glyphs that changed. A union equal to its input (a glyph
+//! without overlaps) is recorded as such, not stored again.
+//!
 //! Limit: a key is as complete as the code that builds it; an output depends only on what
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
@@ -40,7 +45,7 @@ const MAGIC: &[u8; 8] = b"XGLYPHOR";
 const FORMAT_VERSION: u32 = 1;
 
 /// What an output's bytes are made from, hashed (SHA-256).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Key([u8; 32]);
 
 /// Builds a [`Key`]: every input goes in with its length or its kind, so that two
@@ -91,22 +96,7 @@ impl KeyBuilder {
     pub fn path(&mut self, path: &BezPath) -> &mut Self {
         // One buffer, one update: hashing element by element costs more than the hash.
         let mut buf = Vec::with_capacity(path.elements().len() * 40);
-        let mut put = |tag: u8, points: &[kurbo::Point]| {
-            buf.push(tag);
-            for p in points {
-                buf.extend_from_slice(&p.x.to_bits().to_le_bytes());
-                buf.extend_from_slice(&p.y.to_bits().to_le_bytes());
-            }
-        };
-        for el in path.elements() {
-            match *el {
-                PathEl::MoveTo(p) => put(0, &[p]),
-                PathEl::LineTo(p) => put(1, &[p]),
-                PathEl::QuadTo(a, b) => put(2, &[a, b]),
-                PathEl::CurveTo(a, b, c) => put(3, &[a, b, c]),
-                PathEl::ClosePath => put(4, &[]),
-            }
-        }
+        put_path(&mut buf, path);
         self.bytes(&buf)
     }
 
@@ -152,6 +142,11 @@ pub struct Reuse {
     /// This build's records.
     now: Mutex<BTreeMap<PathBuf, Record>>,
     reused: AtomicUsize,
+    /// Outlines made from outlines (a glyph's contours unioned) by the last build, by key;
+    /// `None` when the outline was its input unchanged (most glyphs: no overlap).
+    earlier_paths: HashMap<Key, Option<BezPath>>,
+    /// Those of this build.
+    now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
 }
 
 impl Reuse {
@@ -177,8 +172,9 @@ impl Reuse {
             Err(e) => return (reuse, Some(crate::write::reason(&e))),
         };
         match parse(&bytes) {
-            Ok(earlier) => {
+            Ok((earlier, paths)) => {
                 reuse.earlier = earlier;
+                reuse.earlier_paths = paths;
                 (reuse, None)
             }
             Err(why) => (reuse, Some(why.to_string())),
@@ -212,6 +208,28 @@ impl Reuse {
         };
         self.record(path, record);
         Ok(bytes)
+    }
+
+    /// The outline `make()` computes from `input` under `key` (which must cover `input`
+    /// and every setting `make` reads): from the last build when it made it, else made now.
+    /// Kept for the next build either way.
+    pub fn path_or_make(&self, key: Key, input: &BezPath, make: impl FnOnce() -> BezPath) -> BezPath {
+        if self.out.is_none() {
+            return make();
+        }
+        let (path, stored) = match self.earlier_paths.get(&key) {
+            Some(None) => (input.clone(), None),
+            Some(Some(path)) => (path.clone(), Some(path.clone())),
+            None => {
+                let path = make();
+                let stored = (path != *input).then(|| path.clone());
+                (path, stored)
+            }
+        };
+        if let Ok(mut now) = self.now_paths.lock() {
+            now.insert(key, stored);
+        }
+        path
     }
 
     fn record(&self, path: &Path, record: Record) {
@@ -251,14 +269,36 @@ impl Reuse {
             body.extend_from_slice(&record.key.0);
             body.extend_from_slice(&record.bytes);
         }
+        let paths = self
+            .now_paths
+            .lock()
+            .map_err(|_| io::Error::other("a build thread panicked"))?;
+        body.extend_from_slice(&(paths.len() as u32).to_le_bytes());
+        for (key, path) in paths.iter() {
+            body.extend_from_slice(&key.0);
+            match path {
+                None => body.push(0),
+                Some(path) => {
+                    body.push(1);
+                    put_path(&mut body, path);
+                }
+            }
+        }
         let crc = crc32fast::hash(&body);
         body.extend_from_slice(&crc.to_le_bytes());
-        crate::write::write_atomic(&out.join(REUSE_FILE), &body)
+        let path = out.join(REUSE_FILE);
+        if fs::read(&path).is_ok_and(|old| old == body) {
+            return Ok(());
+        }
+        crate::write::write_atomic(&path, &body)
     }
 }
 
 /// The records of a record file, or what is wrong with it.
-fn parse(bytes: &[u8]) -> Result<HashMap<PathBuf, Record>, &'static str> {
+#[allow(clippy::type_complexity)]
+fn parse(
+    bytes: &[u8],
+) -> Result<(HashMap<PathBuf, Record>, HashMap<Key, Option<BezPath>>), &'static str> {
     let (body, crc) = bytes
         .split_last_chunk::<4>()
         .ok_or("the file is truncated")?;
@@ -288,10 +328,71 @@ fn parse(bytes: &[u8]) -> Result<HashMap<PathBuf, Record>, &'static str> {
             return Err("a path is recorded twice");
         }
     }
+    let count = r.u32()? as usize;
+    let mut paths = HashMap::new();
+    for _ in 0..count {
+        let key = Key(r.array()?);
+        let path = match r.array::<1>()?[0] {
+            0 => None,
+            1 => Some(read_path(&mut r)?),
+            _ => return Err("an outline record is malformed"),
+        };
+        if paths.insert(key, path).is_some() {
+            return Err("an outline is recorded twice");
+        }
+    }
     if !r.0.is_empty() {
         return Err("bytes follow the last record");
     }
-    Ok(records)
+    Ok((records, paths))
+}
+
+// A path: element count u32 | elements (tag u8: 0 move, 1 line, 2 quad, 3 cubic, 4 close;
+// then the points as f64 bits).
+fn put_path(out: &mut Vec<u8>, path: &BezPath) {
+    out.extend_from_slice(&(path.elements().len() as u32).to_le_bytes());
+    let mut put = |tag: u8, points: &[kurbo::Point]| {
+        out.push(tag);
+        for p in points {
+            out.extend_from_slice(&p.x.to_bits().to_le_bytes());
+            out.extend_from_slice(&p.y.to_bits().to_le_bytes());
+        }
+    };
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) => put(0, &[p]),
+            PathEl::LineTo(p) => put(1, &[p]),
+            PathEl::QuadTo(a, b) => put(2, &[a, b]),
+            PathEl::CurveTo(a, b, c) => put(3, &[a, b, c]),
+            PathEl::ClosePath => put(4, &[]),
+        }
+    }
+}
+
+/// Closed subpaths of finite points (what a union gives), possibly none.
+fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
+    let count = r.u32()? as usize;
+    if count > r.0.len() {
+        return Err("the file is truncated");
+    }
+    let mut path = BezPath::new();
+    let mut open = false;
+    for _ in 0..count {
+        let tag = r.array::<1>()?[0];
+        match (tag, open) {
+            (0, false) => path.move_to(r.point()?),
+            (1, true) => path.line_to(r.point()?),
+            (2, true) => path.quad_to(r.point()?, r.point()?),
+            (3, true) => path.curve_to(r.point()?, r.point()?, r.point()?),
+            (4, true) => path.close_path(),
+            _ => return Err("an outline is not closed subpaths"),
+        }
+        open = tag != 4;
+    }
+    if open {
+        return Err("an outline is not closed subpaths");
+    }
+    Ok(path)
 }
 
 /// Reads a record file front to back.
@@ -315,6 +416,15 @@ impl<'a> Reader<'a> {
 
     fn u32(&mut self) -> Result<u32, &'static str> {
         Ok(u32::from_le_bytes(self.array()?))
+    }
+
+    fn point(&mut self) -> Result<kurbo::Point, &'static str> {
+        let x = f64::from_le_bytes(self.array()?);
+        let y = f64::from_le_bytes(self.array()?);
+        if !(x.is_finite() && y.is_finite()) {
+            return Err("a number is not finite");
+        }
+        Ok(kurbo::Point::new(x, y))
     }
 }
 

@@ -354,6 +354,12 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             cache_path.display()
         );
     }
+    if reuse.reused() > 0 {
+        outln!(
+            "took {} outputs unchanged from the last build (sheet pages, proof, WOFF2)",
+            reuse.reused()
+        );
+    }
     // The outputs are written: a cache that cannot be written only costs the next build time.
     if let Err(e) = reuse.save() {
         errln!(
