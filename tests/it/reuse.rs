@@ -229,3 +229,43 @@ fn a_rebuild_takes_unchanged_outputs_and_writes_the_bytes_of_a_fresh_build() {
     );
     assert_ne!(output_files(&out), output_files(&fresh_out));
 }
+
+#[test]
+fn unions_from_the_record_are_those_made_anew() {
+    use xglyph::overlap::{remove_overlaps_font, remove_overlaps_font_with};
+    let dir = scratch("unions");
+    // Glyph 0 of two overlapping squares, glyph 1 of two apart (nothing to union).
+    let mut font = cjk_like();
+    for (k, d) in [(0, 300.0), (1, 1000.0)] {
+        let mut path = kurbo::BezPath::new();
+        for x in [0.0, d] {
+            path.extend(kurbo::Shape::path_elements(
+                &kurbo::Rect::new(x, x, x + 500.0, x + 500.0),
+                0.1,
+            ));
+        }
+        font.glyphs[k].path = path;
+    }
+    let fresh = remove_overlaps_font(&font);
+    let first = load(&dir);
+    let made = remove_overlaps_font_with(&font, &first);
+    first.save().unwrap();
+    let second = load(&dir);
+    let taken = remove_overlaps_font_with(&font, &second);
+    for ((a, b), c) in fresh.glyphs.iter().zip(&made.glyphs).zip(&taken.glyphs) {
+        assert_eq!(a.path, b.path, "{}", a.name);
+        assert_eq!(a.path, c.path, "{}", a.name);
+        assert_eq!(a.segments, c.segments, "{}", a.name);
+    }
+    // Glyph 0's union is one contour (so the record holds an outline), glyph 1 keeps two.
+    let subpaths = |p: &kurbo::BezPath| {
+        p.elements()
+            .iter()
+            .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+            .count()
+    };
+    assert_eq!(subpaths(&fresh.glyphs[0].path), 1);
+    assert_eq!(subpaths(&fresh.glyphs[1].path), 2);
+    let record = std::fs::read(dir.join(REUSE_FILE)).unwrap();
+    assert!(record.len() > 200, "{} bytes", record.len());
+}
