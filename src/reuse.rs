@@ -213,7 +213,12 @@ impl Reuse {
     /// The outline `make()` computes from `input` under `key` (which must cover `input`
     /// and every setting `make` reads): from the last build when it made it, else made now.
     /// Kept for the next build either way.
-    pub fn path_or_make(&self, key: Key, input: &BezPath, make: impl FnOnce() -> BezPath) -> BezPath {
+    pub fn path_or_make(
+        &self,
+        key: Key,
+        input: &BezPath,
+        make: impl FnOnce() -> BezPath,
+    ) -> BezPath {
         if self.out.is_none() {
             return make();
         }
@@ -449,7 +454,11 @@ pub fn glyph_key(glyph: &OutlinedGlyph, contours: bool) -> Key {
 /// ([`glyph_key`], hashed in parallel).
 pub fn font_key(font: &OutlinedFont, ttf: &[u8]) -> Key {
     use rayon::prelude::*;
-    let glyphs: Vec<Key> = font.glyphs.par_iter().map(|g| glyph_key(g, false)).collect();
+    let glyphs: Vec<Key> = font
+        .glyphs
+        .par_iter()
+        .map(|g| glyph_key(g, false))
+        .collect();
     let mut k = KeyBuilder::new("font");
     k.bytes(ttf)
         .str(&format!("{:?}", font.info))

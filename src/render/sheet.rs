@@ -190,7 +190,12 @@ fn page_key(
         .f64(geo.label_em)
         .f64(geo.scale)
         .f64(geo.baseline);
-    for v in [info.ascender, info.descender, info.cap_height, info.x_height] {
+    for v in [
+        info.ascender,
+        info.descender,
+        info.cap_height,
+        info.x_height,
+    ] {
         k.f64(v);
     }
     k.u64(order.len() as u64);
@@ -198,7 +203,9 @@ fn page_key(
     for &i in order {
         let g = &font.glyphs[i];
         k.key(&glyph_key(g, opts.overlay));
-        uses_font |= label(&g.name, &g.unicodes).chars().all(|c| layout.covers(c));
+        uses_font |= label(&g.name, &g.unicodes)
+            .chars()
+            .all(|c| layout.covers(c));
     }
     if uses_font {
         // The label is shaped on the TTF and drawn with the font's glyphs.

@@ -29,7 +29,9 @@ fn scratch(name: &str) -> PathBuf {
 /// 130 square glyphs from U+4E00 on (no Latin, so every label is in the built-in face):
 /// three sheet pages of 64, 64 and 2 cells at one column of 32 px.
 fn cjk_like() -> OutlinedFont {
-    let mut font: Font = load_font(&repo("tests/fixtures/mini")).expect("mini loads").0;
+    let mut font: Font = load_font(&repo("tests/fixtures/mini"))
+        .expect("mini loads")
+        .0;
     let square = Contour::new(
         [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
             .iter()
@@ -102,7 +104,9 @@ fn only_the_sheet_page_of_an_edited_glyph_is_drawn_again() {
 
     // Glyph 70 (on page 2) moved by 10 units: page 2 drawn, pages 1 and 3 reused.
     let mut edited = font.clone();
-    edited.glyphs[70].path.apply_affine(Affine::translate(Vec2::new(10.0, 0.0)));
+    edited.glyphs[70]
+        .path
+        .apply_affine(Affine::translate(Vec2::new(10.0, 0.0)));
     let reuse = load(&dir);
     let second = pages(&edited, &dir, &reuse);
     assert_eq!(reuse.reused(), 2);
@@ -132,7 +136,10 @@ fn a_changed_output_or_a_damaged_record_is_not_trusted() {
     for (damaged, why) in [
         (flipped, "its checksum does not match (the file is damaged)"),
         (record[..3].to_vec(), "the file is truncated"),
-        (b"not a record at all".to_vec(), "it is not an xglyph output record"),
+        (
+            b"not a record at all".to_vec(),
+            "it is not an xglyph output record",
+        ),
     ] {
         std::fs::write(dir.join(REUSE_FILE), &damaged).unwrap();
         let (reuse, ignored) = Reuse::load(&dir);
@@ -157,7 +164,11 @@ fn output_files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
             if path.is_dir() {
                 stack.push(path);
             } else if name != REUSE_FILE && name != xglyph::cache::CACHE_FILE {
-                let rel = path.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
+                let rel = path
+                    .strip_prefix(dir)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned();
                 out.insert(rel, std::fs::read(&path).unwrap());
             }
         }
@@ -180,7 +191,12 @@ fn copy_dir(from: &Path, to: &Path) {
 
 fn build(font_dir: &Path, out: &Path) -> String {
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
-        .args(["build", font_dir.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .args([
+            "build",
+            font_dir.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
     assert_eq!(output.status.code(), Some(0), "{output:?}");
