@@ -12,6 +12,8 @@
 # Environment:
 #   CJK_IMPORT_TIMEOUT=S  give up on the import after S seconds (default 900)
 #   XGLYPH_BIN=PATH       time this binary instead of building target/release/xglyph
+#   CJK_SRC=DIR           skip the import: copy this already imported source folder into
+#                         WORK_DIR (DIR itself is never edited) and build the copy
 #   CJK_STANDIN=1         if the import fails or times out, build a stand-in source folder
 #                         with benches/cjk_standin.py (fontTools: the font's own control
 #                         points as X-spline points) so that the build figures are still
@@ -39,7 +41,7 @@ fi
 SRC=$WORK/src
 OUT=$WORK/out
 
-# Runs a command under /usr/bin/time -v; sets WALL (s) and PEAK_MB.
+# Runs a command under /usr/bin/time -v; sets WALL (s), CPU (user + system s) and PEAK_MB.
 timed() {
     log=$WORK/time.log
     status=0
@@ -47,6 +49,7 @@ timed() {
     WALL=$(awk -F': ' '/Elapsed \(wall clock\)/ {
         n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s }' "$log")
     PEAK_MB=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$log")
+    CPU=$(awk -F': ' '/(User|System) time/ { s += $2 } END { printf "%.1f", s }' "$log")
     return $status
 }
 
@@ -58,7 +61,12 @@ echo "cjk.sh: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 
 # 1. Import (the .ttc's first face).
 IMPORT_NOTE=""
-if timed timeout "${CJK_IMPORT_TIMEOUT:-900}" "$BIN" import "$FONT" --glyphs '一-龥' -o "$SRC"; then
+if [ -n "${CJK_SRC:-}" ]; then
+    cp -r "$CJK_SRC" "$SRC"
+    WALL=0; PEAK_MB=0
+    IMPORT_WALL=0; IMPORT_PEAK=0
+    IMPORT_NOTE="skipped: a copy of $CJK_SRC"
+elif timed timeout "${CJK_IMPORT_TIMEOUT:-900}" "$BIN" import "$FONT" --glyphs '一-龥' -o "$SRC"; then
     IMPORT_WALL=$WALL
     IMPORT_PEAK=$PEAK_MB
     IMPORT_NOTE="$(tail -n 3 "$WORK/cmd.out" | tr '\n' ' ')"
@@ -81,10 +89,10 @@ GLYPHS=$(ls "$SRC"/*.toml | grep -vc '/font.toml$\|/kerning.toml$' || true)
 # 2. Build: cold (no cache), warm (nothing changed), one glyph edited.
 export RAYON_NUM_THREADS=2
 timed "$BIN" build "$SRC" -o "$OUT"
-COLD=$WALL; COLD_PEAK=$PEAK_MB
+COLD=$WALL; COLD_PEAK=$PEAK_MB; COLD_CPU=$CPU
 SUMMARY=$(head -n 2 "$WORK/cmd.out")
 timed "$BIN" build "$SRC" -o "$OUT"
-WARM=$WALL; WARM_PEAK=$PEAK_MB
+WARM=$WALL; WARM_PEAK=$PEAK_MB; WARM_CPU=$CPU
 # Move the first point of one glyph by one unit.
 EDIT=$SRC/$(ls "$SRC" | grep -v '^font.toml$' | sed -n 100p)
 python3 - "$EDIT" <<'PY'
@@ -95,7 +103,7 @@ text = re.sub(r"\[(-?\d+(?:\.\d+)?),", lambda m: "[" + repr(float(m.group(1)) + 
 open(path, "w").write(text)
 PY
 timed "$BIN" build "$SRC" -o "$OUT"
-EDITED=$WALL; EDITED_PEAK=$PEAK_MB
+EDITED=$WALL; EDITED_PEAK=$PEAK_MB; EDITED_CPU=$CPU
 
 # 3. Sheet pages: count and the largest page (PNG header).
 PAGES=$(ls "$OUT" | grep -c '^sheet.*\.png$')
@@ -114,8 +122,9 @@ PEAK=$(printf '%s\n' "$COLD_PEAK" "$WARM_PEAK" "$EDITED_PEAK" "$IMPORT_PEAK" | s
 
 echo "import: $GLYPHS glyphs in $IMPORT_WALL s, peak $IMPORT_PEAK MB ($(verdict "$IMPORT_WALL" 60); limit 60 s) $IMPORT_NOTE"
 echo "$SUMMARY"
-echo "build, 2 threads, cold (no cache):   $COLD s, peak $COLD_PEAK MB ($(verdict "$COLD" 20); limit 20 s)"
-echo "build, 2 threads, warm (no change):  $WARM s, peak $WARM_PEAK MB"
-echo "build, 2 threads, one glyph edited:  $EDITED s ($(verdict "$EDITED" 2); limit 2 s; edited $(basename "$EDIT"))"
+echo "build, 2 threads, cold (no cache):   $COLD s ($COLD_CPU CPU-s), peak $COLD_PEAK MB ($(verdict "$COLD" 20); limit 20 s)"
+echo "build, 2 threads, warm (no change):  $WARM s ($WARM_CPU CPU-s), peak $WARM_PEAK MB"
+echo "build, 2 threads, one glyph edited:  $EDITED s ($EDITED_CPU CPU-s), peak $EDITED_PEAK MB ($(verdict "$EDITED" 2); limit 2 s; edited $(basename "$EDIT"))"
+echo "load average after the builds: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "peak memory: $PEAK MB ($(verdict "$PEAK" 2048); limit 2048 MB)"
 echo "sheet: $PAGES pages, largest $LARGEST"

@@ -38,6 +38,7 @@ pub mod outline;
 pub mod overlap;
 pub mod pipeline;
 pub mod render;
+pub mod reuse;
 pub mod serve;
 pub mod source;
 pub mod svg;

@@ -44,6 +44,7 @@ use linesweeper::SegIdx;
 
 use crate::orient::orient_contours;
 use crate::outline::{OutlinedFont, OutlinedGlyph};
+use crate::reuse::{KeyBuilder, Reuse};
 
 /// The share of the font's tolerance the union may move a boundary by.
 pub const UNION_SHARE: f64 = 1e-3;
@@ -189,6 +190,12 @@ fn push_without_slivers(out: &mut BezPath, contour: &BezPath, eps: f64) {
 /// would be a hole there, while the union must add it. A glyph without components is
 /// unioned as it is.
 pub fn remove_overlaps_font(font: &OutlinedFont) -> OutlinedFont {
+    remove_overlaps_font_with(font, &Reuse::off())
+}
+
+/// [`remove_overlaps_font`], taking each glyph's union from the last build when its parts
+/// are the same ([`Reuse::path_or_make`]): a rebuild after one edit unions one glyph.
+pub fn remove_overlaps_font_with(font: &OutlinedFont, reuse: &Reuse) -> OutlinedFont {
     use rayon::prelude::*;
     let eps = UNION_SHARE * font.tolerance;
     let by_name: HashMap<&str, &OutlinedGlyph> =
@@ -197,7 +204,7 @@ pub fn remove_overlaps_font(font: &OutlinedFont) -> OutlinedFont {
         glyphs: font
             .glyphs
             .par_iter()
-            .map(|glyph| remove_glyph_overlaps(glyph, &by_name, eps))
+            .map(|glyph| remove_glyph_overlaps(glyph, &by_name, eps, reuse))
             .collect(),
         ..font.clone()
     }
@@ -207,10 +214,15 @@ fn remove_glyph_overlaps(
     glyph: &OutlinedGlyph,
     by_name: &HashMap<&str, &OutlinedGlyph>,
     eps: f64,
+    reuse: &Reuse,
 ) -> OutlinedGlyph {
-    let path = match parts(glyph, by_name) {
-        Some(parts) => remove_overlaps(&parts, eps),
-        None => remove_overlaps(&glyph.path, eps),
+    let parts = parts(glyph, by_name);
+    let input = parts.as_ref().unwrap_or(&glyph.path);
+    let path = if reuse.is_on() {
+        let key = KeyBuilder::new("union").f64(eps).path(input).finish();
+        reuse.path_or_make(key, input, || remove_overlaps(input, eps))
+    } else {
+        remove_overlaps(input, eps)
     };
     let segments = path
         .elements()

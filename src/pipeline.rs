@@ -19,11 +19,12 @@ use crate::layout::Layout;
 use crate::model::Family;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
-use crate::overlap::remove_overlaps_font;
+use crate::overlap::remove_overlaps_font_with;
 use crate::render::{
-    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_with, ProofOptions,
-    RenderError, SheetOptions,
+    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
+    ProofOptions, RenderError, SheetOptions,
 };
+use crate::reuse::{font_key, KeyBuilder, Reuse};
 use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
 use crate::svg::{glyph_set, output_stem, svg_font};
 use crate::write::{OutputSet, WriteError};
@@ -344,7 +345,7 @@ fn instance_fonts(
     font: &OutlinedFont,
     opts: &BuildOptions,
 ) -> Result<InstanceFonts, PipelineError> {
-    let ot = for_opentype(font, opts);
+    let ot = for_opentype(font, opts, &Reuse::off());
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
         || otf::ttf(ot),
@@ -371,6 +372,16 @@ pub fn variable_outputs(
     loaded: &Loaded,
     cache: Option<&crate::cache::FitCache>,
 ) -> Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError> {
+    variable_outputs_with(loaded, cache, &Reuse::off())
+}
+
+/// [`variable_outputs`], taking the variable WOFF2 from OUT when the variable TTF's bytes
+/// did not change since the last build ([`Reuse`]).
+pub fn variable_outputs_with(
+    loaded: &Loaded,
+    cache: Option<&crate::cache::FitCache>,
+    reuse: &Reuse,
+) -> Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError> {
     if !loaded.family.is_variable() {
         return Ok(None);
     }
@@ -395,17 +406,6 @@ pub fn variable_outputs(
                 .collect()
         })
         .collect();
-    // The font and its WOFF2 on one core, the UFOs on another (rayon); the same bytes
-    // whatever the thread count.
-    let (fonts, ufos) = rayon::join(
-        || -> Result<_, PipelineError> {
-            let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
-            let woff2 = otf::woff2_from_ttf(&ttf)?;
-            Ok((ttf, woff2))
-        },
-        || crate::ufo::designspace::output_files(&family, &loaded.family),
-    );
-    let (ttf, woff2) = fonts?;
     let tags: Vec<&str> = family
         .designspace
         .axes
@@ -420,6 +420,17 @@ pub fn variable_outputs(
         .strip_suffix(&format!("-{style}"))
         .unwrap_or(&static_stem);
     let stem = format!("{family_stem}[{}]", tags.join(","));
+    // The font and its WOFF2 on one core, the UFOs on another (rayon); the same bytes
+    // whatever the thread count.
+    let (fonts, ufos) = rayon::join(
+        || -> Result<_, PipelineError> {
+            let ttf = otf::variable_ttf_with_anchors(&family, &anchors)?;
+            let woff2 = woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse)?;
+            Ok((ttf, woff2))
+        },
+        || crate::ufo::designspace::output_files(&family, &loaded.family),
+    );
+    let (ttf, woff2) = fonts?;
     let mut files = vec![
         (PathBuf::from(format!("{stem}.ttf")), ttf),
         (PathBuf::from(format!("{stem}.woff2")), woff2),
@@ -463,9 +474,19 @@ pub type OutputFile = (PathBuf, Vec<u8>);
 /// GPOS are the same). Each output is a pure function of `font` and `opts`, and the list
 /// keeps its order, so the bytes do not depend on the thread count.
 pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFile>, PipelineError> {
+    outputs_with(font, opts, &Reuse::off())
+}
+
+/// [`outputs`], taking from OUT the sheet pages, proof and WOFF2 whose inputs did not
+/// change since the last build ([`Reuse`]); the same bytes as [`outputs`].
+pub fn outputs_with(
+    font: &OutlinedFont,
+    opts: &BuildOptions,
+    reuse: &Reuse,
+) -> Result<Vec<OutputFile>, PipelineError> {
     let stem = output_stem(&font.info);
     let (binary, text) = rayon::join(
-        || opentype_and_images(font, opts),
+        || opentype_and_images(font, opts, &stem, reuse),
         || -> Result<_, PipelineError> {
             let (svg, ufo) = rayon::join(|| svg_outputs(font), || crate::ufo::output_files(font));
             Ok((svg, ufo?))
@@ -509,20 +530,44 @@ struct Binary {
 
 /// The TTF once, then in parallel: the sheet pages and the proof shaped on it, its WOFF2,
 /// and the OTF.
-fn opentype_and_images(font: &OutlinedFont, opts: &BuildOptions) -> Result<Binary, PipelineError> {
-    let ot = for_opentype(font, opts);
+fn opentype_and_images(
+    font: &OutlinedFont,
+    opts: &BuildOptions,
+    stem: &str,
+    reuse: &Reuse,
+) -> Result<Binary, PipelineError> {
+    let ot = for_opentype(font, opts, reuse);
     let ot = ot.as_ref();
     let ttf = otf::ttf(ot)?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
     let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
+    // What the proof and the sheet labels set in the font depend on.
+    let drawn = reuse.is_on().then(|| font_key(font, &ttf));
+    let proof_key = drawn.map(|drawn| {
+        KeyBuilder::new("proof")
+            .key(&drawn)
+            .str(&format!("{:?}", opts.proof))
+            .finish()
+    });
     let ((sheets, proof), (woff2, otf)) = rayon::join(
         || {
             rayon::join(
-                || sheet_png_files_with(&layout, &opts.sheet, "sheet"),
-                || encode_png(&render_proof_with(&layout, &opts.proof)?),
+                || sheet_png_files_reusing(&layout, &opts.sheet, "sheet", reuse, drawn.as_ref()),
+                || {
+                    let draw = || encode_png(&render_proof_with(&layout, &opts.proof)?);
+                    match proof_key {
+                        Some(key) => reuse.get_or_make(Path::new("proof.png"), key, draw),
+                        None => draw(),
+                    }
+                },
             )
         },
-        || rayon::join(|| otf::woff2_from_ttf(&ttf), || otf::otf(ot)),
+        || {
+            rayon::join(
+                || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
+                || otf::otf(ot),
+            )
+        },
     );
     Ok(Binary {
         sheets: sheets?,
@@ -533,13 +578,28 @@ fn opentype_and_images(font: &OutlinedFont, opts: &BuildOptions) -> Result<Binar
     })
 }
 
+/// The WOFF2 of `ttf`, taken from OUT's `name` when the last build made it from the same
+/// bytes (Brotli at quality 11 is the slowest step of a small font's build).
+fn woff2_reusing(ttf: &[u8], name: &str, reuse: &Reuse) -> Result<Vec<u8>, OtfError> {
+    if !reuse.is_on() {
+        return otf::woff2_from_ttf(ttf);
+    }
+    let key = KeyBuilder::new("woff2").bytes(ttf).finish();
+    reuse.get_or_make(Path::new(name), key, || otf::woff2_from_ttf(ttf))
+}
+
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
 /// `opts.keep_overlaps`.
-fn for_opentype<'a>(font: &'a OutlinedFont, opts: &BuildOptions) -> Cow<'a, OutlinedFont> {
+/// Unions made by the last build are taken from `reuse`.
+fn for_opentype<'a>(
+    font: &'a OutlinedFont,
+    opts: &BuildOptions,
+    reuse: &Reuse,
+) -> Cow<'a, OutlinedFont> {
     if opts.keep_overlaps {
         Cow::Borrowed(font)
     } else {
-        Cow::Owned(remove_overlaps_font(font))
+        Cow::Owned(remove_overlaps_font_with(font, reuse))
     }
 }
 

@@ -18,6 +18,7 @@ use crate::model::Family;
 use crate::outline::{OutlineOptions, Progress};
 use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Summary};
 use crate::render::ProofOptions;
+use crate::reuse::{Reuse, REUSE_FILE};
 use crate::source::emit;
 use crate::source::Diagnostic;
 use crate::terminal::{err, errln, out, outln};
@@ -296,6 +297,13 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         );
     }
     let loaded = load_cached(&args.font.font_dir, args.font.tolerance, Some(&cache))?;
+    let (reuse, ignored) = Reuse::load(&args.font.out);
+    if let Some(reason) = ignored {
+        errln!(
+            "note: ignoring {}: {reason}; every output is made anew",
+            args.font.out.join(REUSE_FILE).display()
+        );
+    }
     let opts = BuildOptions {
         proof: ProofOptions {
             text: args.text.map(|t| t.replace("\\n", "\n")),
@@ -309,11 +317,11 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         rayon::join(
             || {
                 rayon::join(
-                    || pipeline::outputs(&loaded.font, &opts),
+                    || pipeline::outputs_with(&loaded.font, &opts, &reuse),
                     || pipeline::instance_outputs_with(&loaded, &opts, Some(&cache)),
                 )
             },
-            || pipeline::variable_outputs(&loaded, Some(&cache)),
+            || pipeline::variable_outputs_with(&loaded, Some(&cache), &reuse),
         )
     });
     let mut files = files?;
@@ -346,7 +354,20 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             cache_path.display()
         );
     }
+    if reuse.reused() > 0 {
+        outln!(
+            "took {} outputs unchanged from the last build (sheet pages, proof, WOFF2)",
+            reuse.reused()
+        );
+    }
     // The outputs are written: a cache that cannot be written only costs the next build time.
+    if let Err(e) = reuse.save() {
+        errln!(
+            "warning: cannot write {}: {}",
+            args.font.out.join(REUSE_FILE).display(),
+            crate::write::reason(&e)
+        );
+    }
     if let Err(e) = cache.save(&cache_path) {
         errln!(
             "warning: cannot write the fit cache {}: {}",

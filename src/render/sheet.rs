@@ -12,6 +12,8 @@
 //! page within the image limits, so thousands of glyphs give `sheet-1.png`, `sheet-2.png`, …
 //! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
+use std::path::Path;
+
 use kurbo::Point;
 use tiny_skia::{Color, Pixmap};
 
@@ -19,6 +21,7 @@ use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement}
 use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
+use crate::reuse::{glyph_key, Key, KeyBuilder, Reuse};
 
 /// How to draw the sheet.
 #[derive(Clone, Debug, PartialEq)]
@@ -134,6 +137,20 @@ pub fn sheet_png_files_with(
     opts: &SheetOptions,
     stem: &str,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
+    sheet_png_files_reusing(layout, opts, stem, &Reuse::off(), None)
+}
+
+/// [`sheet_png_files_with`], taking from OUT each page whose inputs did not change since the
+/// last build ([`Reuse`]). `font_key` is [`crate::reuse::font_key`] of the layout's font
+/// and TTF; a page whose labels are set in the font's own glyphs depends on it (without
+/// it such a page is always drawn), a page of built-in labels only on its own glyphs.
+pub fn sheet_png_files_reusing(
+    layout: &Layout<'_>,
+    opts: &SheetOptions,
+    stem: &str,
+    reuse: &Reuse,
+    font_key: Option<&Key>,
+) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
     use rayon::prelude::*;
     let pages = sheet_pages(layout.font(), opts)?;
     let names = page_file_names(stem, pages.len());
@@ -143,10 +160,58 @@ pub fn sheet_png_files_with(
         .into_par_iter()
         .zip(pages.par_iter())
         .map(|(name, order)| {
-            let png = super::encode_png(&render_page(layout, &geometry, opts, order)?)?;
+            let draw = || super::encode_png(&render_page(layout, &geometry, opts, order)?);
+            let png = match page_key(layout, &geometry, opts, &name, order, font_key) {
+                Some(key) => reuse.get_or_make(Path::new(&name), key, draw)?,
+                None => draw()?,
+            };
             Ok((name, png))
         })
         .collect()
+}
+
+/// What a sheet page's pixels depend on; `None` when its labels use the font and no
+/// `font_key` is given.
+fn page_key(
+    layout: &Layout<'_>,
+    geo: &CellGeometry,
+    opts: &SheetOptions,
+    name: &str,
+    order: &[usize],
+    font_key: Option<&Key>,
+) -> Option<Key> {
+    let font = layout.font();
+    let info = &font.info;
+    let mut k = KeyBuilder::new("sheet page");
+    k.str(name)
+        .str(&format!("{opts:?}"))
+        .f64(geo.cell)
+        .f64(geo.pad)
+        .f64(geo.label_em)
+        .f64(geo.scale)
+        .f64(geo.baseline);
+    for v in [
+        info.ascender,
+        info.descender,
+        info.cap_height,
+        info.x_height,
+    ] {
+        k.f64(v);
+    }
+    k.u64(order.len() as u64);
+    let mut uses_font = false;
+    for &i in order {
+        let g = &font.glyphs[i];
+        k.key(&glyph_key(g, opts.overlay));
+        uses_font |= label(&g.name, &g.unicodes)
+            .chars()
+            .all(|c| layout.covers(c));
+    }
+    if uses_font {
+        // The label is shaped on the TTF and drawn with the font's glyphs.
+        k.key(font_key?);
+    }
+    Some(k.finish())
 }
 
 fn check_options(opts: &SheetOptions) -> Result<(), RenderError> {

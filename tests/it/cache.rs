@@ -380,7 +380,7 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
     }
 }
 
-/// SHA-256 of every file in `dir` but the cache, by relative path.
+/// SHA-256 of every file in `dir` but the cache and the reuse record, by relative path.
 fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     use sha2::{Digest, Sha256};
     let mut out = std::collections::BTreeMap::new();
@@ -390,7 +390,9 @@ fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 stack.push(path);
-            } else if path.file_name().unwrap() != ".xglyph-cache" {
+            } else if path.file_name().unwrap() != ".xglyph-cache"
+                && path.file_name().unwrap() != xglyph::reuse::REUSE_FILE
+            {
                 let rel = path
                     .strip_prefix(dir)
                     .unwrap()

@@ -27,6 +27,7 @@ mod otf_random;
 mod overlap;
 mod production;
 mod render;
+mod reuse;
 mod scale;
 mod serve;
 mod shaping;

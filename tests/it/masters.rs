@@ -28,7 +28,8 @@ fn xglyph(args: &[&str]) -> Output {
         .expect("xglyph runs")
 }
 
-/// SHA-256 (hex) of every file under `dir` but the fit cache, by relative path.
+/// SHA-256 (hex) of every file under `dir` but the fit cache and the reuse record, by
+/// relative path.
 fn hashes(dir: &Path, prefix: &str, out: &mut BTreeMap<String, String>) {
     let mut entries: Vec<PathBuf> = fs::read_dir(dir)
         .unwrap()
@@ -40,7 +41,7 @@ fn hashes(dir: &Path, prefix: &str, out: &mut BTreeMap<String, String>) {
         let rel = format!("{prefix}/{name}");
         if path.is_dir() {
             hashes(&path, &rel, out);
-        } else if name != ".xglyph-cache" {
+        } else if name != ".xglyph-cache" && name != xglyph::reuse::REUSE_FILE {
             let digest = Sha256::digest(fs::read(&path).unwrap());
             let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
             out.insert(rel, hex);

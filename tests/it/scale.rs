@@ -256,14 +256,17 @@ fn a_font_that_fits_one_page_keeps_one_sheet() {
     assert_eq!(whole.data(), page.data());
 }
 
-/// Every file under `dir` but the fit cache, by relative path, with its bytes.
+/// Every file under `dir` but the fit cache and the reuse record, by relative path, with
+/// its bytes.
 fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     fn walk(root: &Path, dir: &Path, out: &mut std::collections::BTreeMap<String, Vec<u8>>) {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 walk(root, &path, out);
-            } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE)) {
+            } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE))
+                && path.file_name() != Some(std::ffi::OsStr::new(xglyph::reuse::REUSE_FILE))
+            {
                 let rel = path
                     .strip_prefix(root)
                     .unwrap()

@@ -1,0 +1,471 @@
+//! Reuse of the files an earlier build wrote, when what they are made from is unchanged:
+//! a rebuild after one edit does not rasterise every sheet page again, nor run Brotli on a
+//! font whose bytes did not change.
+//!
+//! Each reusable output is made under a [`Key`]: a SHA-256 of everything its bytes depend
+//! on (for a sheet page: its glyphs' outlines, names and advances, the font's metrics, the
+//! options; for a WOFF2: the TTF's bytes), plus the identity of the running program (the
+//! length and CRC-32 of its executable, so a changed renderer never reuses an old file).
+//! After a successful build, [`Reuse::save`] records in [`REUSE_FILE`] (in OUT, beside the fit
+//! cache) each output's path, key and the SHA-256 of the bytes written.
+//!
+//! Nothing is trusted. The record file is checked whole (magic, version, CRC-32, counts,
+//! paths, no duplicate, no trailing byte) or ignored. A file is reused only when the
+//! record's key equals the new key *and* the file in OUT still holds the recorded bytes
+//! (read and hashed again): a file edited, truncated or replaced since is made anew. The
+//! sources stay the only source of truth; no modification time is read. Outputs are
+//! therefore byte-identical with and without this record.
+//!
+//! The same record holds outlines made from outlines: each glyph's union of overlapping
+//! contours ([`crate::overlap`]), keyed by its input outline and the union's setting, so
+//! that a rebuild unions only the glyphs that changed. A union equal to its input (a glyph
+//! without overlaps) is recorded as such, not stored again.
+//!
+//! Limit: a key is as complete as the code that builds it; an output depends only on what
+//! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
+
+use std::collections::{BTreeMap, HashMap};
+use std::fs;
+use std::io;
+use std::path::{Component, Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
+
+use kurbo::{BezPath, PathEl};
+
+use crate::outline::{OutlinedFont, OutlinedGlyph};
+use sha2::{Digest, Sha256};
+
+/// Name of the record file in the output folder.
+pub const REUSE_FILE: &str = ".xglyph-outputs";
+
+/// First bytes of the record file.
+const MAGIC: &[u8; 8] = b"XGLYPHOR";
+/// Layout of the record file.
+const FORMAT_VERSION: u32 = 1;
+
+/// What an output's bytes are made from, hashed (SHA-256).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Key([u8; 32]);
+
+/// Builds a [`Key`]: every input goes in with its length or its kind, so that two
+/// different input lists never hash the same bytes.
+#[derive(Clone)]
+pub struct KeyBuilder(Sha256);
+
+impl KeyBuilder {
+    /// A key for an output of kind `kind` (e.g. `"sheet page"`), made by this program.
+    pub fn new(kind: &str) -> Self {
+        let mut b = KeyBuilder(Sha256::new());
+        b.0.update(program_identity().unwrap_or(&[0; 12]));
+        b.str(kind);
+        b
+    }
+
+    /// Adds bytes (length first).
+    pub fn bytes(&mut self, bytes: &[u8]) -> &mut Self {
+        self.0.update((bytes.len() as u64).to_le_bytes());
+        self.0.update(bytes);
+        self
+    }
+
+    /// Adds a string.
+    pub fn str(&mut self, s: &str) -> &mut Self {
+        self.bytes(s.as_bytes())
+    }
+
+    /// Adds a number (its bits).
+    pub fn f64(&mut self, v: f64) -> &mut Self {
+        self.0.update(v.to_bits().to_le_bytes());
+        self
+    }
+
+    /// Adds a count or an index.
+    pub fn u64(&mut self, v: u64) -> &mut Self {
+        self.0.update(v.to_le_bytes());
+        self
+    }
+
+    /// Adds another key.
+    pub fn key(&mut self, key: &Key) -> &mut Self {
+        self.0.update(key.0);
+        self
+    }
+
+    /// Adds a path: every element's kind and the bits of its points.
+    pub fn path(&mut self, path: &BezPath) -> &mut Self {
+        // One buffer, one update: hashing element by element costs more than the hash.
+        let mut buf = Vec::with_capacity(path.elements().len() * 40);
+        put_path(&mut buf, path);
+        self.bytes(&buf)
+    }
+
+    /// The key.
+    pub fn finish(&self) -> Key {
+        Key(self.0.clone().finalize().into())
+    }
+}
+
+/// The SHA-256 of `bytes`.
+fn digest(bytes: &[u8]) -> [u8; 32] {
+    Sha256::digest(bytes).into()
+}
+
+/// The running program's identity: its executable's length and CRC-32 (read once). `None`
+/// when the executable cannot be read; then nothing is reused.
+fn program_identity() -> Option<&'static [u8; 12]> {
+    static ID: OnceLock<Option<[u8; 12]>> = OnceLock::new();
+    ID.get_or_init(|| {
+        let exe = fs::read(std::env::current_exe().ok()?).ok()?;
+        let mut id = [0; 12];
+        id[..8].copy_from_slice(&(exe.len() as u64).to_le_bytes());
+        id[8..].copy_from_slice(&crc32fast::hash(&exe).to_le_bytes());
+        Some(id)
+    })
+    .as_ref()
+}
+
+/// One output as recorded: its key and the SHA-256 of its bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Record {
+    key: Key,
+    bytes: [u8; 32],
+}
+
+/// The outputs of the last build of an output folder, and those of this one.
+#[derive(Debug, Default)]
+pub struct Reuse {
+    /// The output folder (`None`: reuse nothing, record nothing).
+    out: Option<PathBuf>,
+    /// The last build's records, by path relative to `out`.
+    earlier: HashMap<PathBuf, Record>,
+    /// This build's records.
+    now: Mutex<BTreeMap<PathBuf, Record>>,
+    reused: AtomicUsize,
+    /// Outlines made from outlines (a glyph's contours unioned) by the last build, by key;
+    /// `None` when the outline was its input unchanged (most glyphs: no overlap).
+    earlier_paths: HashMap<Key, Option<BezPath>>,
+    /// Those of this build.
+    now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
+}
+
+impl Reuse {
+    /// Reuses nothing: every output is made.
+    pub fn off() -> Self {
+        Reuse::default()
+    }
+
+    /// The records of the output folder `out`, and why they were ignored, if they were
+    /// (a missing file is not a reason: a first build has none).
+    pub fn load(out: &Path) -> (Self, Option<String>) {
+        let mut reuse = Reuse {
+            out: Some(out.to_path_buf()),
+            ..Reuse::default()
+        };
+        if program_identity().is_none() {
+            reuse.out = None;
+            return (reuse, Some("the program's own file cannot be read".into()));
+        }
+        let bytes = match fs::read(out.join(REUSE_FILE)) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return (reuse, None),
+            Err(e) => return (reuse, Some(crate::write::reason(&e))),
+        };
+        match parse(&bytes) {
+            Ok((earlier, paths)) => {
+                reuse.earlier = earlier;
+                reuse.earlier_paths = paths;
+                (reuse, None)
+            }
+            Err(why) => (reuse, Some(why.to_string())),
+        }
+    }
+
+    /// The bytes of the output `path` (relative to OUT): the file in OUT when the last build
+    /// made it under the same `key` and it still holds the bytes recorded, else `make()`.
+    pub fn get_or_make<E>(
+        &self,
+        path: &Path,
+        key: Key,
+        make: impl FnOnce() -> Result<Vec<u8>, E>,
+    ) -> Result<Vec<u8>, E> {
+        let Some(out) = &self.out else {
+            return make();
+        };
+        if let Some(earlier) = self.earlier.get(path).filter(|r| r.key == key) {
+            if let Ok(bytes) = fs::read(out.join(path)) {
+                if digest(&bytes) == earlier.bytes {
+                    self.reused.fetch_add(1, Ordering::Relaxed);
+                    self.record(path, *earlier);
+                    return Ok(bytes);
+                }
+            }
+        }
+        let bytes = make()?;
+        let record = Record {
+            key,
+            bytes: digest(&bytes),
+        };
+        self.record(path, record);
+        Ok(bytes)
+    }
+
+    /// The outline `make()` computes from `input` under `key` (which must cover `input`
+    /// and every setting `make` reads): from the last build when it made it, else made now.
+    /// Kept for the next build either way.
+    pub fn path_or_make(
+        &self,
+        key: Key,
+        input: &BezPath,
+        make: impl FnOnce() -> BezPath,
+    ) -> BezPath {
+        if self.out.is_none() {
+            return make();
+        }
+        let (path, stored) = match self.earlier_paths.get(&key) {
+            Some(None) => (input.clone(), None),
+            Some(Some(path)) => (path.clone(), Some(path.clone())),
+            None => {
+                let path = make();
+                let stored = (path != *input).then(|| path.clone());
+                (path, stored)
+            }
+        };
+        if let Ok(mut now) = self.now_paths.lock() {
+            now.insert(key, stored);
+        }
+        path
+    }
+
+    fn record(&self, path: &Path, record: Record) {
+        if let Ok(mut now) = self.now.lock() {
+            now.insert(path.to_path_buf(), record);
+        }
+    }
+
+    /// Whether outputs may come from OUT (false for [`Reuse::off`]).
+    pub fn is_on(&self) -> bool {
+        self.out.is_some()
+    }
+
+    /// How many outputs came from OUT instead of being made.
+    pub fn reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
+    }
+
+    /// Writes this build's records into OUT (atomically); call it once every output is
+    /// written. Nothing without an output folder.
+    pub fn save(&self) -> io::Result<()> {
+        let Some(out) = &self.out else {
+            return Ok(());
+        };
+        let now = self
+            .now
+            .lock()
+            .map_err(|_| io::Error::other("a build thread panicked"))?;
+        let mut body = Vec::new();
+        body.extend_from_slice(MAGIC);
+        body.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        body.extend_from_slice(&(now.len() as u32).to_le_bytes());
+        for (path, record) in now.iter() {
+            let Some(name) = path.to_str() else { continue };
+            body.extend_from_slice(&(name.len() as u32).to_le_bytes());
+            body.extend_from_slice(name.as_bytes());
+            body.extend_from_slice(&record.key.0);
+            body.extend_from_slice(&record.bytes);
+        }
+        let paths = self
+            .now_paths
+            .lock()
+            .map_err(|_| io::Error::other("a build thread panicked"))?;
+        body.extend_from_slice(&(paths.len() as u32).to_le_bytes());
+        for (key, path) in paths.iter() {
+            body.extend_from_slice(&key.0);
+            match path {
+                None => body.push(0),
+                Some(path) => {
+                    body.push(1);
+                    put_path(&mut body, path);
+                }
+            }
+        }
+        let crc = crc32fast::hash(&body);
+        body.extend_from_slice(&crc.to_le_bytes());
+        let path = out.join(REUSE_FILE);
+        if fs::read(&path).is_ok_and(|old| old == body) {
+            return Ok(());
+        }
+        crate::write::write_atomic(&path, &body)
+    }
+}
+
+/// The records of a record file, or what is wrong with it.
+#[allow(clippy::type_complexity)]
+fn parse(
+    bytes: &[u8],
+) -> Result<(HashMap<PathBuf, Record>, HashMap<Key, Option<BezPath>>), &'static str> {
+    let (body, crc) = bytes
+        .split_last_chunk::<4>()
+        .ok_or("the file is truncated")?;
+    if !body.starts_with(MAGIC) {
+        return Err("it is not an xglyph output record");
+    }
+    if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
+        return Err("its checksum does not match (the file is damaged)");
+    }
+    let mut r = Reader(&body[MAGIC.len()..]);
+    if r.u32()? != FORMAT_VERSION {
+        return Err("it was written by another version of xglyph");
+    }
+    let count = r.u32()? as usize;
+    let mut records = HashMap::new();
+    for _ in 0..count {
+        let len = r.u32()? as usize;
+        let name = std::str::from_utf8(r.take(len)?).map_err(|_| "a path is not UTF-8")?;
+        let path = PathBuf::from(name);
+        // Only plain relative paths inside OUT.
+        if name.is_empty() || !path.components().all(|c| matches!(c, Component::Normal(_))) {
+            return Err("a path leaves the output folder");
+        }
+        let key = Key(r.array()?);
+        let bytes = r.array()?;
+        if records.insert(path, Record { key, bytes }).is_some() {
+            return Err("a path is recorded twice");
+        }
+    }
+    let count = r.u32()? as usize;
+    let mut paths = HashMap::new();
+    for _ in 0..count {
+        let key = Key(r.array()?);
+        let path = match r.array::<1>()?[0] {
+            0 => None,
+            1 => Some(read_path(&mut r)?),
+            _ => return Err("an outline record is malformed"),
+        };
+        if paths.insert(key, path).is_some() {
+            return Err("an outline is recorded twice");
+        }
+    }
+    if !r.0.is_empty() {
+        return Err("bytes follow the last record");
+    }
+    Ok((records, paths))
+}
+
+// A path: element count u32 | elements (tag u8: 0 move, 1 line, 2 quad, 3 cubic, 4 close;
+// then the points as f64 bits).
+fn put_path(out: &mut Vec<u8>, path: &BezPath) {
+    out.extend_from_slice(&(path.elements().len() as u32).to_le_bytes());
+    let mut put = |tag: u8, points: &[kurbo::Point]| {
+        out.push(tag);
+        for p in points {
+            out.extend_from_slice(&p.x.to_bits().to_le_bytes());
+            out.extend_from_slice(&p.y.to_bits().to_le_bytes());
+        }
+    };
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) => put(0, &[p]),
+            PathEl::LineTo(p) => put(1, &[p]),
+            PathEl::QuadTo(a, b) => put(2, &[a, b]),
+            PathEl::CurveTo(a, b, c) => put(3, &[a, b, c]),
+            PathEl::ClosePath => put(4, &[]),
+        }
+    }
+}
+
+/// Closed subpaths of finite points (what a union gives), possibly none.
+fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
+    let count = r.u32()? as usize;
+    if count > r.0.len() {
+        return Err("the file is truncated");
+    }
+    let mut path = BezPath::new();
+    let mut open = false;
+    for _ in 0..count {
+        let tag = r.array::<1>()?[0];
+        match (tag, open) {
+            (0, false) => path.move_to(r.point()?),
+            (1, true) => path.line_to(r.point()?),
+            (2, true) => path.quad_to(r.point()?, r.point()?),
+            (3, true) => path.curve_to(r.point()?, r.point()?, r.point()?),
+            (4, true) => path.close_path(),
+            _ => return Err("an outline is not closed subpaths"),
+        }
+        open = tag != 4;
+    }
+    if open {
+        return Err("an outline is not closed subpaths");
+    }
+    Ok(path)
+}
+
+/// Reads a record file front to back.
+struct Reader<'a>(&'a [u8]);
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], &'static str> {
+        if self.0.len() < n {
+            return Err("the file is truncated");
+        }
+        let (head, tail) = self.0.split_at(n);
+        self.0 = tail;
+        Ok(head)
+    }
+
+    fn array<const N: usize>(&mut self) -> Result<[u8; N], &'static str> {
+        let mut a = [0; N];
+        a.copy_from_slice(self.take(N)?);
+        Ok(a)
+    }
+
+    fn u32(&mut self) -> Result<u32, &'static str> {
+        Ok(u32::from_le_bytes(self.array()?))
+    }
+
+    fn point(&mut self) -> Result<kurbo::Point, &'static str> {
+        let x = f64::from_le_bytes(self.array()?);
+        let y = f64::from_le_bytes(self.array()?);
+        if !(x.is_finite() && y.is_finite()) {
+            return Err("a number is not finite");
+        }
+        Ok(kurbo::Point::new(x, y))
+    }
+}
+
+/// The key of one glyph as drawn: name, code points, advance and outline, and with
+/// `contours` its X-spline contours too (the sheet's overlay draws them).
+pub fn glyph_key(glyph: &OutlinedGlyph, contours: bool) -> Key {
+    let mut k = KeyBuilder::new("glyph");
+    k.str(&glyph.name).f64(glyph.advance).path(&glyph.path);
+    k.u64(glyph.unicodes.len() as u64);
+    for &c in &glyph.unicodes {
+        k.u64(u64::from(c));
+    }
+    if contours {
+        // Debug prints every number so that it reads back exactly: a lossless key.
+        k.str(&format!("{:?}", glyph.contours));
+    }
+    k.finish()
+}
+
+/// The key of everything a drawing of `font` through its TTF `ttf` can depend on: the
+/// TTF's bytes (shaping, metrics), the font's info, and every glyph as drawn
+/// ([`glyph_key`], hashed in parallel).
+pub fn font_key(font: &OutlinedFont, ttf: &[u8]) -> Key {
+    use rayon::prelude::*;
+    let glyphs: Vec<Key> = font
+        .glyphs
+        .par_iter()
+        .map(|g| glyph_key(g, false))
+        .collect();
+    let mut k = KeyBuilder::new("font");
+    k.bytes(ttf)
+        .str(&format!("{:?}", font.info))
+        .f64(font.tolerance)
+        .u64(glyphs.len() as u64);
+    for g in &glyphs {
+        k.key(g);
+    }
+    k.finish()
+}

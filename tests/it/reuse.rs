@@ -1,0 +1,287 @@
+//! Outputs reused from the last build (`src/reuse.rs`): a sheet page is drawn again only
+//! when one of its glyphs changed, the bytes are those of a build without the record, and a
+//! damaged record or an output file changed in OUT is never trusted.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use kurbo::{Affine, Vec2};
+use xglyph::layout::Layout;
+use xglyph::model::{Contour, Font, Glyph};
+use xglyph::otf;
+use xglyph::outline::{outline_font, OutlinedFont};
+use xglyph::render::{sheet_png_files_reusing, SheetOptions};
+use xglyph::reuse::{font_key, Reuse, REUSE_FILE};
+use xglyph::source::load_font;
+use xglyph::xspline::ControlPoint;
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("reuse-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// 130 square glyphs from U+4E00 on (no Latin, so every label is in the built-in face):
+/// three sheet pages of 64, 64 and 2 cells at one column of 32 px.
+fn cjk_like() -> OutlinedFont {
+    let mut font: Font = load_font(&repo("tests/fixtures/mini"))
+        .expect("mini loads")
+        .0;
+    let square = Contour::new(
+        [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
+            .iter()
+            .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
+            .collect(),
+    )
+    .unwrap();
+    font.glyphs = (0..130)
+        .map(|i| {
+            let c = char::from_u32(0x4E00 + i).unwrap();
+            Glyph {
+                name: format!("uni{:04X}", u32::from(c)),
+                unicodes: vec![c],
+                advance: 1000.0,
+                contours: vec![square.clone()],
+                components: vec![],
+                anchors: Vec::new(),
+            }
+        })
+        .collect();
+    font.kerning.clear();
+    font.features = None;
+    outline_font(&font, 0.5)
+}
+
+const OPTS: SheetOptions = SheetOptions {
+    cell_px: 32,
+    columns: 1,
+    overlay: false,
+};
+
+/// The sheet pages of `font` through `reuse`, written into `dir` with the record.
+fn pages(font: &OutlinedFont, dir: &Path, reuse: &Reuse) -> Vec<(String, Vec<u8>)> {
+    let ttf = otf::ttf(font).unwrap();
+    let key = font_key(font, &ttf);
+    let layout = Layout::with_ttf(font, ttf).unwrap();
+    let files = sheet_png_files_reusing(&layout, &OPTS, "sheet", reuse, Some(&key)).unwrap();
+    for (name, bytes) in &files {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+    reuse.save().unwrap();
+    files
+}
+
+/// The same pages drawn without any record.
+fn fresh(font: &OutlinedFont) -> Vec<(String, Vec<u8>)> {
+    let layout = Layout::new(font).unwrap();
+    sheet_png_files_reusing(&layout, &OPTS, "sheet", &Reuse::off(), None).unwrap()
+}
+
+fn load(dir: &Path) -> Reuse {
+    let (reuse, ignored) = Reuse::load(dir);
+    assert_eq!(ignored, None);
+    reuse
+}
+
+#[test]
+fn only_the_sheet_page_of_an_edited_glyph_is_drawn_again() {
+    let dir = scratch("pages");
+    let font = cjk_like();
+    let first = pages(&font, &dir, &load(&dir));
+    let names: Vec<&str> = first.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["sheet-1.png", "sheet-2.png", "sheet-3.png"]);
+    assert_eq!(first, fresh(&font));
+
+    // Nothing changed: every page from OUT, the same bytes.
+    let reuse = load(&dir);
+    assert_eq!(pages(&font, &dir, &reuse), first);
+    assert_eq!(reuse.reused(), 3);
+
+    // Glyph 70 (on page 2) moved by 10 units: page 2 drawn, pages 1 and 3 reused.
+    let mut edited = font.clone();
+    edited.glyphs[70]
+        .path
+        .apply_affine(Affine::translate(Vec2::new(10.0, 0.0)));
+    let reuse = load(&dir);
+    let second = pages(&edited, &dir, &reuse);
+    assert_eq!(reuse.reused(), 2);
+    assert_eq!(second, fresh(&edited));
+    assert_eq!(second[0], first[0]);
+    assert_ne!(second[1], first[1]);
+    assert_eq!(second[2], first[2]);
+}
+
+#[test]
+fn a_changed_output_or_a_damaged_record_is_not_trusted() {
+    let dir = scratch("untrusted");
+    let font = cjk_like();
+    let expected = pages(&font, &dir, &load(&dir));
+
+    // Page 1 overwritten with page 2's bytes (a valid PNG, the wrong one): drawn again.
+    std::fs::write(dir.join("sheet-1.png"), &expected[1].1).unwrap();
+    let reuse = load(&dir);
+    assert_eq!(pages(&font, &dir, &reuse), expected);
+    assert_eq!(reuse.reused(), 2);
+
+    // A record with one bit flipped, then one cut short: ignored with the reason, every
+    // page drawn, the same bytes.
+    let record = std::fs::read(dir.join(REUSE_FILE)).unwrap();
+    let mut flipped = record.clone();
+    flipped[20] ^= 0x01;
+    for (damaged, why) in [
+        (flipped, "its checksum does not match (the file is damaged)"),
+        (record[..3].to_vec(), "the file is truncated"),
+        (
+            b"not a record at all".to_vec(),
+            "it is not an xglyph output record",
+        ),
+    ] {
+        std::fs::write(dir.join(REUSE_FILE), &damaged).unwrap();
+        let (reuse, ignored) = Reuse::load(&dir);
+        assert_eq!(ignored.as_deref(), Some(why));
+        assert_eq!(pages(&font, &dir, &reuse), expected);
+        assert_eq!(reuse.reused(), 0);
+    }
+    // The record written again by the last run is whole: everything reused.
+    let reuse = load(&dir);
+    assert_eq!(pages(&font, &dir, &reuse), expected);
+    assert_eq!(reuse.reused(), 3);
+}
+
+/// Every file under `dir` but the two records, by relative path, with its bytes.
+fn output_files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if path.is_dir() {
+                stack.push(path);
+            } else if name != REUSE_FILE && name != xglyph::cache::CACHE_FILE {
+                let rel = path
+                    .strip_prefix(dir)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned();
+                out.insert(rel, std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    out
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let target = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_dir(&path, &target);
+        } else {
+            std::fs::copy(&path, &target).unwrap();
+        }
+    }
+}
+
+fn build(font_dir: &Path, out: &Path) -> String {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args([
+            "build",
+            font_dir.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{output:?}");
+    String::from_utf8(output.stdout).unwrap()
+}
+
+#[test]
+fn a_rebuild_takes_unchanged_outputs_and_writes_the_bytes_of_a_fresh_build() {
+    let tmp = scratch("build");
+    let src = tmp.join("src");
+    copy_dir(&repo("tests/fixtures/masters"), &src);
+    let out = tmp.join("out");
+    let stdout = build(&src, &out);
+    assert!(!stdout.contains("took"), "{stdout}");
+    // Again: the sheet, the proof, the static and the variable WOFF2 from OUT.
+    let stdout = build(&src, &out);
+    assert!(
+        stdout.contains("took 4 outputs unchanged from the last build"),
+        "{stdout}"
+    );
+    let fresh_out = tmp.join("fresh");
+    build(&src, &fresh_out);
+    assert_eq!(output_files(&out), output_files(&fresh_out));
+
+    // The WOFF2 in OUT replaced by other bytes: made anew, not trusted.
+    let woff2 = output_files(&out)
+        .into_keys()
+        .find(|n| n.ends_with(".woff2") && !n.contains('['))
+        .unwrap();
+    std::fs::write(out.join(&woff2), b"wOF2 but not really").unwrap();
+    let stdout = build(&src, &out);
+    assert!(stdout.contains("took 3 outputs unchanged"), "{stdout}");
+    assert_eq!(output_files(&out), output_files(&fresh_out));
+
+    // One glyph edited: its outline changes every output that draws the whole font.
+    let glyph = src.join("H_.toml");
+    let text = std::fs::read_to_string(&glyph).unwrap();
+    let edited = text.replacen("  [160, 320, 0],", "  [170, 320, 0],", 1);
+    assert_ne!(edited, text, "{text}");
+    std::fs::write(&glyph, edited).unwrap();
+    build(&src, &out);
+    build(&src, &fresh_out.with_file_name("fresh2"));
+    assert_eq!(
+        output_files(&out),
+        output_files(&fresh_out.with_file_name("fresh2"))
+    );
+    assert_ne!(output_files(&out), output_files(&fresh_out));
+}
+
+#[test]
+fn unions_from_the_record_are_those_made_anew() {
+    use xglyph::overlap::{remove_overlaps_font, remove_overlaps_font_with};
+    let dir = scratch("unions");
+    // Glyph 0 of two overlapping squares, glyph 1 of two apart (nothing to union).
+    let mut font = cjk_like();
+    for (k, d) in [(0, 300.0), (1, 1000.0)] {
+        let mut path = kurbo::BezPath::new();
+        for x in [0.0, d] {
+            path.extend(kurbo::Shape::path_elements(
+                &kurbo::Rect::new(x, x, x + 500.0, x + 500.0),
+                0.1,
+            ));
+        }
+        font.glyphs[k].path = path;
+    }
+    let fresh = remove_overlaps_font(&font);
+    let first = load(&dir);
+    let made = remove_overlaps_font_with(&font, &first);
+    first.save().unwrap();
+    let second = load(&dir);
+    let taken = remove_overlaps_font_with(&font, &second);
+    for ((a, b), c) in fresh.glyphs.iter().zip(&made.glyphs).zip(&taken.glyphs) {
+        assert_eq!(a.path, b.path, "{}", a.name);
+        assert_eq!(a.path, c.path, "{}", a.name);
+        assert_eq!(a.segments, c.segments, "{}", a.name);
+    }
+    // Glyph 0's union is one contour (so the record holds an outline), glyph 1 keeps two.
+    let subpaths = |p: &kurbo::BezPath| {
+        p.elements()
+            .iter()
+            .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+            .count()
+    };
+    assert_eq!(subpaths(&fresh.glyphs[0].path), 1);
+    assert_eq!(subpaths(&fresh.glyphs[1].path), 2);
+    let record = std::fs::read(dir.join(REUSE_FILE)).unwrap();
+    assert!(record.len() > 200, "{} bytes", record.len());
+}
