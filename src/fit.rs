@@ -5,7 +5,9 @@
 //! stretch is covered greedily from its start with the longest span one cubic fits; the
 //! span is predicted from the error law `err ~ h^p` rather than bisected, on the cheap
 //! sampled error of each trial; only the candidate about to be taken is measured (below),
-//! and one that fails the measure counts as a span that does not fit. A cubic keeps the
+//! and one that fails the measure counts as a span that does not fit. The trials of a
+//! stretch sample the curve on shared grids (each point evaluated once), and the measure
+//! takes a trial's samples as every second one of its own. A cubic keeps the
 //! curve's end points and exact end tangent directions (G1 joins; at a sharp point the true
 //! limit direction, which avoids hooks). It starts as the span's Hermite cubic and its two
 //! handle lengths are taken towards the minimax fit by Gauss-Newton on orthogonal
@@ -24,10 +26,11 @@
 //!
 //! Limits: the bound is proven against the samples' Hermite interpolant, whose own error
 //! (O(h^4) at 20 samples per segment) is covered only by the spot checks on the true curve,
-//! not proven. Seed hunts over 4,000 fresh random contours of the proptest's distribution
-//! (`cargo run --release --example hunt -- 2000 SEED`, seeds 7731205 and 9104417), checked
-//! with the tests' dense two-sided checker, measured at most 0.9605 of the tolerance at
-//! this acceptance (earlier builds: at most 0.961; 0.990 when accepting at 99 %).
+//! not proven. Seed hunts over 4,000 random contours of the proptest's distribution
+//! (`cargo run --release --example hunt -- 2000 SEED`, seeds 8120261 and 5550402),
+//! checked with the tests' dense two-sided checker, measured at most 0.9599 of the
+//! tolerance at this acceptance (earlier builds: at most 0.961; 0.990 when accepting at
+//! 99 %).
 
 use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 
@@ -61,13 +64,34 @@ const POLISH_ROUNDS: usize = 6;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
 const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
-/// Fewest curve samples per polished span.
+/// Fewest curve samples per span polished by [`fit_span`] (the compatible fitter's).
 const MIN_POLISH_SAMPLES: usize = 6;
+/// Fewest grid steps per trial span of [`fit_contour`]'s search: polishing costs in
+/// proportion to the samples, and most spans are short enough that this minimum sets their
+/// number (6 cost 3 % more instructions on the corpus, for the same cubic count).
+const MIN_GRID_STEPS: usize = 4;
+/// A trial span short of the stretch's end whose worst sample distance falls below this
+/// fraction of [`NEAR_GOAL`] (after [`LOW_ROUND`] rounds) stops polishing: it fits, but is
+/// too short to be taken, and only steers the span search (the polish only lowers it).
+const LOW_EXIT: f64 = 0.8;
+/// Polish rounds before a short trial may stop by [`LOW_EXIT`].
+const LOW_ROUND: usize = 1;
+/// The next cubic's first span is the last one scaled by `(target / err)^GUESS_POWER`
+/// (the error law `err ~ h^5`, aimed at the search's target), within [`GUESS_RANGE`].
+const GUESS_POWER: f64 = 0.2;
+/// Bounds of that scale.
+const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
+/// Projections for pairings ([`Poly::project_loose`]) stop when a Newton step moves the
+/// parameter less than this (the distance is then off by about its square).
+const PAIRING_NEWTON_DONE: f64 = 1e-7;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
-/// fraction of the best before it (progress has stalled).
+/// fraction of the best before it (progress has stalled): [`fit_span`]'s polish.
 const STALLED: f64 = 0.97;
+/// [`STALLED`] for [`fit_contour`]'s trials: they stop earlier (on the corpus, 3 % fewer
+/// instructions and 2 more cubics; 0.8 made 14 more cubics).
+const TRIAL_STALLED: f64 = 0.90;
 /// The polish gives up on a span whose worst sample distance is still this many goals
 /// after the first Gauss-Newton step (far out of reach: a shorter span is needed).
 const HOPELESS_START: f64 = 10.0;
@@ -251,6 +275,7 @@ fn fit_stretch(
 ) -> f64 {
     let goal = tolerance * SAFETY;
     let mut max_error: f64 = 0.0;
+    let mut grid = Grid::new(spline, t0);
     let mut a = t0;
     // The direction at the start of the next cubic (the previous one's end direction).
     let mut d0 = direction(spline, a, t0, t1);
@@ -258,19 +283,34 @@ fn fit_stretch(
         let rest = t1 - a;
         let mut h = guess.min(rest);
         // The longest span that fitted: (span, cubic, error, whether it was measured).
-        let mut fits: Option<(f64, CubicBez, f64, bool)> = None;
+        let mut fits: Option<(f64, CubicBez, f64, bool, Samples)> = None;
         let mut fails: Option<f64> = None;
         let mut last: Option<(f64, f64)> = None;
         for _ in 0..MAX_TRIES {
-            let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+            let low = if h < rest {
+                LOW_EXIT * NEAR_GOAL * goal
+            } else {
+                0.0
+            };
+            let samples = grid.samples(a, a + h);
+            let (cubic, sampled, samples) = fit_span_sampled(
+                spline,
+                (a, a + h),
+                samples,
+                d0,
+                t0,
+                t1,
+                goal,
+                Stop::trial(low),
+            );
             let mut err = sampled;
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
             if taken {
-                err = measure_within(spline, a, a + h, &cubic, goal);
+                err = measure_within(spline, &samples, &cubic, goal);
             }
             if err <= goal {
-                fits = Some((h, cubic, err, taken));
+                fits = Some((h, cubic, err, taken, samples));
                 if taken {
                     break;
                 }
@@ -313,27 +353,36 @@ fn fit_stretch(
             h = next;
         }
         let (h, cubic, err) = match fits {
-            Some((h, cubic, err, true)) => (h, cubic, err),
-            Some((h, cubic, _, false)) => {
-                let err = measure_within(spline, a, a + h, &cubic, goal);
+            Some((h, cubic, err, true, _)) => (h, cubic, err),
+            Some((h, cubic, _, false, samples)) => {
+                let err = measure_within(spline, &samples, &cubic, goal);
                 if err <= goal {
                     (h, cubic, err)
                 } else {
-                    shortest_fit(spline, a, 0.5 * h, d0, t0, t1, goal)
+                    shortest_fit(spline, &mut grid, a, 0.5 * h, d0, t0, t1, goal)
                 }
             }
-            None => shortest_fit(spline, a, h, d0, t0, t1, goal),
+            None => shortest_fit(spline, &mut grid, a, h, d0, t0, t1, goal),
         };
         let (h, cubic, err) = if h < rest && rest - h < SLIVER * rest {
-            whole_rest(spline, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
+            whole_rest(spline, &mut grid, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
         } else {
             (h, cubic, err)
         };
         path.curve_to(cubic.p1, cubic.p2, cubic.p3);
         max_error = max_error.max(err);
-        // A span cut short by the stretch's end says nothing about the next one.
+        // A span cut short by the stretch's end says nothing about the next one. Otherwise
+        // the next first try is this span, corrected by the error law for how far its
+        // error was from the search's target.
         if h < rest || h > *guess {
-            *guess = h;
+            let target = 0.5 * (1.0 + NEAR_GOAL) * goal;
+            *guess = if err > 0.0 {
+                h * (target / err)
+                    .powf(GUESS_POWER)
+                    .clamp(GUESS_RANGE.0, GUESS_RANGE.1)
+            } else {
+                h
+            };
         }
         a += h;
         d0 = direction(spline, a, t0, t1);
@@ -348,23 +397,28 @@ pub(crate) const SLIVER: f64 = 0.05;
 /// The cubic for the whole rest `[a, t1]` of a stretch, if it passes the measure.
 fn whole_rest(
     spline: &XSpline,
+    grid: &mut Grid,
     a: f64,
     t1: f64,
     d0: Vec2,
     t0: f64,
     goal: f64,
 ) -> Option<(f64, CubicBez, f64)> {
-    let (cubic, sampled) = fit_span(spline, a, t1, d0, t0, t1, goal);
+    let samples = grid.samples(a, t1);
+    let (cubic, sampled, samples) =
+        fit_span_sampled(spline, (a, t1), samples, d0, t0, t1, goal, Stop::trial(0.0));
     if sampled > goal {
         return None;
     }
-    let err = measure_within(spline, a, t1, &cubic, goal);
+    let err = measure_within(spline, &samples, &cubic, goal);
     (err <= goal).then_some((t1 - a, cubic, err))
 }
 
 /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
+#[allow(clippy::too_many_arguments)]
 fn shortest_fit(
     spline: &XSpline,
+    grid: &mut Grid,
     a: f64,
     mut h: f64,
     d0: Vec2,
@@ -373,9 +427,19 @@ fn shortest_fit(
     goal: f64,
 ) -> (f64, CubicBez, f64) {
     loop {
-        let (cubic, sampled) = fit_span(spline, a, a + h, d0, t0, t1, goal);
+        let samples = grid.samples(a, a + h);
+        let (cubic, sampled, samples) = fit_span_sampled(
+            spline,
+            (a, a + h),
+            samples,
+            d0,
+            t0,
+            t1,
+            goal,
+            Stop::trial(0.0),
+        );
         let err = if sampled <= goal {
-            measure_within(spline, a, a + h, &cubic, goal)
+            measure_within(spline, &samples, &cubic, goal)
         } else {
             sampled
         };
@@ -389,6 +453,18 @@ fn shortest_fit(
 /// Tangent direction at `t` inside the stretch `[t0, t1]`, one-sided at the stretch ends
 /// (where a sharp point may sit and the derivative vanishes). Always a finite unit vector.
 pub(crate) fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
+    direction_with(spline, t, t0, t1, || spline.eval_deriv(t).1)
+}
+
+/// [`direction`], with the curve's derivative at `t` from `deriv` (a sample's, when the
+/// caller has one: the same value).
+fn direction_with(
+    spline: &XSpline,
+    t: f64,
+    t0: f64,
+    t1: f64,
+    deriv: impl FnOnce() -> Vec2,
+) -> Vec2 {
     let n = spline.segment_count();
     let at_knot = (t - t.round()).abs() < 1e-12;
     let exact = if at_knot && (t - t0).abs() < 1e-12 {
@@ -398,7 +474,7 @@ pub(crate) fn direction(spline: &XSpline, t: f64, t0: f64, t1: f64) -> Vec2 {
             .segment((t.round() as usize + n - 1) % n)
             .end_direction()
     } else {
-        let d = spline.eval_deriv(t).1;
+        let d = deriv();
         let len = d.hypot();
         if len > 1e-9 * spline.extent() {
             d / len
@@ -463,7 +539,8 @@ impl<'a> Cursor<'a> {
         } else {
             big_t.rem_euclid(n)
         };
-        let j = (wrapped.floor() as usize).min(count - 1);
+        // `wrapped >= 0`: truncation is `floor`, without its library call.
+        let j = (wrapped as usize).min(count - 1);
         if j != self.index {
             self.index = j;
             self.segment = self.spline.segment(j);
@@ -471,6 +548,100 @@ impl<'a> Cursor<'a> {
         self.segment.eval_deriv(wrapped - j as f64)
     }
 }
+
+/// A curve point and the derivative there.
+type Sample = (Point, Vec2);
+
+/// Curve samples of one stretch for the polish, on uniform grids from the stretch's start
+/// (one per number of samples per unit), each grid point evaluated once: the span search
+/// tries several spans from one start, and the next cubic's trials cover the same curve,
+/// so most of a trial's samples were already taken.
+struct Grid<'a> {
+    cursor: Cursor<'a>,
+    t0: f64,
+    /// Per level `j` (spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^j)`), the points taken:
+    /// a window of grid indices from the first, restarted where a span lands past it (so
+    /// a fine level used at two far places of a long stretch holds only one of them).
+    levels: Vec<(usize, Vec<Option<Sample>>)>,
+    /// The last span start sampled.
+    start: Option<(f64, Point, Vec2)>,
+}
+
+impl<'a> Grid<'a> {
+    fn new(spline: &'a XSpline, t0: f64) -> Grid<'a> {
+        Grid {
+            cursor: Cursor::new(spline),
+            t0,
+            levels: Vec::new(),
+            start: None,
+        }
+    }
+
+    /// The polish's samples of `[a, b]`: its two ends (exact curve points), and between
+    /// them the points of the coarsest grid that puts at least [`MIN_GRID_STEPS`]
+    /// steps in the span, leaving out those within a quarter step of an end (so at least
+    /// [`MIN_GRID_STEPS`] steps, the two at the ends at most 1.25 grid steps long).
+    fn samples(&mut self, a: f64, b: f64) -> Samples {
+        let h = b - a;
+        let mut level = 0;
+        let mut per = POLISH_SAMPLES_PER_SEGMENT;
+        while h * per < MIN_GRID_STEPS as f64 && level < MAX_GRID_LEVEL {
+            level += 1;
+            per *= 2.0;
+        }
+        if h * per < MIN_GRID_STEPS as f64 {
+            // Shorter than the finest grid resolves: uniform samples.
+            return Samples::new(
+                self.cursor.spline,
+                a,
+                b,
+                POLISH_SAMPLES_PER_SEGMENT,
+                MIN_GRID_STEPS,
+                false,
+            );
+        }
+        if self.levels.len() <= level {
+            self.levels.resize_with(level + 1, || (0, Vec::new()));
+        }
+        let first = ((a - self.t0) * per + 0.25).ceil().max(0.0) as usize;
+        let last = ((b - self.t0) * per - 0.25).floor().max(0.0) as usize;
+        let mut samples = Samples {
+            t: Vec::with_capacity(last + 3 - first.min(last + 1)),
+            p: Vec::with_capacity(last + 3 - first.min(last + 1)),
+            d: Vec::with_capacity(last + 3 - first.min(last + 1)),
+        };
+        // The cursor's point is `XSpline::eval`'s, bit for bit; a span's start is shared by
+        // the trials of one search.
+        let start = match self.start {
+            Some(start) if start.0 == a => start,
+            _ => {
+                let (p, d) = self.cursor.eval_deriv(a);
+                (a, p, d)
+            }
+        };
+        self.start = Some(start);
+        samples.push(start);
+        let (origin, points) = &mut self.levels[level];
+        if points.is_empty() || first < *origin || first > *origin + points.len() {
+            *origin = first;
+            points.clear();
+        }
+        if points.len() <= last - *origin {
+            points.resize(last - *origin + 1, None);
+        }
+        for k in first..=last {
+            let t = self.t0 + k as f64 / per;
+            let (p, d) = *points[k - *origin].get_or_insert_with(|| self.cursor.eval_deriv(t));
+            samples.push((t, p, d));
+        }
+        let (p, d) = self.cursor.eval_deriv(b);
+        samples.push((b, p, d));
+        samples
+    }
+}
+
+/// Finest polish grid: spacing `1 / (POLISH_SAMPLES_PER_SEGMENT * 2^MAX_GRID_LEVEL)`.
+const MAX_GRID_LEVEL: usize = 12;
 
 /// Samples of the curve on one span, with derivatives: enough to measure a cubic against
 /// (between samples the curve is taken as the cubic Hermite interpolant, whose error is
@@ -520,6 +691,44 @@ impl Samples {
             }
             samples.push((t, p, d));
             previous = Some((t, p, d));
+        }
+        samples
+    }
+
+    /// The measure's samples from the polish's: each step of the polish's samples cut in
+    /// two, or in more where it is longer than `1 / SAMPLES_PER_SEGMENT` (at a span's ends
+    /// the grid's step can be a quarter longer), so at most that far apart and at least
+    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast.
+    fn doubled(spline: &XSpline, coarse: &Samples) -> Samples {
+        let m = coarse.len() - 1;
+        let mut samples = Samples {
+            t: Vec::with_capacity(2 * m + 3),
+            p: Vec::with_capacity(2 * m + 3),
+            d: Vec::with_capacity(2 * m + 3),
+        };
+        let mut cursor = Cursor::new(spline);
+        let mut previous = (coarse.t[0], coarse.p[0], coarse.d[0]);
+        samples.push(previous);
+        for k in 0..m {
+            let (t0, t1) = (coarse.t[k], coarse.t[k + 1]);
+            // Rounding must not add a piece to a step of exactly the grid's length.
+            // At least two, and enough for [`MIN_SAMPLES`] in all (a span of
+            // [`MIN_GRID_STEPS`] steps takes three each).
+            let pieces = (((t1 - t0) * SAMPLES_PER_SEGMENT - 1e-9).ceil() as usize)
+                .max(MIN_SAMPLES.div_ceil(m))
+                .max(2);
+            for j in 1..=pieces {
+                let next = if j == pieces {
+                    (t1, coarse.p[k + 1], coarse.d[k + 1])
+                } else {
+                    let t = t0 + (t1 - t0) * j as f64 / pieces as f64;
+                    let (p, d) = cursor.eval_deriv(t);
+                    (t, p, d)
+                };
+                samples.refine(&mut cursor, previous, next, MAX_REFINE);
+                samples.push(next);
+                previous = next;
+            }
         }
         samples
     }
@@ -607,12 +816,62 @@ pub(crate) fn fit_span(
         MIN_POLISH_SAMPLES,
         false,
     );
+    let stop = Stop {
+        low: 0.0,
+        stalled: STALLED,
+    };
+    let (cubic, sampled, _) = fit_span_sampled(spline, (a, b), samples, d0, t0, t1, goal, stop);
+    (cubic, sampled)
+}
+
+/// When [`polish`] stops early, besides its round limit and a hopeless span.
+#[derive(Clone, Copy)]
+struct Stop {
+    /// Worst sample distance below which a trial short of the stretch's end stops (see
+    /// [`LOW_EXIT`]); zero polishes fully.
+    low: f64,
+    /// [`STALLED`] or [`TRIAL_STALLED`].
+    stalled: f64,
+}
+
+impl Stop {
+    /// The stops of [`fit_contour`]'s trials.
+    fn trial(low: f64) -> Stop {
+        Stop {
+            low,
+            stalled: TRIAL_STALLED,
+        }
+    }
+}
+
+/// [`fit_span`] on the given `samples` of `span` (the span's ends first and last), also
+/// returning them: [`measure_within`] takes them as every second one of its own; `stop`
+/// says when the polish may stop early.
+#[allow(clippy::too_many_arguments)]
+fn fit_span_sampled(
+    spline: &XSpline,
+    span: (f64, f64),
+    samples: Samples,
+    d0: Vec2,
+    t0: f64,
+    t1: f64,
+    goal: f64,
+    stop: Stop,
+) -> (CubicBez, f64, Samples) {
     let last = samples.len() - 1;
+    let (a, b) = span;
     let (p0, p3) = (samples.p[0], samples.p[last]);
-    let d1 = direction(spline, b, t0, t1);
+    // The grid's last sample is at `b` exactly; `Samples::new`'s may be off by rounding.
+    let d1 = direction_with(spline, b, t0, t1, || {
+        if samples.t[last] == b {
+            samples.d[last]
+        } else {
+            spline.eval_deriv(b).1
+        }
+    });
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
-        return (CubicBez::new(p0, p0, p3, p3), 0.0);
+        return (CubicBez::new(p0, p0, p3, p3), 0.0, samples);
     }
     // The Hermite cubic of the span: handles from the curve's own derivatives; its
     // parameter runs with the curve's, so the samples' parameters start uniform.
@@ -620,7 +879,8 @@ pub(crate) fn fit_span(
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
     let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    polish(&samples, p0, p3, d0, d1, alpha, beta, &u, goal)
+    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, u, goal, stop);
+    (cubic, sampled, samples)
 }
 
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
@@ -636,15 +896,15 @@ fn polish(
     d1: Vec2,
     alpha: f64,
     beta: f64,
-    u0: &[f64],
+    mut u: Vec<f64>,
     goal: f64,
+    stop: Stop,
 ) -> (CubicBez, f64) {
     let n = samples.len();
     // Handles never vanish (a zero handle would take the end's tangent from the other
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
     let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
-    let mut u = u0.to_vec();
     let mut w = vec![1.0 / n as f64; n];
     let cubic_of = |alpha: f64, beta: f64| CubicBez::new(p0, p0 + alpha * d0, p3 - beta * d1, p3);
     // (alpha, beta, worst sample distance, Gauss-Newton step) of the best cubic so far.
@@ -656,7 +916,8 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in 0..n {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, dist) = poly.project_steps(samples.p[i], u[i], 3);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, 1e-10);
+            let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
             if round >= LAWSON_AFTER {
@@ -665,7 +926,7 @@ fn polish(
             if dist <= 0.0 {
                 continue;
             }
-            let normal = (samples.p[i].to_vec2() - poly.eval(ui)) / dist;
+            let normal = -r / dist;
             let mt = 1.0 - ui;
             let j0 = 3.0 * mt * mt * ui * normal.dot(d0);
             let j1 = -3.0 * mt * ui * ui * normal.dot(d1);
@@ -689,12 +950,12 @@ fn polish(
         };
         if best.is_none_or(|b| worst < b.2) {
             // Stop when progress stalls, or when the span is clearly out of reach.
-            let stalled = best.is_some_and(|b| worst > STALLED * b.2);
+            let stalled = best.is_some_and(|b| worst > stop.stalled * b.2);
             let hopeless = (round >= 1 && worst > HOPELESS_START * goal)
                 || (round >= LAWSON_AFTER && worst > HOPELESS_MINIMAX * goal);
             best = Some((alpha, beta, worst, step.0, step.1));
             damping = 1.0;
-            if stalled || hopeless {
+            if stalled || hopeless || (round >= LOW_ROUND && worst < stop.low) {
                 break;
             }
         } else {
@@ -771,8 +1032,22 @@ impl Poly {
         self.project_steps(p, u, 6)
     }
 
+    /// [`Poly::project`], stopping at a step below [`PAIRING_NEWTON_DONE`]: for pairings,
+    /// where any parameter gives a valid bound and a near one a tight bound.
+    fn project_loose(&self, p: Point, u: f64) -> (f64, f64) {
+        let (u, r) = self.residual_steps(p, u, 6, PAIRING_NEWTON_DONE);
+        (u, r.hypot())
+    }
+
     /// [`Poly::project`] with at most `steps` Newton steps.
-    fn project_steps(&self, p: Point, mut u: f64, steps: usize) -> (f64, f64) {
+    fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
+        let (u, r) = self.residual_steps(p, u, steps, 1e-10);
+        (u, r.hypot())
+    }
+
+    /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length,
+    /// and stopping when a step is below `done_below`.
+    fn residual_steps(&self, p: Point, mut u: f64, steps: usize, done_below: f64) -> (f64, Vec2) {
         let p = p.to_vec2();
         for _ in 0..steps {
             let r = self.eval(u) - p;
@@ -783,13 +1058,13 @@ impl Poly {
                 break;
             }
             let next = (u - r.dot(d1) / denom).clamp(0.0, 1.0);
-            let done = (next - u).abs() < 1e-10;
+            let done = (next - u).abs() < done_below;
             u = next;
             if done {
                 break;
             }
         }
-        (u, (self.eval(u) - p).hypot())
+        (u, self.eval(u) - p)
     }
 }
 
@@ -820,10 +1095,10 @@ const GAP_STEPS: usize = 4;
 /// have found at most this. As in [`measure`], the top peaks are then also checked
 /// against the true curve, in both directions (the Hermite pieces' own error, O(h^4)).
 /// Rounding in the bound is relative 1e-13, far inside the acceptance's 4 % margin.
-fn measure_within(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez, goal: f64) -> f64 {
-    let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
+fn measure_within(spline: &XSpline, polished: &Samples, cubic: &CubicBez, goal: f64) -> f64 {
+    let samples = &Samples::doubled(spline, polished);
     let poly = Poly::new(cubic);
-    let (u, near) = project_samples(samples, &poly);
+    let (u, near) = project_samples_ahead(samples, &poly);
     let pieces = hermite_pieces(samples);
     let n = samples.len();
     let paired = |i: usize| match i {
@@ -883,17 +1158,18 @@ pub(crate) fn distance_to_curve(
     (lo, hi): (f64, f64),
     steps: usize,
 ) -> f64 {
-    let mut nearest = spline.eval(t).distance(q);
+    // `eval_deriv`'s point is `eval`'s, bit for bit: one evaluation per step.
+    let mut nearest = f64::INFINITY;
     for _ in 0..steps {
         let (c, d) = spline.eval_deriv(t);
+        nearest = nearest.min(c.distance(q));
         let dd = d.dot(d);
         if dd <= 0.0 {
-            break;
+            return nearest;
         }
         t = (t + (q - c).dot(d) / dd).clamp(lo, hi);
-        nearest = nearest.min(spline.eval(t).distance(q));
     }
-    nearest
+    nearest.min(spline.eval(t).distance(q))
 }
 
 /// [`gap_bound`] of the Hermite piece `piece` paired with `cubic` on `[u0, u1]` (both
@@ -913,7 +1189,9 @@ fn paired_gap(
     if gap <= goal || splits == 0 {
         return (gap, at);
     }
-    let um = cubic.project(piece.eval(0.5).to_point(), 0.5 * (u0 + u1)).0;
+    let um = cubic
+        .project_loose(piece.eval(0.5).to_point(), 0.5 * (u0 + u1))
+        .0;
     let left = paired_gap(&piece.along(0.0, 0.5), cubic, u0, um, goal, splits - 1);
     let right = paired_gap(&piece.along(0.5, 0.5), cubic, um, u1, goal, splits - 1);
     if left.0 >= right.0 {
@@ -1000,6 +1278,52 @@ fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
         near[i] = d;
         largest = largest.max(d);
         guess = ui;
+    }
+    (u, near)
+}
+
+/// [`project_samples`] for [`measure_within`], whose bound holds for any pairing of
+/// samples with cubic parameters (a closer projection only makes it tighter): each sample
+/// starts from the parameters of the two before it, extrapolated in proportion to the
+/// curve parameter, which the cubic follows closely; the retry from the sample's share of
+/// the span only where Newton stopped at a clamp. (Samples that coincide in floating point
+/// start from the previous parameter.)
+fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
+    let n = samples.len();
+    let mut u = vec![0.0; n];
+    let mut near = vec![0.0; n];
+    let mut largest: f64 = 0.0;
+    let span = samples.t[n - 1] - samples.t[0];
+    for i in 0..n {
+        let guess = match i {
+            0 => 0.0,
+            1 => (samples.t[1] - samples.t[0]) / span,
+            _ => {
+                let (dt0, dt1) = (
+                    samples.t[i - 1] - samples.t[i - 2],
+                    samples.t[i] - samples.t[i - 1],
+                );
+                u[i - 1] + (u[i - 1] - u[i - 2]) * (dt1 / dt0)
+            }
+        };
+        let guess = if guess.is_finite() {
+            guess.clamp(0.0, 1.0)
+        } else if i > 0 {
+            u[i - 1]
+        } else {
+            0.0
+        };
+        let (mut ui, mut d) = poly.project_loose(samples.p[i], guess);
+        if i > 0 && i + 1 < n && d > largest && (ui <= 0.0 || ui >= 1.0) {
+            let share = (samples.t[i] - samples.t[0]) / span;
+            let alt = poly.project_loose(samples.p[i], share);
+            if alt.1 < d {
+                (ui, d) = alt;
+            }
+        }
+        u[i] = ui;
+        near[i] = d;
+        largest = largest.max(d);
     }
     (u, near)
 }
@@ -1240,10 +1564,13 @@ mod tests {
             for h in [0.2, 0.3, 0.4, 0.6, 0.9, 1.2] {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
-                let (cubic, _) = fit_span(&spline, a, b, d0, start, end, 0.48);
+                let samples = Grid::new(&spline, start).samples(a, b);
+                let stop = Stop::trial(0.0);
+                let (cubic, _, samples) =
+                    fit_span_sampled(&spline, (a, b), samples, d0, start, end, 0.48, stop);
                 let golden = measure(&spline, a, b, &cubic);
                 for goal in [0.48, 1.05 * golden] {
-                    let err = measure_within(&spline, a, b, &cubic, goal);
+                    let err = measure_within(&spline, &samples, &cubic, goal);
                     assert!(err >= golden * (1.0 - 1e-6), "{err} < {golden}");
                     if golden <= goal {
                         assert!(err <= goal, "{err} > {goal} >= {golden}");

@@ -119,7 +119,13 @@ fn is_simple(topology: &Topology<i32>, eps: f64) -> bool {
             *topology.winding_clockwise(start),
             *topology.winding_counter_clockwise(start),
         );
-        if !matches!(sides, (0, 1) | (1, 0)) {
+        // A piece shorter than `eps` may carry a stray winding: where a cubic ends with an
+        // exactly horizontal tangent on a vertical line (the fitter's limit direction at a
+        // sharp point), the sweep splits it at a y extremum one rounding step before its
+        // end, and the sliver left runs along the line (measured on the bundled `R`).
+        let length = topology.point(start).to_kurbo() - topology.point(end).to_kurbo();
+        let tiny = length.hypot() <= eps;
+        if !matches!(sides, (0, 1) | (1, 0)) && !tiny {
             return false;
         }
         let input = topology.orig_seg[idx];

@@ -180,8 +180,14 @@ impl XSpline {
     /// Splits a global parameter `T` (any real; wrapped into `[0, n)`) into segment and `t`.
     fn locate(&self, big_t: f64) -> (usize, f64) {
         let n = self.points.len() as f64;
-        let wrapped = big_t.rem_euclid(n);
-        let j = (wrapped.floor() as usize).min(self.points.len() - 1);
+        // Inside `[0, n)` the remainder is `T` itself (exact), so skip the library call;
+        // `wrapped >= 0`, so truncation is `floor`.
+        let wrapped = if (0.0..n).contains(&big_t) {
+            big_t
+        } else {
+            big_t.rem_euclid(n)
+        };
+        let j = (wrapped as usize).min(self.points.len() - 1);
         (j, wrapped - j as f64)
     }
 

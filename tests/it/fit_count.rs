@@ -7,8 +7,8 @@ use kurbo::fit_to_bezpath_opt;
 use xglyph::fit::{fit_contour, stretches, Stretch, StretchSource};
 
 #[test]
-/// Issue #2 asks for at most 1.10× kurbo's near-optimal fitter; measured 460 vs 440 (461 before sliver cubics were removed)
-/// (1.05×) at 0.5 units, with our stricter two-sided acceptance.
+/// Issue #2 asks for at most 1.10× kurbo's near-optimal fitter; measured 458 vs 440 (1.04×)
+/// at 0.5 units, with our stricter two-sided acceptance.
 fn segment_total_against_kurbo_opt() {
     let tolerance = 0.5;
     let (mut ours, mut reference) = (0, 0);
