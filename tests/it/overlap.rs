@@ -41,6 +41,8 @@ fn aliased_limit(covered: usize) -> usize {
 
 /// Largest distance between the union's boundary and the original's (font units).
 const MAX_SHIFT: f64 = 5e-3;
+/// How far off the curve [`kept_boundary_shift`] probes the winding (font units).
+const PROBE: f64 = 1e-3;
 
 fn contours(path: &BezPath) -> Vec<BezPath> {
     path.elements()
@@ -177,6 +179,10 @@ fn pixel_diff(a: &[BezPath], b: &BezPath, scale: f64) -> (u8, usize, usize) {
 
 /// Distance from the original's remaining boundary (samples filled on exactly one side, by
 /// the original's nonzero winding, `side` units off the curve) to the union.
+///
+/// A sample within `side` of another contour can be taken for boundary although it lies
+/// inside that contour (one probe crosses it), and its distance to the union is then up to
+/// `side`: so `side` ([`PROBE`]) stays well below [`MAX_SHIFT`].
 fn kept_boundary_shift(original: &BezPath, union: &BezPath, side: f64) -> f64 {
     let target = crate::common::paths::with_boxes(union);
     let mut hint = 0;
@@ -277,7 +283,7 @@ fn check_font(
         worst_ratio = worst_ratio.max(differ as f64 / covered as f64);
         total_differ += differ;
         let shift = one_sided(&after.path, &joined, 16);
-        let kept = kept_boundary_shift(&joined, &after.path, 0.01);
+        let kept = kept_boundary_shift(&joined, &after.path, PROBE);
         assert!(
             px <= AA_LEVELS,
             "{label} {}: a pixel differs by {px}",
@@ -403,7 +409,7 @@ fn check_case(name: &str, path: &BezPath) -> BezPath {
     let union = remove_overlaps(path, 1e-4);
     let (px, differ, covered) = pixel_diff(std::slice::from_ref(path), &union, 1.0);
     let shift = one_sided(&union, path, 32);
-    let kept = kept_boundary_shift(path, &union, 0.01);
+    let kept = kept_boundary_shift(path, &union, PROBE);
     eprintln!(
         "{name}: {} crossings -> {}, pixels: max diff {px}, {differ} differ of {covered}; \
          shift {shift:.2e}, kept {kept:.2e}",

@@ -686,7 +686,10 @@ fn check_skrifa(family: &OutlinedFamily, wghts: &[f64]) -> (f64, f64) {
                 )
                 .unwrap();
             let d = paths::two_sided(&pen.0, &expected[i].path, 48);
-            let bound = family.default.tolerance + GRID;
+            // skrifa, like FreeType, adds the interpolated delta rounded to whole units
+            // (`FT_fixedToInt`), so a point can move by another half unit per coordinate
+            // beyond the grid rounding of the masters: twice GRID in all.
+            let bound = family.default.tolerance + 2.0 * GRID;
             assert!(d <= bound, "{} at wght {w}: {d} > {bound}", g.model_name);
             worst = worst.max(d);
         }
