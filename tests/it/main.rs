@@ -17,6 +17,7 @@ mod import_bound;
 mod import_font;
 mod import_malformed;
 mod import_output;
+mod import_points;
 mod import_svg;
 mod ir;
 mod limits;
