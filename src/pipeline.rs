@@ -457,7 +457,7 @@ pub struct BuildOptions {
     /// The text proof.
     pub proof: ProofOptions,
     /// Write the TTF, OTF and WOFF2 with overlapping contours as they are (by default they
-    /// are unioned: [`remove_overlaps_font`]).
+    /// are unioned: [`crate::overlap::remove_overlaps_font`]).
     pub keep_overlaps: bool,
 }
 
