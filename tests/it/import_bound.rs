@@ -49,14 +49,7 @@ fn every_contour_is_within_the_bound_and_measured_as_reported() {
     // Independently: each X-spline as a fine polyline against its own original contour.
     let mut worst: f64 = 0.0;
     for (contour, original) in fitted.glyph.contours.iter().zip(&originals) {
-        let spline = contour.spline();
-        let mut line = BezPath::new();
-        line.move_to(spline.eval(0.0));
-        let n = spline.segment_count() * 256;
-        for k in 1..n {
-            line.line_to(spline.eval(k as f64 / 256.0));
-        }
-        line.close_path();
+        let line = paths::xspline_polyline(contour.spline(), 256);
         let original = BezPath::from_path_segments(original.segs.iter().copied());
         let d = paths::two_sided(&line, &original, 32);
         assert!(

@@ -37,14 +37,7 @@ fn free_corners_save_points_within_the_bound() {
     let bound = IMPORT_SHARE * T;
     let mut worst: f64 = 0.0;
     for (contour, original) in fitted.glyph.contours.iter().zip(&originals) {
-        let spline = contour.spline();
-        let mut line = BezPath::new();
-        line.move_to(spline.eval(0.0));
-        let n = spline.segment_count() * 256;
-        for k in 1..n {
-            line.line_to(spline.eval(k as f64 / 256.0));
-        }
-        line.close_path();
+        let line = paths::xspline_polyline(contour.spline(), 256);
         let original = BezPath::from_path_segments(original.segs.iter().copied());
         worst = worst.max(paths::two_sided(&line, &original, 32));
     }

@@ -7,13 +7,12 @@ use std::path::{Path, PathBuf};
 
 use kurbo::{Affine, Vec2};
 use xglyph::layout::Layout;
-use xglyph::model::{Contour, Font, Glyph};
 use xglyph::otf;
 use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{sheet_png_files_reusing, SheetOptions};
 use xglyph::reuse::{font_key, Reuse, REUSE_FILE};
-use xglyph::source::load_font;
-use xglyph::xspline::ControlPoint;
+
+use crate::common::fonts::square_ideographs;
 
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -29,30 +28,7 @@ fn scratch(name: &str) -> PathBuf {
 /// 130 square glyphs from U+4E00 on (no Latin, so every label is in the built-in face):
 /// three sheet pages of 64, 64 and 2 cells at one column of 32 px.
 fn cjk_like() -> OutlinedFont {
-    let mut font: Font = load_font(&repo("tests/fixtures/mini"))
-        .expect("mini loads")
-        .0;
-    let square = Contour::new(
-        [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
-            .iter()
-            .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
-            .collect(),
-    )
-    .unwrap();
-    font.glyphs = (0..130)
-        .map(|i| {
-            let c = char::from_u32(0x4E00 + i).unwrap();
-            Glyph {
-                name: format!("uni{:04X}", u32::from(c)),
-                unicodes: vec![c],
-                advance: 1000.0,
-                contours: vec![square.clone()],
-                components: vec![],
-                anchors: Vec::new(),
-            }
-        })
-        .collect();
-    font.kerning.clear();
+    let mut font = square_ideographs(130);
     font.features = None;
     outline_font(&font, 0.5)
 }

@@ -5,14 +5,15 @@ use std::fmt::Write;
 use std::path::Path;
 
 use tiny_skia::{Color, Pixmap};
-use xglyph::model::{Contour, Font, Glyph};
+use xglyph::model::{Font, Glyph};
 use xglyph::outline::outline_font;
 use xglyph::render::labels::draw_line;
 use xglyph::render::{
     page_file_names, render_sheet, render_sheet_page, sheet_order, sheet_pages, SheetOptions,
 };
 use xglyph::source::load_font;
-use xglyph::xspline::ControlPoint;
+
+use crate::common::fonts::square_ideographs;
 
 fn repo(path: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -85,33 +86,6 @@ fn the_label_face_is_generated_from_the_bundled_typeface() {
     assert_eq!(expected.matches("\n    (").count(), 96);
 }
 
-/// A font of `n` square glyphs mapped from U+4E00 on: no Latin, so no label character.
-fn cjk_like(n: u32) -> Font {
-    let mut font = mini();
-    let square = Contour::new(
-        [(100.0, 0.0), (800.0, 0.0), (800.0, 700.0), (100.0, 700.0)]
-            .iter()
-            .map(|&(x, y)| ControlPoint::new(x, y, 0.0))
-            .collect(),
-    )
-    .unwrap();
-    font.glyphs = (0..n)
-        .map(|i| {
-            let c = char::from_u32(0x4E00 + i).unwrap();
-            Glyph {
-                name: format!("uni{:04X}", u32::from(c)),
-                unicodes: vec![c],
-                advance: 1000.0,
-                contours: vec![square.clone()],
-                components: vec![],
-                anchors: Vec::new(),
-            }
-        })
-        .collect();
-    font.kerning.clear();
-    font
-}
-
 fn region(img: &Pixmap, x0: u32, y0: u32, w: u32, h: u32) -> Vec<[u8; 4]> {
     let mut out = Vec::new();
     for y in y0..y0 + h {
@@ -125,7 +99,7 @@ fn region(img: &Pixmap, x0: u32, y0: u32, w: u32, h: u32) -> Vec<[u8; 4]> {
 
 #[test]
 fn labels_a_font_cannot_set_come_from_the_built_in_face() {
-    let font = cjk_like(1);
+    let font = square_ideographs(1);
     let outlines = outline_font(&font, 0.5);
     let opts = SheetOptions {
         cell_px: 160,
@@ -211,7 +185,7 @@ fn a_font_that_covers_its_labels_sets_them_itself() {
 
 #[test]
 fn thousands_of_glyphs_page_the_sheet() {
-    let font = outline_font(&cjk_like(1100), 0.5);
+    let font = outline_font(&square_ideographs(1100), 0.5);
     let opts = SheetOptions::default();
     let pages = sheet_pages(&font, &opts).unwrap();
     // 8 columns x 64 rows = 512 glyphs a page: 512 + 512 + 76, in sheet order.

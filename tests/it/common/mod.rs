@@ -3,6 +3,7 @@
 pub mod cli;
 pub mod corpus;
 pub mod curves;
+pub mod fonts;
 pub mod masters;
 pub mod paths;
 pub mod tools;

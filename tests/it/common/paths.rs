@@ -7,6 +7,18 @@ use kurbo::{
     BezPath, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathEl, PathSeg, Point, Rect,
 };
 
+/// A closed X-spline as a polyline of `per_segment` chords per spline segment.
+pub fn xspline_polyline(spline: &xglyph::xspline::XSpline, per_segment: usize) -> BezPath {
+    let mut line = BezPath::new();
+    line.move_to(spline.eval(0.0));
+    let n = spline.segment_count() * per_segment;
+    for k in 1..n {
+        line.line_to(spline.eval(k as f64 / per_segment as f64));
+    }
+    line.close_path();
+    line
+}
+
 /// The number of cubic segments in `path`.
 pub fn cubic_count(path: &BezPath) -> usize {
     path.elements()
