@@ -39,10 +39,11 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
-use kurbo::{BezPath, PathEl, Point};
+use kurbo::{BezPath, PathEl};
 
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
+use crate::record::{put_path, Reader};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// Name of the cache file in the output folder.
@@ -59,7 +60,7 @@ pub const COMPATIBLE_VERSION: u32 = 2;
 /// First bytes of a cache file.
 const MAGIC: &[u8; 8] = b"XGLYPHFC";
 /// Layout of the file itself.
-const FORMAT_VERSION: u32 = 2;
+const FORMAT_VERSION: u32 = 3;
 
 /// What a fit depends on: the control points (bits of x, y, s) and the tolerance (bits).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -318,11 +319,6 @@ fn fitter_key() -> [u32; 4] {
 //   | segments u32 | between_masters (u8 0, or u8 1 and f64) | max_error (f64 per position)
 //   | one path per master
 
-const TAG_MOVE: u8 = 0;
-const TAG_LINE: u8 = 1;
-const TAG_CUBIC: u8 = 2;
-const TAG_CLOSE: u8 = 3;
-
 fn encode(entries: &Entries) -> Vec<u8> {
     let mut out = Vec::new();
     out.extend_from_slice(MAGIC);
@@ -386,60 +382,8 @@ fn put_compatible_fit(out: &mut Vec<u8>, fit: &CompatibleFit) {
     }
 }
 
-fn put_path(out: &mut Vec<u8>, path: &BezPath) {
-    let elements = path.elements();
-    out.extend_from_slice(&(elements.len() as u32).to_le_bytes());
-    let mut put = |tag: u8, points: &[Point]| {
-        out.push(tag);
-        for p in points {
-            out.extend_from_slice(&p.x.to_bits().to_le_bytes());
-            out.extend_from_slice(&p.y.to_bits().to_le_bytes());
-        }
-    };
-    for el in elements {
-        match *el {
-            PathEl::MoveTo(p) => put(TAG_MOVE, &[p]),
-            PathEl::LineTo(p) => put(TAG_LINE, &[p]),
-            PathEl::CurveTo(a, b, c) => put(TAG_CUBIC, &[a, b, c]),
-            PathEl::ClosePath => put(TAG_CLOSE, &[]),
-            // The fitters write no quadratics; an unknown tag makes the file unreadable,
-            // so this entry is refitted next time instead of trusted.
-            PathEl::QuadTo(..) => put(u8::MAX, &[]),
-        }
-    }
-}
-
-/// A cursor over untrusted bytes: every read is bounds-checked.
-struct Reader<'a> {
-    bytes: &'a [u8],
-}
-
+// The fit cache's own reads, on the shared cursor.
 impl Reader<'_> {
-    fn take<const N: usize>(&mut self) -> Result<[u8; N], &'static str> {
-        let (head, rest) = self
-            .bytes
-            .split_first_chunk::<N>()
-            .ok_or("the file is truncated")?;
-        self.bytes = rest;
-        Ok(*head)
-    }
-    fn u8(&mut self) -> Result<u8, &'static str> {
-        Ok(self.take::<1>()?[0])
-    }
-    fn u32(&mut self) -> Result<u32, &'static str> {
-        Ok(u32::from_le_bytes(self.take()?))
-    }
-    fn u64(&mut self) -> Result<u64, &'static str> {
-        Ok(u64::from_le_bytes(self.take()?))
-    }
-    fn f64(&mut self) -> Result<f64, &'static str> {
-        let v = f64::from_bits(self.u64()?);
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err("a number is not finite")
-        }
-    }
     /// A finite, non-negative error or bound.
     fn error(&mut self) -> Result<f64, &'static str> {
         let v = self.f64()?;
@@ -447,16 +391,6 @@ impl Reader<'_> {
             return Err("a negative error");
         }
         Ok(v)
-    }
-    fn point(&mut self) -> Result<Point, &'static str> {
-        Ok(Point::new(self.f64()?, self.f64()?))
-    }
-    /// A count of items of at least `min_size` bytes each, checked against what remains.
-    fn count(&mut self, n: u64, min_size: usize) -> Result<usize, &'static str> {
-        match usize::try_from(n) {
-            Ok(n) if n <= self.bytes.len() / min_size => Ok(n),
-            _ => Err("a count exceeds the file's size"),
-        }
     }
     /// `count` control points (x, y, s as bits).
     fn points(&mut self, count: usize) -> Result<Vec<[u64; 3]>, &'static str> {
@@ -476,9 +410,7 @@ fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
     if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
         return Err("the checksum does not match (corrupt or truncated)");
     }
-    let mut r = Reader {
-        bytes: &body[MAGIC.len()..],
-    };
+    let mut r = Reader::new(&body[MAGIC.len()..]);
     if r.u32()? != FORMAT_VERSION {
         return Err("written by another version of xglyph");
     }
@@ -518,7 +450,7 @@ fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
             return Err("a contour is stored twice");
         }
     }
-    if !r.bytes.is_empty() {
+    if !r.is_empty() {
         return Err("bytes follow the last entry");
     }
     Ok(entries)
@@ -558,16 +490,8 @@ fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit),
     let paths = (0..masters)
         .map(|_| read_path(r))
         .collect::<Result<Vec<_>, _>>()?;
-    let kinds = |p: &BezPath| -> Vec<u8> {
-        p.elements()
-            .iter()
-            .map(|el| match el {
-                PathEl::MoveTo(_) => TAG_MOVE,
-                PathEl::LineTo(_) => TAG_LINE,
-                PathEl::CurveTo(..) => TAG_CUBIC,
-                _ => TAG_CLOSE,
-            })
-            .collect()
+    let kinds = |p: &BezPath| -> Vec<std::mem::Discriminant<PathEl>> {
+        p.elements().iter().map(std::mem::discriminant).collect()
     };
     let first = kinds(&paths[0]);
     if paths[1..].iter().any(|p| kinds(p) != first) || first.len() != segments + 2 {
@@ -589,22 +513,18 @@ fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit),
 
 /// One closed contour of lines and cubics.
 fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
-    let count = r.u32()?;
-    let count = r.count(u64::from(count), 1)?;
-    if count < 2 {
-        return Err("an empty path");
-    }
-    let mut path = BezPath::new();
-    for k in 0..count {
-        let tag = r.u8()?;
-        let (first, last) = (k == 0, k + 1 == count);
-        match tag {
-            TAG_MOVE if first => path.move_to(r.point()?),
-            TAG_LINE if !first && !last => path.line_to(r.point()?),
-            TAG_CUBIC if !first && !last => path.curve_to(r.point()?, r.point()?, r.point()?),
-            TAG_CLOSE if last => path.close_path(),
-            _ => return Err("a path is not one closed contour"),
-        }
+    let path = r.path()?;
+    let elements = path.elements();
+    let last = elements.len().saturating_sub(1);
+    let one_contour = elements.len() >= 2
+        && elements.iter().enumerate().all(|(k, el)| match el {
+            PathEl::MoveTo(_) => k == 0,
+            PathEl::LineTo(_) | PathEl::CurveTo(..) => k != 0 && k != last,
+            PathEl::ClosePath => k == last,
+            PathEl::QuadTo(..) => false,
+        });
+    if !one_contour {
+        return Err("a path is not one closed contour");
     }
     Ok(path)
 }
@@ -612,6 +532,7 @@ fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::record::{TAG_CLOSE, TAG_MOVE};
 
     fn square() -> XSpline {
         let points = [
@@ -651,19 +572,19 @@ mod tests {
         let cache = FitCache::new();
         cache.fit(&square(), 0.5);
         let good = cache.to_bytes();
-        // Re-sign a body whose path lost its ClosePath tag (3 -> 1): the CRC matches, the
-        // structure does not.
+        // Re-sign a body whose path's ClosePath tag became a MoveTo (a second contour that
+        // never closes): the CRC matches, the structure does not.
         // The last 8 bytes before the checksum count the compatible entries (none).
         let mut body = good[..good.len() - 12].to_vec();
         let last = body.len() - 1;
         assert_eq!(body[last], TAG_CLOSE);
-        body[last] = TAG_LINE;
+        body[last] = TAG_MOVE;
         body.extend_from_slice(&0u64.to_le_bytes());
         let crc = crc32fast::hash(&body);
         body.extend_from_slice(&crc.to_le_bytes());
         assert_eq!(
             decode(&body).err(),
-            Some("a path is not one closed contour")
+            Some("an outline is not closed subpaths")
         );
     }
 }

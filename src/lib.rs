@@ -37,6 +37,7 @@ pub mod otf;
 pub mod outline;
 pub mod overlap;
 pub mod pipeline;
+mod record;
 pub mod render;
 pub mod reuse;
 pub mod serve;

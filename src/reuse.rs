@@ -31,9 +31,10 @@ use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
-use kurbo::{BezPath, PathEl};
+use kurbo::BezPath;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
+use crate::record::{put_path, Reader};
 use sha2::{Digest, Sha256};
 
 /// Name of the record file in the output folder.
@@ -313,7 +314,7 @@ fn parse(
     if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
         return Err("its checksum does not match (the file is damaged)");
     }
-    let mut r = Reader(&body[MAGIC.len()..]);
+    let mut r = Reader::new(&body[MAGIC.len()..]);
     if r.u32()? != FORMAT_VERSION {
         return Err("it was written by another version of xglyph");
     }
@@ -339,98 +340,17 @@ fn parse(
         let key = Key(r.array()?);
         let path = match r.array::<1>()?[0] {
             0 => None,
-            1 => Some(read_path(&mut r)?),
+            1 => Some(r.path()?),
             _ => return Err("an outline record is malformed"),
         };
         if paths.insert(key, path).is_some() {
             return Err("an outline is recorded twice");
         }
     }
-    if !r.0.is_empty() {
+    if !r.is_empty() {
         return Err("bytes follow the last record");
     }
     Ok((records, paths))
-}
-
-// A path: element count u32 | elements (tag u8: 0 move, 1 line, 2 quad, 3 cubic, 4 close;
-// then the points as f64 bits).
-fn put_path(out: &mut Vec<u8>, path: &BezPath) {
-    out.extend_from_slice(&(path.elements().len() as u32).to_le_bytes());
-    let mut put = |tag: u8, points: &[kurbo::Point]| {
-        out.push(tag);
-        for p in points {
-            out.extend_from_slice(&p.x.to_bits().to_le_bytes());
-            out.extend_from_slice(&p.y.to_bits().to_le_bytes());
-        }
-    };
-    for el in path.elements() {
-        match *el {
-            PathEl::MoveTo(p) => put(0, &[p]),
-            PathEl::LineTo(p) => put(1, &[p]),
-            PathEl::QuadTo(a, b) => put(2, &[a, b]),
-            PathEl::CurveTo(a, b, c) => put(3, &[a, b, c]),
-            PathEl::ClosePath => put(4, &[]),
-        }
-    }
-}
-
-/// Closed subpaths of finite points (what a union gives), possibly none.
-fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
-    let count = r.u32()? as usize;
-    if count > r.0.len() {
-        return Err("the file is truncated");
-    }
-    let mut path = BezPath::new();
-    let mut open = false;
-    for _ in 0..count {
-        let tag = r.array::<1>()?[0];
-        match (tag, open) {
-            (0, false) => path.move_to(r.point()?),
-            (1, true) => path.line_to(r.point()?),
-            (2, true) => path.quad_to(r.point()?, r.point()?),
-            (3, true) => path.curve_to(r.point()?, r.point()?, r.point()?),
-            (4, true) => path.close_path(),
-            _ => return Err("an outline is not closed subpaths"),
-        }
-        open = tag != 4;
-    }
-    if open {
-        return Err("an outline is not closed subpaths");
-    }
-    Ok(path)
-}
-
-/// Reads a record file front to back.
-struct Reader<'a>(&'a [u8]);
-
-impl<'a> Reader<'a> {
-    fn take(&mut self, n: usize) -> Result<&'a [u8], &'static str> {
-        if self.0.len() < n {
-            return Err("the file is truncated");
-        }
-        let (head, tail) = self.0.split_at(n);
-        self.0 = tail;
-        Ok(head)
-    }
-
-    fn array<const N: usize>(&mut self) -> Result<[u8; N], &'static str> {
-        let mut a = [0; N];
-        a.copy_from_slice(self.take(N)?);
-        Ok(a)
-    }
-
-    fn u32(&mut self) -> Result<u32, &'static str> {
-        Ok(u32::from_le_bytes(self.array()?))
-    }
-
-    fn point(&mut self) -> Result<kurbo::Point, &'static str> {
-        let x = f64::from_le_bytes(self.array()?);
-        let y = f64::from_le_bytes(self.array()?);
-        if !(x.is_finite() && y.is_finite()) {
-            return Err("a number is not finite");
-        }
-        Ok(kurbo::Point::new(x, y))
-    }
 }
 
 /// The key of one glyph as drawn: name, code points, advance and outline, and with

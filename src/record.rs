@@ -1,0 +1,128 @@
+//! The binary encoding of what a build keeps for the next one: the fit cache
+//! ([`crate::cache`]) and the record of outputs ([`crate::reuse`]). Numbers are
+//! little-endian, reals are stored as their bits, and a path is its element count followed by
+//! tagged elements. The bytes on disk are untrusted, so [`Reader`] checks every read against
+//! what remains and refuses non-finite numbers: a damaged file is refused, never trusted.
+
+use kurbo::{BezPath, PathEl, Point};
+
+pub(crate) const TAG_MOVE: u8 = 0;
+pub(crate) const TAG_LINE: u8 = 1;
+pub(crate) const TAG_QUAD: u8 = 2;
+pub(crate) const TAG_CUBIC: u8 = 3;
+pub(crate) const TAG_CLOSE: u8 = 4;
+
+/// Appends `path`: its element count (u32), then per element a tag and its points.
+pub(crate) fn put_path(out: &mut Vec<u8>, path: &BezPath) {
+    let elements = path.elements();
+    out.extend_from_slice(&(elements.len() as u32).to_le_bytes());
+    let mut put = |tag: u8, points: &[Point]| {
+        out.push(tag);
+        for p in points {
+            out.extend_from_slice(&p.x.to_bits().to_le_bytes());
+            out.extend_from_slice(&p.y.to_bits().to_le_bytes());
+        }
+    };
+    for el in elements {
+        match *el {
+            PathEl::MoveTo(p) => put(TAG_MOVE, &[p]),
+            PathEl::LineTo(p) => put(TAG_LINE, &[p]),
+            PathEl::QuadTo(a, b) => put(TAG_QUAD, &[a, b]),
+            PathEl::CurveTo(a, b, c) => put(TAG_CUBIC, &[a, b, c]),
+            PathEl::ClosePath => put(TAG_CLOSE, &[]),
+        }
+    }
+}
+
+/// A cursor over untrusted bytes: every read is bounds-checked.
+pub(crate) struct Reader<'a> {
+    bytes: &'a [u8],
+}
+
+impl<'a> Reader<'a> {
+    pub(crate) fn new(bytes: &'a [u8]) -> Self {
+        Reader { bytes }
+    }
+
+    /// Whether every byte has been read.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.bytes.is_empty()
+    }
+
+    /// The next `n` bytes.
+    pub(crate) fn take(&mut self, n: usize) -> Result<&'a [u8], &'static str> {
+        if self.bytes.len() < n {
+            return Err("the file is truncated");
+        }
+        let (head, rest) = self.bytes.split_at(n);
+        self.bytes = rest;
+        Ok(head)
+    }
+
+    pub(crate) fn array<const N: usize>(&mut self) -> Result<[u8; N], &'static str> {
+        let (head, rest) = self
+            .bytes
+            .split_first_chunk::<N>()
+            .ok_or("the file is truncated")?;
+        self.bytes = rest;
+        Ok(*head)
+    }
+
+    pub(crate) fn u8(&mut self) -> Result<u8, &'static str> {
+        Ok(self.array::<1>()?[0])
+    }
+
+    pub(crate) fn u32(&mut self) -> Result<u32, &'static str> {
+        Ok(u32::from_le_bytes(self.array()?))
+    }
+
+    pub(crate) fn u64(&mut self) -> Result<u64, &'static str> {
+        Ok(u64::from_le_bytes(self.array()?))
+    }
+
+    /// A finite real.
+    pub(crate) fn f64(&mut self) -> Result<f64, &'static str> {
+        let v = f64::from_bits(self.u64()?);
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err("a number is not finite")
+        }
+    }
+
+    pub(crate) fn point(&mut self) -> Result<Point, &'static str> {
+        Ok(Point::new(self.f64()?, self.f64()?))
+    }
+
+    /// A count of items of at least `min_size` bytes each, checked against what remains.
+    pub(crate) fn count(&mut self, n: u64, min_size: usize) -> Result<usize, &'static str> {
+        match usize::try_from(n) {
+            Ok(n) if n <= self.bytes.len() / min_size.max(1) => Ok(n),
+            _ => Err("a count exceeds the file's size"),
+        }
+    }
+
+    /// A path written by [`put_path`]: closed subpaths of finite points, possibly none.
+    pub(crate) fn path(&mut self) -> Result<BezPath, &'static str> {
+        let count = self.u32()?;
+        let count = self.count(u64::from(count), 1)?;
+        let mut path = BezPath::new();
+        let mut open = false;
+        for _ in 0..count {
+            let tag = self.u8()?;
+            match (tag, open) {
+                (TAG_MOVE, false) => path.move_to(self.point()?),
+                (TAG_LINE, true) => path.line_to(self.point()?),
+                (TAG_QUAD, true) => path.quad_to(self.point()?, self.point()?),
+                (TAG_CUBIC, true) => path.curve_to(self.point()?, self.point()?, self.point()?),
+                (TAG_CLOSE, true) => path.close_path(),
+                _ => return Err("an outline is not closed subpaths"),
+            }
+            open = tag != TAG_CLOSE;
+        }
+        if open {
+            return Err("an outline is not closed subpaths");
+        }
+        Ok(path)
+    }
+}
