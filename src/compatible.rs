@@ -691,8 +691,16 @@ impl<'a> Fitter<'a> {
                 None => self.shortest(a, h, stretch, checks, ends(h)),
             };
             let h = span.b - span.a;
-            // No sliver at the stretch's end (see `fit::SLIVER`).
-            let span = if h < rest && rest - h < fit::SLIVER * rest {
+            // No sliver at the stretch's end (see `fit::SLIVER`), nor a rest whose ends lie
+            // within the goal of each other in every master: near a sharp point an X-spline
+            // slows down, so a fair share of the parameter can be a fraction of a unit long,
+            // which rounds to a zero-length segment.
+            let short = |h: f64| {
+                self.masters
+                    .iter()
+                    .all(|m| m.eval(a + h).distance(m.eval(t1)) < goal)
+            };
+            let span = if h < rest && (rest - h < fit::SLIVER * rest || short(h)) {
                 self.fitted(a, rest, stretch, checks, ends(rest))
                     .unwrap_or(span)
             } else {
