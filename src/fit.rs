@@ -273,17 +273,23 @@ fn fit_stretch(
     guess: &mut f64,
     path: &mut BezPath,
 ) -> f64 {
-    let goal = tolerance * SAFETY;
+    let mut fit = StretchFit {
+        spline,
+        grid: Grid::new(spline, t0),
+        t0,
+        t1,
+        goal: tolerance * SAFETY,
+    };
+    let goal = fit.goal;
     let mut max_error: f64 = 0.0;
-    let mut grid = Grid::new(spline, t0);
     let mut a = t0;
     // The direction at the start of the next cubic (the previous one's end direction).
     let mut d0 = direction(spline, a, t0, t1);
     while t1 - a > 1e-12 * (1.0 + t1.abs()) {
         let rest = t1 - a;
         let mut h = guess.min(rest);
-        // The longest span that fitted: (span, cubic, error, whether it was measured).
-        let mut fits: Option<(f64, CubicBez, f64, bool, Samples)> = None;
+        // The longest span that fitted: (span, trial, error, whether it was measured).
+        let mut fits: Option<(f64, Trial, f64, bool)> = None;
         let mut fails: Option<f64> = None;
         let mut last: Option<(f64, f64)> = None;
         for _ in 0..MAX_TRIES {
@@ -292,25 +298,16 @@ fn fit_stretch(
             } else {
                 0.0
             };
-            let samples = grid.samples(a, a + h);
-            let (cubic, sampled, samples) = fit_span_sampled(
-                spline,
-                (a, a + h),
-                samples,
-                d0,
-                t0,
-                t1,
-                goal,
-                Stop::trial(low),
-            );
+            let trial = fit.trial(a, a + h, d0, low);
+            let sampled = trial.sampled;
             let mut err = sampled;
             // Close to the goal means close to the longest span (err ~ h^5): measure it.
             let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
             if taken {
-                err = measure_within(spline, &samples, &cubic, goal);
+                err = fit.measure(&trial);
             }
             if err <= goal {
-                fits = Some((h, cubic, err, taken, samples));
+                fits = Some((h, trial, err, taken));
                 if taken {
                     break;
                 }
@@ -353,19 +350,19 @@ fn fit_stretch(
             h = next;
         }
         let (h, cubic, err) = match fits {
-            Some((h, cubic, err, true, _)) => (h, cubic, err),
-            Some((h, cubic, _, false, samples)) => {
-                let err = measure_within(spline, &samples, &cubic, goal);
+            Some((h, trial, err, true)) => (h, trial.cubic, err),
+            Some((h, trial, _, false)) => {
+                let err = fit.measure(&trial);
                 if err <= goal {
-                    (h, cubic, err)
+                    (h, trial.cubic, err)
                 } else {
-                    shortest_fit(spline, &mut grid, a, 0.5 * h, d0, t0, t1, goal)
+                    fit.shortest(a, 0.5 * h, d0)
                 }
             }
-            None => shortest_fit(spline, &mut grid, a, h, d0, t0, t1, goal),
+            None => fit.shortest(a, h, d0),
         };
         let (h, cubic, err) = if h < rest && rest - h < SLIVER * rest {
-            whole_rest(spline, &mut grid, a, t1, d0, t0, goal).unwrap_or((h, cubic, err))
+            fit.whole_rest(a, d0).unwrap_or((h, cubic, err))
         } else {
             (h, cubic, err)
         };
@@ -394,59 +391,64 @@ fn fit_stretch(
 /// cubic a millionth of a unit long, which rounds to a zero-length segment in every output.
 pub(crate) const SLIVER: f64 = 0.05;
 
-/// The cubic for the whole rest `[a, t1]` of a stretch, if it passes the measure.
-fn whole_rest(
-    spline: &XSpline,
-    grid: &mut Grid,
-    a: f64,
-    t1: f64,
-    d0: Vec2,
+/// One smooth stretch `[t0, t1]` being fitted: the curve, the polish's shared sample grid
+/// and the goal. Every trial of [`fit_stretch`]'s search goes through [`StretchFit::trial`].
+struct StretchFit<'a> {
+    spline: &'a XSpline,
+    grid: Grid<'a>,
     t0: f64,
+    t1: f64,
     goal: f64,
-) -> Option<(f64, CubicBez, f64)> {
-    let samples = grid.samples(a, t1);
-    let (cubic, sampled, samples) =
-        fit_span_sampled(spline, (a, t1), samples, d0, t0, t1, goal, Stop::trial(0.0));
-    if sampled > goal {
-        return None;
-    }
-    let err = measure_within(spline, &samples, &cubic, goal);
-    (err <= goal).then_some((t1 - a, cubic, err))
 }
 
-/// Last resort for degenerate geometry: halve the span until it fits or is tiny.
-#[allow(clippy::too_many_arguments)]
-fn shortest_fit(
-    spline: &XSpline,
-    grid: &mut Grid,
-    a: f64,
-    mut h: f64,
-    d0: Vec2,
-    t0: f64,
-    t1: f64,
-    goal: f64,
-) -> (f64, CubicBez, f64) {
-    loop {
-        let samples = grid.samples(a, a + h);
-        let (cubic, sampled, samples) = fit_span_sampled(
-            spline,
-            (a, a + h),
+impl StretchFit<'_> {
+    /// The polished cubic on `[a, b]`, leaving `a` in direction `d0`, sampled on the grid;
+    /// `low` as in [`Stop::trial`].
+    fn trial(&mut self, a: f64, b: f64, d0: Vec2, low: f64) -> Trial {
+        let samples = self.grid.samples(a, b);
+        let (t0, t1) = (self.t0, self.t1);
+        fit_span_sampled(
+            self.spline,
+            (a, b),
             samples,
             d0,
             t0,
             t1,
-            goal,
-            Stop::trial(0.0),
-        );
-        let err = if sampled <= goal {
-            measure_within(spline, &samples, &cubic, goal)
-        } else {
-            sampled
-        };
-        if err <= goal || h < 1e-9 {
-            return (h, cubic, err);
+            self.goal,
+            Stop::trial(low),
+        )
+    }
+
+    /// [`measure_within`] of a trial's cubic.
+    fn measure(&self, trial: &Trial) -> f64 {
+        measure_within(self.spline, trial, self.goal)
+    }
+
+    /// The cubic for the whole rest `[a, t1]` of the stretch, if it passes the measure.
+    fn whole_rest(&mut self, a: f64, d0: Vec2) -> Option<(f64, CubicBez, f64)> {
+        let trial = self.trial(a, self.t1, d0, 0.0);
+        if trial.sampled > self.goal {
+            return None;
         }
-        h *= 0.5;
+        let err = self.measure(&trial);
+        (err <= self.goal).then_some((self.t1 - a, trial.cubic, err))
+    }
+
+    /// Last resort for degenerate geometry: halve the span from `h` until it fits or is
+    /// tiny.
+    fn shortest(&mut self, a: f64, mut h: f64, d0: Vec2) -> (f64, CubicBez, f64) {
+        loop {
+            let trial = self.trial(a, a + h, d0, 0.0);
+            let err = if trial.sampled <= self.goal {
+                self.measure(&trial)
+            } else {
+                trial.sampled
+            };
+            if err <= self.goal || h < 1e-9 {
+                return (h, trial.cubic, err);
+            }
+            h *= 0.5;
+        }
     }
 }
 
@@ -698,8 +700,9 @@ impl Samples {
     /// The measure's samples from the polish's: each step of the polish's samples cut in
     /// two, or in more where it is longer than `1 / SAMPLES_PER_SEGMENT` (at a span's ends
     /// the grid's step can be a quarter longer), so at most that far apart and at least
-    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast.
-    fn doubled(spline: &XSpline, coarse: &Samples) -> Samples {
+    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast. Also returns where
+    /// each of `coarse`'s samples is among them.
+    fn doubled(spline: &XSpline, coarse: &Samples) -> (Samples, Vec<usize>) {
         let m = coarse.len() - 1;
         let mut samples = Samples {
             t: Vec::with_capacity(2 * m + 3),
@@ -709,6 +712,8 @@ impl Samples {
         let mut cursor = Cursor::new(spline);
         let mut previous = (coarse.t[0], coarse.p[0], coarse.d[0]);
         samples.push(previous);
+        let mut at = Vec::with_capacity(m + 1);
+        at.push(0);
         for k in 0..m {
             let (t0, t1) = (coarse.t[k], coarse.t[k + 1]);
             // Rounding must not add a piece to a step of exactly the grid's length.
@@ -729,8 +734,9 @@ impl Samples {
                 samples.push(next);
                 previous = next;
             }
+            at.push(samples.len() - 1);
         }
-        samples
+        (samples, at)
     }
 
     fn push(&mut self, (t, p, d): (f64, Point, Vec2)) {
@@ -819,9 +825,10 @@ pub(crate) fn fit_span(
     let stop = Stop {
         low: 0.0,
         stalled: STALLED,
+        ends: true,
     };
-    let (cubic, sampled, _) = fit_span_sampled(spline, (a, b), samples, d0, t0, t1, goal, stop);
-    (cubic, sampled)
+    let trial = fit_span_sampled(spline, (a, b), samples, d0, t0, t1, goal, stop);
+    (trial.cubic, trial.sampled)
 }
 
 /// When [`polish`] stops early, besides its round limit and a hopeless span.
@@ -832,6 +839,10 @@ struct Stop {
     low: f64,
     /// [`STALLED`] or [`TRIAL_STALLED`].
     stalled: f64,
+    /// Whether the polish also projects the span's two end samples. They are the cubic's
+    /// own ends (at distance zero, or a rounding of it), so they only cost time; [`fit_span`]
+    /// keeps them so that its cubics stay as they were, to the bit.
+    ends: bool,
 }
 
 impl Stop {
@@ -840,13 +851,26 @@ impl Stop {
         Stop {
             low,
             stalled: TRIAL_STALLED,
+            ends: false,
         }
     }
 }
 
+/// A polished cubic on a span, with what the measure can take from the polish.
+struct Trial {
+    cubic: CubicBez,
+    /// The largest distance of the polish's samples to `cubic`: a lower bound of the error.
+    sampled: f64,
+    /// The polish's curve samples (the span's ends first and last).
+    samples: Samples,
+    /// The samples' projections onto `cubic` (parameters), when the polish's last round was
+    /// `cubic`'s; the ends are 0 and 1.
+    u: Option<Vec<f64>>,
+}
+
 /// [`fit_span`] on the given `samples` of `span` (the span's ends first and last), also
-/// returning them: [`measure_within`] takes them as every second one of its own; `stop`
-/// says when the polish may stop early.
+/// returning them and their projections: [`measure_within`] takes them as every second
+/// one of its own; `stop` says when the polish may stop early.
 #[allow(clippy::too_many_arguments)]
 fn fit_span_sampled(
     spline: &XSpline,
@@ -857,7 +881,7 @@ fn fit_span_sampled(
     t1: f64,
     goal: f64,
     stop: Stop,
-) -> (CubicBez, f64, Samples) {
+) -> Trial {
     let last = samples.len() - 1;
     let (a, b) = span;
     let (p0, p3) = (samples.p[0], samples.p[last]);
@@ -871,7 +895,12 @@ fn fit_span_sampled(
     });
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
-        return (CubicBez::new(p0, p0, p3, p3), 0.0, samples);
+        return Trial {
+            cubic: CubicBez::new(p0, p0, p3, p3),
+            sampled: 0.0,
+            samples,
+            u: None,
+        };
     }
     // The Hermite cubic of the span: handles from the curve's own derivatives; its
     // parameter runs with the curve's, so the samples' parameters start uniform.
@@ -879,14 +908,20 @@ fn fit_span_sampled(
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
     let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    let (cubic, sampled) = polish(&samples, p0, p3, d0, d1, alpha, beta, u, goal, stop);
-    (cubic, sampled, samples)
+    let (cubic, sampled, u) = polish(&samples, p0, p3, d0, d1, alpha, beta, u, goal, stop);
+    Trial {
+        cubic,
+        sampled,
+        samples,
+        u,
+    }
 }
 
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
 /// orthogonal distances, with Lawson's re-weighting after the first rounds (which turns the
-/// least-squares optimum into the minimax one). Returns the best cubic seen and its
-/// largest sample distance.
+/// least-squares optimum into the minimax one). Returns the best cubic seen, its
+/// largest sample distance, and the samples' projections onto it if the last round was
+/// that cubic's.
 #[allow(clippy::too_many_arguments)]
 fn polish(
     samples: &Samples,
@@ -899,22 +934,31 @@ fn polish(
     mut u: Vec<f64>,
     goal: f64,
     stop: Stop,
-) -> (CubicBez, f64) {
+) -> (CubicBez, f64, Option<Vec<f64>>) {
     let n = samples.len();
+    // Without the ends, the samples strictly inside the span.
+    let polished = if stop.ends { 0..n } else { 1..n.max(2) - 1 };
     // Handles never vanish (a zero handle would take the end's tangent from the other
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
     let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
     let mut w = vec![1.0 / n as f64; n];
+    if !stop.ends {
+        // The ends have no weight (in the Lawson rounds theirs would be their distance).
+        w[0] = 0.0;
+        w[n - 1] = 0.0;
+    }
     let cubic_of = |alpha: f64, beta: f64| CubicBez::new(p0, p0 + alpha * d0, p3 - beta * d1, p3);
     // (alpha, beta, worst sample distance, Gauss-Newton step) of the best cubic so far.
     let mut best: Option<(f64, f64, f64, f64, f64)> = None;
     let mut damping = 1.0;
+    // Whether `u` holds the projections onto the best cubic.
+    let mut current = false;
     for round in 0..POLISH_ROUNDS {
         let poly = Poly::new(&cubic_of(alpha, beta));
         let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let mut worst: f64 = 0.0;
-        for i in 0..n {
+        for i in polished.clone() {
             // Parameters carry over between rounds, so a couple of steps suffice.
             let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, 1e-10);
             let dist = r.hypot();
@@ -948,7 +992,8 @@ fn polish(
         } else {
             (0.0, 0.0)
         };
-        if best.is_none_or(|b| worst < b.2) {
+        current = best.is_none_or(|b| worst < b.2);
+        if current {
             // Stop when progress stalls, or when the span is clearly out of reach.
             let stalled = best.is_some_and(|b| worst > stop.stalled * b.2);
             let hopeless = (round >= 1 && worst > HOPELESS_START * goal)
@@ -968,10 +1013,10 @@ fn polish(
         alpha = (ba + damping * da).max(floor);
         beta = (bb + damping * db).max(floor);
     }
-    best.map_or_else(
-        || (cubic_of(alpha, beta), f64::INFINITY),
-        |b| (cubic_of(b.0, b.1), b.2),
-    )
+    match best {
+        Some(b) => (cubic_of(b.0, b.1), b.2, current.then_some(u)),
+        None => (cubic_of(alpha, beta), f64::INFINITY, None),
+    }
 }
 
 /// A cubic in power form, `c0 + c1 u + c2 u^2 + c3 u^3`: cheap repeated evaluation of the
@@ -1095,10 +1140,14 @@ const GAP_STEPS: usize = 4;
 /// have found at most this. As in [`measure`], the top peaks are then also checked
 /// against the true curve, in both directions (the Hermite pieces' own error, O(h^4)).
 /// Rounding in the bound is relative 1e-13, far inside the acceptance's 4 % margin.
-fn measure_within(spline: &XSpline, polished: &Samples, cubic: &CubicBez, goal: f64) -> f64 {
-    let samples = &Samples::doubled(spline, polished);
-    let poly = Poly::new(cubic);
-    let (u, near) = project_samples_ahead(samples, &poly);
+fn measure_within(spline: &XSpline, trial: &Trial, goal: f64) -> f64 {
+    let (samples, at) = Samples::doubled(spline, &trial.samples);
+    let samples = &samples;
+    let poly = Poly::new(&trial.cubic);
+    let (u, near) = match &trial.u {
+        Some(known) => project_samples_between(samples, &poly, &at, known),
+        None => project_samples_ahead(samples, &poly),
+    };
     let pieces = hermite_pieces(samples);
     let n = samples.len();
     let paired = |i: usize| match i {
@@ -1324,6 +1373,39 @@ fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>)
         u[i] = ui;
         near[i] = d;
         largest = largest.max(d);
+    }
+    (u, near)
+}
+
+/// [`project_samples_ahead`] when the samples at `at` already have their projections
+/// (`known`, the polish's, onto this cubic): those are taken as they are, and each sample
+/// between two of them starts from their parameters interpolated in proportion to the
+/// curve parameter.
+fn project_samples_between(
+    samples: &Samples,
+    poly: &Poly,
+    at: &[usize],
+    known: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let n = samples.len();
+    let mut u = vec![0.0; n];
+    let mut near = vec![0.0; n];
+    for (&i, &ui) in at.iter().zip(known) {
+        u[i] = ui;
+        near[i] = (poly.eval(ui) - samples.p[i].to_vec2()).hypot();
+    }
+    for pair in at.windows(2) {
+        let (i0, i1) = (pair[0], pair[1]);
+        let (t0, dt, u0, du) = (
+            samples.t[i0],
+            samples.t[i1] - samples.t[i0],
+            u[i0],
+            u[i1] - u[i0],
+        );
+        for i in i0 + 1..i1 {
+            let guess = (u0 + du * ((samples.t[i] - t0) / dt)).clamp(0.0, 1.0);
+            (u[i], near[i]) = poly.project_loose(samples.p[i], guess);
+        }
     }
     (u, near)
 }
@@ -1564,13 +1646,17 @@ mod tests {
             for h in [0.2, 0.3, 0.4, 0.6, 0.9, 1.2] {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
-                let samples = Grid::new(&spline, start).samples(a, b);
-                let stop = Stop::trial(0.0);
-                let (cubic, _, samples) =
-                    fit_span_sampled(&spline, (a, b), samples, d0, start, end, 0.48, stop);
-                let golden = measure(&spline, a, b, &cubic);
+                let mut fit = StretchFit {
+                    spline: &spline,
+                    grid: Grid::new(&spline, start),
+                    t0: start,
+                    t1: end,
+                    goal: 0.48,
+                };
+                let trial = fit.trial(a, b, d0, 0.0);
+                let golden = measure(&spline, a, b, &trial.cubic);
                 for goal in [0.48, 1.05 * golden] {
-                    let err = measure_within(&spline, &samples, &cubic, goal);
+                    let err = measure_within(&spline, &trial, goal);
                     assert!(err >= golden * (1.0 - 1e-6), "{err} < {golden}");
                     if golden <= goal {
                         assert!(err <= goal, "{err} > {goal} >= {golden}");
