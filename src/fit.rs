@@ -178,11 +178,12 @@ pub fn fit_contour(spline: &XSpline, tolerance: f64) -> ContourFit {
     // The first span tried is the last one that fitted (curvature changes slowly); on a
     // new contour, one segment (the whole stretch as a first try cost a trial per contour).
     let mut guess = 1.0;
+    let mut fit = StretchFit::new(spline, tolerance * SAFETY);
     for piece in pieces {
         match piece {
             Stretch::Edge { end } => path.line_to(spline.eval(end)),
             Stretch::Smooth { start, end } => {
-                let err = fit_stretch(spline, start, end, tolerance, &mut guess, &mut path);
+                let err = fit_stretch(&mut fit, start, end, &mut guess, &mut path);
                 max_error = max_error.max(err);
             }
         }
@@ -265,22 +266,9 @@ fn cusps(spline: &XSpline, t0: f64, t1: f64) -> Vec<f64> {
 /// stops when they are within [`SPAN_PRECISION`] of each other. The search runs on the
 /// polish's sampled error (a lower bound); only a candidate about to be taken is measured
 /// ([`measure`]), and one that fails the measure counts as a span that does not fit.
-fn fit_stretch(
-    spline: &XSpline,
-    t0: f64,
-    t1: f64,
-    tolerance: f64,
-    guess: &mut f64,
-    path: &mut BezPath,
-) -> f64 {
-    let mut fit = StretchFit {
-        spline,
-        grid: Grid::new(spline, t0),
-        t0,
-        t1,
-        goal: tolerance * SAFETY,
-    };
-    let goal = fit.goal;
+fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &mut BezPath) -> f64 {
+    fit.stretch(t0, t1);
+    let (spline, goal) = (fit.spline, fit.goal);
     let mut max_error: f64 = 0.0;
     let mut a = t0;
     // The direction at the start of the next cubic (the previous one's end direction).
@@ -307,12 +295,15 @@ fn fit_stretch(
                 err = fit.measure(&trial);
             }
             if err <= goal {
-                fits = Some((h, trial, err, taken));
+                if let Some((.., old, _, _)) = fits.replace((h, trial, err, taken)) {
+                    fit.recycle(old);
+                }
                 if taken {
                     break;
                 }
             } else {
                 fails = Some(h);
+                fit.recycle(trial);
             }
             if let (Some((lo, ..)), Some(hi)) = (&fits, fails) {
                 if hi <= lo * SPAN_PRECISION {
@@ -350,11 +341,12 @@ fn fit_stretch(
             h = next;
         }
         let (h, cubic, err) = match fits {
-            Some((h, trial, err, true)) => (h, trial.cubic, err),
+            Some((h, trial, err, true)) => (h, fit.recycle(trial), err),
             Some((h, trial, _, false)) => {
                 let err = fit.measure(&trial);
+                let cubic = fit.recycle(trial);
                 if err <= goal {
-                    (h, trial.cubic, err)
+                    (h, cubic, err)
                 } else {
                     fit.shortest(a, 0.5 * h, d0)
                 }
@@ -391,47 +383,76 @@ fn fit_stretch(
 /// cubic a millionth of a unit long, which rounds to a zero-length segment in every output.
 pub(crate) const SLIVER: f64 = 0.05;
 
-/// One smooth stretch `[t0, t1]` being fitted: the curve, the polish's shared sample grid
-/// and the goal. Every trial of [`fit_stretch`]'s search goes through [`StretchFit::trial`].
+/// The smooth stretch `[t0, t1]` of a contour being fitted: the curve, the polish's shared
+/// sample grid and the goal. Every trial of [`fit_stretch`]'s search goes through
+/// [`StretchFit::trial`].
+///
+/// It also keeps the buffers of finished trials and of the measure for reuse, from one
+/// stretch to the next: allocating them afresh for each of the thousands of trials was
+/// 5 % of the fitter's time.
 struct StretchFit<'a> {
     spline: &'a XSpline,
     grid: Grid<'a>,
     t0: f64,
     t1: f64,
     goal: f64,
+    spare: Vec<Trial>,
+    measure: MeasureBuffers,
 }
 
-impl StretchFit<'_> {
+impl<'a> StretchFit<'a> {
+    /// Fitting `spline` within `goal`; call [`StretchFit::stretch`] before the trials.
+    fn new(spline: &'a XSpline, goal: f64) -> StretchFit<'a> {
+        StretchFit {
+            spline,
+            grid: Grid::new(spline, 0.0),
+            t0: 0.0,
+            t1: 0.0,
+            goal,
+            spare: Vec::new(),
+            measure: MeasureBuffers::default(),
+        }
+    }
+
+    /// Moves on to the stretch `[t0, t1]`.
+    fn stretch(&mut self, t0: f64, t1: f64) {
+        (self.t0, self.t1) = (t0, t1);
+        self.grid.restart(t0);
+    }
+
     /// The polished cubic on `[a, b]`, leaving `a` in direction `d0`, sampled on the grid;
-    /// `low` as in [`Stop::trial`].
+    /// `low` as in [`Stop::trial`]. Give it back with [`StretchFit::recycle`].
     fn trial(&mut self, a: f64, b: f64, d0: Vec2, low: f64) -> Trial {
-        let samples = self.grid.samples(a, b);
+        let mut trial = self.spare.pop().unwrap_or_default();
+        self.grid.samples(a, b, &mut trial.samples);
         let (t0, t1) = (self.t0, self.t1);
-        fit_span_sampled(
-            self.spline,
-            (a, b),
-            samples,
-            d0,
-            t0,
-            t1,
-            self.goal,
-            Stop::trial(low),
-        )
+        let stop = Stop::trial(low);
+        fit_span_sampled(self.spline, (a, b), &mut trial, d0, t0, t1, self.goal, stop);
+        trial
+    }
+
+    /// Keeps a trial's buffers for the next one; returns its cubic.
+    fn recycle(&mut self, trial: Trial) -> CubicBez {
+        let cubic = trial.cubic;
+        self.spare.push(trial);
+        cubic
     }
 
     /// [`measure_within`] of a trial's cubic.
-    fn measure(&self, trial: &Trial) -> f64 {
-        measure_within(self.spline, trial, self.goal)
+    fn measure(&mut self, trial: &Trial) -> f64 {
+        measure_within(self.spline, trial, self.goal, &mut self.measure)
     }
 
     /// The cubic for the whole rest `[a, t1]` of the stretch, if it passes the measure.
     fn whole_rest(&mut self, a: f64, d0: Vec2) -> Option<(f64, CubicBez, f64)> {
         let trial = self.trial(a, self.t1, d0, 0.0);
-        if trial.sampled > self.goal {
-            return None;
-        }
-        let err = self.measure(&trial);
-        (err <= self.goal).then_some((self.t1 - a, trial.cubic, err))
+        let err = if trial.sampled <= self.goal {
+            self.measure(&trial)
+        } else {
+            trial.sampled
+        };
+        let cubic = self.recycle(trial);
+        (err <= self.goal).then_some((self.t1 - a, cubic, err))
     }
 
     /// Last resort for degenerate geometry: halve the span from `h` until it fits or is
@@ -444,8 +465,9 @@ impl StretchFit<'_> {
             } else {
                 trial.sampled
             };
+            let cubic = self.recycle(trial);
             if err <= self.goal || h < 1e-9 {
-                return (h, trial.cubic, err);
+                return (h, cubic, err);
             }
             h *= 0.5;
         }
@@ -579,11 +601,21 @@ impl<'a> Grid<'a> {
         }
     }
 
+    /// Forgets the points taken, for a stretch starting at `t0` (keeping the buffers).
+    fn restart(&mut self, t0: f64) {
+        self.t0 = t0;
+        self.start = None;
+        for (_, points) in &mut self.levels {
+            points.clear();
+        }
+    }
+
     /// The polish's samples of `[a, b]`: its two ends (exact curve points), and between
     /// them the points of the coarsest grid that puts at least [`MIN_GRID_STEPS`]
     /// steps in the span, leaving out those within a quarter step of an end (so at least
     /// [`MIN_GRID_STEPS`] steps, the two at the ends at most 1.25 grid steps long).
-    fn samples(&mut self, a: f64, b: f64) -> Samples {
+    fn samples(&mut self, a: f64, b: f64, samples: &mut Samples) {
+        samples.clear();
         let h = b - a;
         let mut level = 0;
         let mut per = POLISH_SAMPLES_PER_SEGMENT;
@@ -593,7 +625,7 @@ impl<'a> Grid<'a> {
         }
         if h * per < MIN_GRID_STEPS as f64 {
             // Shorter than the finest grid resolves: uniform samples.
-            return Samples::new(
+            *samples = Samples::new(
                 self.cursor.spline,
                 a,
                 b,
@@ -601,17 +633,13 @@ impl<'a> Grid<'a> {
                 MIN_GRID_STEPS,
                 false,
             );
+            return;
         }
         if self.levels.len() <= level {
             self.levels.resize_with(level + 1, || (0, Vec::new()));
         }
         let first = ((a - self.t0) * per + 0.25).ceil().max(0.0) as usize;
         let last = ((b - self.t0) * per - 0.25).floor().max(0.0) as usize;
-        let mut samples = Samples {
-            t: Vec::with_capacity(last + 3 - first.min(last + 1)),
-            p: Vec::with_capacity(last + 3 - first.min(last + 1)),
-            d: Vec::with_capacity(last + 3 - first.min(last + 1)),
-        };
         // The cursor's point is `XSpline::eval`'s, bit for bit; a span's start is shared by
         // the trials of one search.
         let start = match self.start {
@@ -638,7 +666,6 @@ impl<'a> Grid<'a> {
         }
         let (p, d) = self.cursor.eval_deriv(b);
         samples.push((b, p, d));
-        samples
     }
 }
 
@@ -653,6 +680,7 @@ const MAX_GRID_LEVEL: usize = 12;
 /// a tight turn can fit between two uniform samples and hide an error peak there (random
 /// contours with thin spikes were fitted 15 % over the tolerance before this). Between
 /// consecutive samples the curve turns by less than [`MAX_TURN`].
+#[derive(Default)]
 struct Samples {
     t: Vec<f64>,
     p: Vec<Point>,
@@ -700,19 +728,15 @@ impl Samples {
     /// The measure's samples from the polish's: each step of the polish's samples cut in
     /// two, or in more where it is longer than `1 / SAMPLES_PER_SEGMENT` (at a span's ends
     /// the grid's step can be a quarter longer), so at most that far apart and at least
-    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast. Also returns where
-    /// each of `coarse`'s samples is among them.
-    fn doubled(spline: &XSpline, coarse: &Samples) -> (Samples, Vec<usize>) {
+    /// [`MIN_SAMPLES`] in all; then refined where the curve turns fast. They are written
+    /// to `samples`, and where each of `coarse`'s samples is among them to `at`.
+    fn doubled(spline: &XSpline, coarse: &Samples, samples: &mut Samples, at: &mut Vec<usize>) {
         let m = coarse.len() - 1;
-        let mut samples = Samples {
-            t: Vec::with_capacity(2 * m + 3),
-            p: Vec::with_capacity(2 * m + 3),
-            d: Vec::with_capacity(2 * m + 3),
-        };
+        samples.clear();
+        at.clear();
         let mut cursor = Cursor::new(spline);
         let mut previous = (coarse.t[0], coarse.p[0], coarse.d[0]);
         samples.push(previous);
-        let mut at = Vec::with_capacity(m + 1);
         at.push(0);
         for k in 0..m {
             let (t0, t1) = (coarse.t[k], coarse.t[k + 1]);
@@ -736,7 +760,12 @@ impl Samples {
             }
             at.push(samples.len() - 1);
         }
-        (samples, at)
+    }
+
+    fn clear(&mut self) {
+        self.t.clear();
+        self.p.clear();
+        self.d.clear();
     }
 
     fn push(&mut self, (t, p, d): (f64, Point, Vec2)) {
@@ -827,7 +856,11 @@ pub(crate) fn fit_span(
         stalled: STALLED,
         ends: true,
     };
-    let trial = fit_span_sampled(spline, (a, b), samples, d0, t0, t1, goal, stop);
+    let mut trial = Trial {
+        samples,
+        ..Trial::default()
+    };
+    fit_span_sampled(spline, (a, b), &mut trial, d0, t0, t1, goal, stop);
     (trial.cubic, trial.sampled)
 }
 
@@ -863,25 +896,43 @@ struct Trial {
     sampled: f64,
     /// The polish's curve samples (the span's ends first and last).
     samples: Samples,
-    /// The samples' projections onto `cubic` (parameters), when the polish's last round was
-    /// `cubic`'s; the ends are 0 and 1.
-    u: Option<Vec<f64>>,
+    /// The samples' parameters on the polish's last cubic (their projections; the ends
+    /// are 0 and 1).
+    u: Vec<f64>,
+    /// Whether that last cubic is `cubic`, so that `u` are its projections.
+    projected: bool,
+    /// The polish's Lawson weights (a buffer).
+    w: Vec<f64>,
 }
 
-/// [`fit_span`] on the given `samples` of `span` (the span's ends first and last), also
-/// returning them and their projections: [`measure_within`] takes them as every second
-/// one of its own; `stop` says when the polish may stop early.
+impl Default for Trial {
+    fn default() -> Trial {
+        Trial {
+            cubic: CubicBez::new(Point::ORIGIN, Point::ORIGIN, Point::ORIGIN, Point::ORIGIN),
+            sampled: f64::INFINITY,
+            samples: Samples::default(),
+            u: Vec::new(),
+            projected: false,
+            w: Vec::new(),
+        }
+    }
+}
+
+/// [`fit_span`] on `trial`'s samples of `span` (the span's ends first and last), filling
+/// in the rest of `trial`: [`measure_within`] takes the samples as every second one of its
+/// own, with their projections; `stop` says when the polish may stop early.
 #[allow(clippy::too_many_arguments)]
 fn fit_span_sampled(
     spline: &XSpline,
     span: (f64, f64),
-    samples: Samples,
+    trial: &mut Trial,
     d0: Vec2,
     t0: f64,
     t1: f64,
     goal: f64,
     stop: Stop,
-) -> Trial {
+) {
+    let samples = &trial.samples;
     let last = samples.len() - 1;
     let (a, b) = span;
     let (p0, p3) = (samples.p[0], samples.p[last]);
@@ -895,46 +946,50 @@ fn fit_span_sampled(
     });
     if samples.p.iter().all(|p| *p == p0) {
         // The span is a single point (a cusp's tip): nothing to fit.
-        return Trial {
-            cubic: CubicBez::new(p0, p0, p3, p3),
-            sampled: 0.0,
-            samples,
-            u: None,
-        };
+        trial.cubic = CubicBez::new(p0, p0, p3, p3);
+        trial.sampled = 0.0;
+        trial.projected = false;
+        return;
     }
     // The Hermite cubic of the span: handles from the curve's own derivatives; its
     // parameter runs with the curve's, so the samples' parameters start uniform.
     let third = (b - a) / 3.0;
     let alpha = samples.d[0].dot(d0) * third;
     let beta = samples.d[last].dot(d1) * third;
-    let u: Vec<f64> = samples.t.iter().map(|t| (t - a) / (b - a)).collect();
-    let (cubic, sampled, u) = polish(&samples, p0, p3, d0, d1, alpha, beta, u, goal, stop);
-    Trial {
-        cubic,
-        sampled,
+    trial.u.clear();
+    trial.u.extend(samples.t.iter().map(|t| (t - a) / (b - a)));
+    let (cubic, sampled, projected) = polish(
         samples,
-        u,
-    }
+        p0,
+        p3,
+        (d0, d1),
+        (alpha, beta),
+        (&mut trial.u, &mut trial.w),
+        goal,
+        stop,
+    );
+    trial.cubic = cubic;
+    trial.sampled = sampled;
+    trial.projected = projected;
 }
 
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
 /// orthogonal distances, with Lawson's re-weighting after the first rounds (which turns the
-/// least-squares optimum into the minimax one). Returns the best cubic seen, its
-/// largest sample distance, and the samples' projections onto it if the last round was
-/// that cubic's.
+/// least-squares optimum into the minimax one). `u` holds the samples' starting cubic
+/// parameters, and the last round's projections on return; `w` is a buffer. Returns the
+/// best cubic seen, its largest sample distance, and whether the last round was that
+/// cubic's.
 #[allow(clippy::too_many_arguments)]
 fn polish(
     samples: &Samples,
     p0: Point,
     p3: Point,
-    d0: Vec2,
-    d1: Vec2,
-    alpha: f64,
-    beta: f64,
-    mut u: Vec<f64>,
+    (d0, d1): (Vec2, Vec2),
+    (alpha, beta): (f64, f64),
+    (u, w): (&mut [f64], &mut Vec<f64>),
     goal: f64,
     stop: Stop,
-) -> (CubicBez, f64, Option<Vec<f64>>) {
+) -> (CubicBez, f64, bool) {
     let n = samples.len();
     // Without the ends, the samples strictly inside the span.
     let polished = if stop.ends { 0..n } else { 1..n.max(2) - 1 };
@@ -942,7 +997,8 @@ fn polish(
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
     let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
-    let mut w = vec![1.0 / n as f64; n];
+    w.clear();
+    w.resize(n, 1.0 / n as f64);
     if !stop.ends {
         // The ends have no weight (in the Lawson rounds theirs would be their distance).
         w[0] = 0.0;
@@ -1014,8 +1070,8 @@ fn polish(
         beta = (bb + damping * db).max(floor);
     }
     match best {
-        Some(b) => (cubic_of(b.0, b.1), b.2, current.then_some(u)),
-        None => (cubic_of(alpha, beta), f64::INFINITY, None),
+        Some(b) => (cubic_of(b.0, b.1), b.2, current),
+        None => (cubic_of(alpha, beta), f64::INFINITY, false),
     }
 }
 
@@ -1140,15 +1196,25 @@ const GAP_STEPS: usize = 4;
 /// have found at most this. As in [`measure`], the top peaks are then also checked
 /// against the true curve, in both directions (the Hermite pieces' own error, O(h^4)).
 /// Rounding in the bound is relative 1e-13, far inside the acceptance's 4 % margin.
-fn measure_within(spline: &XSpline, trial: &Trial, goal: f64) -> f64 {
-    let (samples, at) = Samples::doubled(spline, &trial.samples);
-    let samples = &samples;
+fn measure_within(spline: &XSpline, trial: &Trial, goal: f64, buffers: &mut MeasureBuffers) -> f64 {
+    let MeasureBuffers {
+        samples,
+        at,
+        u,
+        near,
+        pieces,
+        gaps,
+    } = buffers;
+    Samples::doubled(spline, &trial.samples, samples, at);
+    let samples = &*samples;
     let poly = Poly::new(&trial.cubic);
-    let (u, near) = match &trial.u {
-        Some(known) => project_samples_between(samples, &poly, &at, known),
-        None => project_samples_ahead(samples, &poly),
-    };
-    let pieces = hermite_pieces(samples);
+    if trial.projected {
+        project_samples_between(samples, &poly, at, &trial.u, u, near);
+    } else {
+        project_samples_ahead(samples, &poly, u, near);
+    }
+    hermite_pieces(samples, pieces);
+    let (u, pieces) = (&*u, &*pieces);
     let n = samples.len();
     let paired = |i: usize| match i {
         0 => 0.0,
@@ -1156,21 +1222,20 @@ fn measure_within(spline: &XSpline, trial: &Trial, goal: f64) -> f64 {
         i => u[i],
     };
     // (bound, where) on each interval.
-    let gaps: Vec<(f64, f64)> = (0..n - 1)
-        .map(|i| {
-            paired_gap(
-                &pieces[i],
-                &poly,
-                paired(i),
-                paired(i + 1),
-                goal,
-                GAP_SPLITS,
-            )
-        })
-        .collect();
+    gaps.clear();
+    gaps.extend((0..n - 1).map(|i| {
+        paired_gap(
+            &pieces[i],
+            &poly,
+            paired(i),
+            paired(i + 1),
+            goal,
+            GAP_SPLITS,
+        )
+    }));
     let top = gaps.iter().map(|g| g.0).fold(0.0, f64::max);
     if top > goal {
-        return measure_golden(spline, samples, &poly, &pieces, &u, &near);
+        return measure_golden(spline, samples, &poly, pieces, u, near);
     }
     // The exact checks, at the interval maxima near the top (as `measure` checks its
     // refined peaks): the true curve point against the cubic, and the cubic point
@@ -1301,7 +1366,8 @@ pub(crate) fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64
     let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
     let poly = Poly::new(cubic);
     let (u, near) = project_samples(samples, &poly);
-    let pieces = hermite_pieces(samples);
+    let mut pieces = Vec::new();
+    hermite_pieces(samples, &mut pieces);
     measure_golden(spline, samples, &poly, &pieces, &u, &near)
 }
 
@@ -1337,10 +1403,12 @@ fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
 /// curve parameter, which the cubic follows closely; the retry from the sample's share of
 /// the span only where Newton stopped at a clamp. (Samples that coincide in floating point
 /// start from the previous parameter.)
-fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
+fn project_samples_ahead(samples: &Samples, poly: &Poly, u: &mut Vec<f64>, near: &mut Vec<f64>) {
     let n = samples.len();
-    let mut u = vec![0.0; n];
-    let mut near = vec![0.0; n];
+    u.clear();
+    u.resize(n, 0.0);
+    near.clear();
+    near.resize(n, 0.0);
     let mut largest: f64 = 0.0;
     let span = samples.t[n - 1] - samples.t[0];
     for i in 0..n {
@@ -1374,7 +1442,6 @@ fn project_samples_ahead(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>)
         near[i] = d;
         largest = largest.max(d);
     }
-    (u, near)
 }
 
 /// [`project_samples_ahead`] when the samples at `at` already have their projections
@@ -1386,10 +1453,14 @@ fn project_samples_between(
     poly: &Poly,
     at: &[usize],
     known: &[f64],
-) -> (Vec<f64>, Vec<f64>) {
+    u: &mut Vec<f64>,
+    near: &mut Vec<f64>,
+) {
     let n = samples.len();
-    let mut u = vec![0.0; n];
-    let mut near = vec![0.0; n];
+    u.clear();
+    u.resize(n, 0.0);
+    near.clear();
+    near.resize(n, 0.0);
     for (&i, &ui) in at.iter().zip(known) {
         u[i] = ui;
         near[i] = (poly.eval(ui) - samples.p[i].to_vec2()).hypot();
@@ -1407,14 +1478,25 @@ fn project_samples_between(
             (u[i], near[i]) = poly.project_loose(samples.p[i], guess);
         }
     }
-    (u, near)
 }
 
-/// The Hermite pieces between samples, in power form, each built once.
-fn hermite_pieces(samples: &Samples) -> Vec<Poly> {
-    (0..samples.len() - 1)
-        .map(|i| Poly::new(&samples.piece(i)))
-        .collect()
+/// The Hermite pieces between samples, in power form, each built once, into `pieces`.
+fn hermite_pieces(samples: &Samples, pieces: &mut Vec<Poly>) {
+    pieces.clear();
+    pieces.extend((0..samples.len() - 1).map(|i| Poly::new(&samples.piece(i))));
+}
+
+/// The buffers of [`measure_within`], kept between measures.
+#[derive(Default)]
+struct MeasureBuffers {
+    samples: Samples,
+    /// Where the polish's samples are among `samples`.
+    at: Vec<usize>,
+    u: Vec<f64>,
+    near: Vec<f64>,
+    pieces: Vec<Poly>,
+    /// (bound, where) on each interval.
+    gaps: Vec<(f64, f64)>,
 }
 
 /// The rest of [`measure`], from the samples' projections onto the cubic: the sampled
@@ -1646,17 +1728,12 @@ mod tests {
             for h in [0.2, 0.3, 0.4, 0.6, 0.9, 1.2] {
                 let b = (a + h).min(end);
                 let d0 = direction(&spline, a, start, end);
-                let mut fit = StretchFit {
-                    spline: &spline,
-                    grid: Grid::new(&spline, start),
-                    t0: start,
-                    t1: end,
-                    goal: 0.48,
-                };
+                let mut fit = StretchFit::new(&spline, 0.48);
+                fit.stretch(start, end);
                 let trial = fit.trial(a, b, d0, 0.0);
                 let golden = measure(&spline, a, b, &trial.cubic);
                 for goal in [0.48, 1.05 * golden] {
-                    let err = measure_within(&spline, &trial, goal);
+                    let err = measure_within(&spline, &trial, goal, &mut fit.measure);
                     assert!(err >= golden * (1.0 - 1e-6), "{err} < {golden}");
                     if golden <= goal {
                         assert!(err <= goal, "{err} > {goal} >= {golden}");
