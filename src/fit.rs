@@ -84,6 +84,11 @@ const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
 /// Projections for pairings ([`Poly::project_loose`]) stop when a Newton step moves the
 /// parameter less than this (the distance is then off by about its square).
 const PAIRING_NEWTON_DONE: f64 = 1e-7;
+/// [`fit_contour`]'s trials stop projecting a sample once a Newton step moves it less than
+/// this: Newton converges quadratically, so the parameter is then within about its square
+/// (1e-10), and the distance, stationary there, within far less (on the corpus, 2 % fewer
+/// instructions and the same cubic count).
+const TRIAL_NEWTON_DONE: f64 = 1e-5;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
 /// The polish stops when a better round still leaves the worst sample distance above this
@@ -855,6 +860,7 @@ pub(crate) fn fit_span(
         low: 0.0,
         stalled: STALLED,
         ends: true,
+        newton_done: 1e-10,
     };
     let mut trial = Trial {
         samples,
@@ -876,6 +882,9 @@ struct Stop {
     /// own ends (at distance zero, or a rounding of it), so they only cost time; [`fit_span`]
     /// keeps them so that its cubics stay as they were, to the bit.
     ends: bool,
+    /// A projection stops once a Newton step moves it less than this (1e-10 for
+    /// [`fit_span`]; [`TRIAL_NEWTON_DONE`] for the trials).
+    newton_done: f64,
 }
 
 impl Stop {
@@ -885,6 +894,7 @@ impl Stop {
             low,
             stalled: TRIAL_STALLED,
             ends: false,
+            newton_done: TRIAL_NEWTON_DONE,
         }
     }
 }
@@ -1016,7 +1026,7 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in polished.clone() {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, 1e-10);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, stop.newton_done);
             let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
