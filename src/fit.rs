@@ -83,7 +83,7 @@ const GUESS_POWER: f64 = 0.2;
 const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
 /// Projections for pairings ([`Poly::project_loose`]) stop when a Newton step moves the
 /// parameter less than this (the distance is then off by about its square).
-const PAIRING_NEWTON_DONE: f64 = 1e-7;
+const PAIRING_NEWTON_DONE: f64 = 1e-5;
 /// [`fit_contour`]'s trials stop projecting a sample once a Newton step moves it less than
 /// this: Newton converges quadratically, so the parameter is then within about its square
 /// (1e-10), and the distance, stationary there, within far less (on the corpus, 2 % fewer
