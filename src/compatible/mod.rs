@@ -1652,8 +1652,17 @@ impl<'a> Run<'a> {
 
     fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
         let count = self.spline.segment_count();
-        let wrapped = big_t.rem_euclid(count as f64);
-        let j = (wrapped.floor() as usize).min(count - 1);
+        let n = count as f64;
+        // Span parameters lie in [0, 2n): there `T - n` is exact, and for `T >= 0`
+        // truncation is `floor` (both without a library call).
+        let wrapped = if (0.0..n).contains(&big_t) {
+            big_t
+        } else if (n..2.0 * n).contains(&big_t) {
+            big_t - n
+        } else {
+            big_t.rem_euclid(n)
+        };
+        let j = (wrapped as usize).min(count - 1);
         let segment = match self.current {
             Some((k, segment)) if k == j => segment,
             _ => {

@@ -43,7 +43,7 @@ const HOPELESS_LATE: f64 = 2.0;
 /// tangent from the other handle: a hook; a negative one a loop).
 const MIN_HANDLE: f64 = 1e-4;
 /// Newton steps projecting a sample onto the cubic per round (parameters carry over).
-const PROJECT_STEPS: usize = 3;
+const PROJECT_STEPS: usize = 2;
 
 /// Curve samples of one smooth stretch of one master on uniform grids from its start, each
 /// grid point evaluated once per level.
