@@ -117,8 +117,7 @@ impl<'a> StretchGrid<'a> {
                 for k in first..=last {
                     let at = self.t0 + k as f64 / per;
                     let run = &mut self.run;
-                    let point =
-                        *points[k - *origin].get_or_insert_with(|| run.eval_deriv(at).0);
+                    let point = *points[k - *origin].get_or_insert_with(|| run.eval_deriv(at).0);
                     t.push(at);
                     p.push(point);
                 }
