@@ -78,6 +78,9 @@ const SHORTEST_BLEND_SPAN: f64 = 1.0 / 32.0;
 const REFIT_GAIN: f64 = 0.5;
 /// The first span tried when refitting a span, as a fraction of it.
 const REFIT_GUESS: f64 = 0.6;
+/// The outputs' coordinate grid (font units): a segment shorter than this can round to
+/// zero length.
+const GRID_UNIT: f64 = 1.0;
 /// Grid steps per X-spline segment of [`Fitter::gap_table`].
 const GAP_GRID_PER_SEGMENT: usize = 10;
 /// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
@@ -798,17 +801,28 @@ impl<'a> Fitter<'a> {
             };
             let h = span.b - span.a;
             // No sliver at the stretch's end (see `fit::SLIVER`), nor a rest whose ends lie
-            // within the goal of each other in every master: near a sharp point an X-spline
+            // within the goal (or one font unit, the outputs' grid) of each other in every
+            // master: near a sharp point an X-spline
             // slows down, so a fair share of the parameter can be a fraction of a unit long,
             // which rounds to a zero-length segment.
             let short = |h: f64| {
                 self.masters
                     .iter()
-                    .all(|m| m.eval(a + h).distance(m.eval(t1)) < goal)
+                    .all(|m| m.eval(a + h).distance(m.eval(t1)) < goal.max(GRID_UNIT))
             };
             let span = if h < rest && (rest - h < fit::SLIVER * rest || short(h)) {
-                self.fitted(&mut grids, a, rest, stretch, checks, ends(rest))
-                    .unwrap_or(span)
+                match self.fitted(&mut grids, a, rest, stretch, checks, ends(rest)) {
+                    Ok(whole) => whole,
+                    // The rest does not fit whole: two spans are needed anyway, so cut it
+                    // where the curve is halfway (by distance to the end in master 0),
+                    // leaving no sliver, when the first half fits.
+                    Err(_) if short(h) => {
+                        let half = self.halfway(a, t1);
+                        self.fitted(&mut grids, a, half - a, stretch, checks, ends(half - a))
+                            .unwrap_or(span)
+                    }
+                    Err(_) => span,
+                }
             } else {
                 span
             };
@@ -820,6 +834,25 @@ impl<'a> Fitter<'a> {
             before = Some(span.cubics.clone());
             spans.push(span);
         }
+    }
+
+    /// The parameter in `[a, t1]` where master 0's curve is as far from its point at `t1`
+    /// as half the distance from `a` (by bisection; the curve near a stretch's end runs
+    /// towards it).
+    fn halfway(&self, a: f64, t1: f64) -> f64 {
+        let spline = self.masters[0];
+        let end = spline.eval(t1);
+        let target = 0.5 * spline.eval(a).distance(end);
+        let (mut lo, mut hi) = (a, t1);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if spline.eval(mid).distance(end) > target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
     }
 
     /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
