@@ -55,7 +55,7 @@ pub const FIT_VERSION: u32 = 4;
 
 /// Version of the compatible fitter's output: bump it whenever [`crate::compatible`]
 /// changes what it returns (paths, errors or the bound between the masters).
-pub const COMPATIBLE_VERSION: u32 = 2;
+pub const COMPATIBLE_VERSION: u32 = 3;
 
 /// First bytes of a cache file.
 const MAGIC: &[u8; 8] = b"XGLYPHFC";

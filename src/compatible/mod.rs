@@ -10,9 +10,10 @@
 //! The contour is cut as [`fit::fit_contour`] cuts it: at the sharp points (the same in every
 //! master, so their parameters are shared) and at every master's cusps. An edge between
 //! two sharp points is a `LineTo` in every master. A smooth stretch is covered greedily
-//! with the longest span, in X-spline parameter, that fits jointly: each master gets the
-//! static fitter's cubic for that span (its exact end points and end tangent directions,
-//! handle lengths polished towards its own minimax fit), and the span fits when every
+//! with the longest span, in X-spline parameter, that fits jointly: each master gets a
+//! cubic with the span's exact end points and end tangent directions, the handle lengths
+//! polished jointly towards the least largest sample distance over the masters (`span`),
+//! and the span fits when every
 //! master and the masters' centroid fit, searched on the cheap sampled errors and measured
 //! (two-sided, [`fit`]'s measure) for the span about to be taken. Once the contour is
 //! covered, every span is measured at every other position; a span that fails anywhere is
@@ -21,7 +22,10 @@
 //! Measuring is mostly bounding: each span is sampled once in every master at common
 //! parameters (`JointSamples`). When all masters have the same `s`, the X-spline is
 //! linear in its points, and one bound from the masters alone covers every position
-//! between them; otherwise each position gets a bound from its own samples. Only where a
+//! between them. Otherwise that bound plus how far each position's curve strays from the
+//! blend of the masters' curves (a table per contour and position, `Fitter::gap_table`)
+//! covers the position, and where that misses the goal the position gets a bound from its
+//! own samples. Only where a
 //! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
 //! a span the measure (an estimate, which can over-estimate where its projections stall)
 //! might have turned away, so outputs can differ slightly from measuring everywhere: on the
@@ -40,10 +44,11 @@
 //!   every master the blend is exact.
 //! - Joins inside a smooth stretch are G1 in every master, and G1 at every position: at
 //!   each such join the in-handle is the same multiple of the out-handle in every master
-//!   (each span matches the neighbour fitted before it), so the blended handles are
-//!   collinear at any weights. Matching moves handle lengths away from the polished ones,
-//!   which costs segments: on the bundled glyphs with the synthetic bold, 1845 against 1516
-//!   static segments of the more demanding master (1.22×; the issue allows 1.25×). A join at a cusp of only some masters (a cut shared
+//!   (each span shares one factor times the neighbour's handles, polished with the free
+//!   handles), so the blended handles are collinear at any weights. On the bundled glyphs
+//!   with the synthetic bold: 1633 against 1520 static segments of the more demanding
+//!   master (1.07×; the issue allows 1.25×; 1.22× when the handles were matched after
+//!   polishing each master alone). A join at a cusp of only some masters (a cut shared
 //!   by all) is not smooth in those and is left as it is.
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
 //!   refitted as long as that helps.
@@ -54,10 +59,17 @@ use std::fmt;
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 
 use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER_SEGMENT};
+
+mod span;
+
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
+use span::{Handle, Part, StretchGrid};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
+/// A trial short of the stretch's end whose sampled error is below this fraction of
+/// [`fit::NEAR_GOAL`] times the goal stops polishing (the search will lengthen it).
+const LOW_EXIT: f64 = 0.8;
 /// Most rounds of refitting a span that fails verification.
 const MAX_REFITS: usize = 3;
 /// Spans are not shortened below this (in X-spline segments) for a blend's sake.
@@ -66,6 +78,11 @@ const SHORTEST_BLEND_SPAN: f64 = 1.0 / 32.0;
 const REFIT_GAIN: f64 = 0.5;
 /// The first span tried when refitting a span, as a fraction of it.
 const REFIT_GUESS: f64 = 0.6;
+/// The outputs' coordinate grid (font units): a segment shorter than this can round to
+/// zero length.
+const GRID_UNIT: f64 = 1.0;
+/// Grid steps per X-spline segment of [`Fitter::gap_table`].
+const GAP_GRID_PER_SEGMENT: usize = 10;
 /// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
 /// of the masters' curves.
 const GAP_SAMPLES_PER_SEGMENT: usize = 8;
@@ -376,6 +393,12 @@ struct Fitter<'a> {
     /// Every master has the same `s` at every point: every blend is the blend of the
     /// masters' curves, and [`JointSamples::hull_bound`] applies.
     same_shape: bool,
+    /// Where `s` differs: per probe, how far its curve strays from the blend of the
+    /// masters' curves at the same parameter, per interval of a grid on the contour
+    /// ([`Fitter::gap_table`]), computed when first needed.
+    gap_tables: Vec<OnceCell<Vec<f64>>>,
+    /// The masters' points and derivatives on that grid, per master.
+    master_grid: OnceCell<Vec<Vec<(Point, Vec2)>>>,
 }
 
 impl<'a> Fitter<'a> {
@@ -424,6 +447,7 @@ impl<'a> Fitter<'a> {
                 .zip(masters[0].points())
                 .all(|(p, q)| p.s == q.s)
         });
+        let gap_tables = probes.iter().map(|_| OnceCell::new()).collect();
         Fitter {
             masters,
             probes,
@@ -432,58 +456,62 @@ impl<'a> Fitter<'a> {
             goal,
             goals,
             same_shape,
+            gap_tables,
+            master_grid: OnceCell::new(),
         }
     }
 
-    /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sampled
-    /// (lower-bound) error over the masters: the search's cheap error. The other probes are
-    /// only measured (their sampled error costs nearly a measure and saved no trials).
+    /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sample
+    /// distance over the masters (a lower bound of the error): the search's cheap error. The
+    /// other probes are only measured (their sampled error costs nearly a measure and saved
+    /// no trials).
     ///
-    /// At a smooth join with a span already fitted (`ends`), the cubics' handles there are
-    /// set to the neighbour's directions with one ratio of lengths in every master
-    /// ([`match_start`], [`match_end`]). The sampled error is then the polished cubic's
-    /// plus 4/9 of how far its handles moved, or where they moved by more than
-    /// [`SMALL_SHIFT`] of the goal, the matched cubic's own (after [`refit_end`] where only
-    /// the start was matched). The measure that takes a span is always the matched cubics'.
-    fn trial(&self, a: f64, b: f64, (t0, t1): (f64, f64), ends: Ends<'_>) -> (Vec<CubicBez>, f64) {
-        let (polished, sampled): (Vec<CubicBez>, Vec<f64>) = self
+    /// At a smooth join with a span already fitted (`ends`), the handles there are one
+    /// factor, shared by every master, times the neighbour's ([`share_start`],
+    /// [`share_end`]), and the polish moves that factor with the free handles
+    /// ([`span::fit_joint`]). `low`: an error below it may end the polish early (the span
+    /// is clearly short of the longest; 0 polishes fully).
+    fn trial(
+        &self,
+        grids: &mut [StretchGrid<'_>],
+        (a, b): (f64, f64),
+        (t0, t1): (f64, f64),
+        ends: Ends<'_>,
+        low: f64,
+    ) -> (Vec<CubicBez>, f64) {
+        let third = (b - a) / 3.0;
+        let mut parts: Vec<Part> = self
             .masters
             .iter()
-            .map(|spline| {
-                let d0 = fit::direction(spline, a, t0, t1);
-                fit::fit_span(spline, a, b, d0, t0, t1, self.goal)
+            .zip(grids.iter_mut())
+            .map(|(spline, grid)| {
+                let samples = grid.samples(a, b);
+                let (start, end) = samples.end_derivs();
+                // The span's Hermite cubic: handle lengths from the curve's derivatives.
+                let d0 = heading(spline, a, (t0, t1), start);
+                let d1 = heading(spline, b, (t0, t1), end);
+                Part {
+                    samples,
+                    start: Handle {
+                        direction: d0,
+                        shared: None,
+                        length: start.dot(d0) * third,
+                    },
+                    end: Handle {
+                        direction: d1,
+                        shared: None,
+                        length: end.dot(d1) * third,
+                    },
+                }
             })
-            .unzip();
-        let mut cubics = polished.clone();
-        let moved_start = ends
-            .before
-            .is_some_and(|before| match_start(&mut cubics, before));
-        let moved_end = ends
-            .after
-            .is_some_and(|after| match_end(&mut cubics, after));
-        let mut worst: f64 = 0.0;
-        for (j, spline) in self.masters.iter().enumerate() {
-            // Moving a handle by δ moves no point of the cubic farther than 4/9 δ (the
-            // largest Bernstein weight of an inner control point).
-            let (old, new) = (polished[j], cubics[j]);
-            let shift = BASIS_PEAK * ((new.p1 - old.p1).hypot() + (new.p2 - old.p2).hypot());
-            if shift <= SMALL_SHIFT * self.goal {
-                worst = worst.max(sampled[j] + shift);
-                continue;
-            }
-            // The matched cubic's own sampled error, so that the search does not take a
-            // span on the polished cubic's error and then fail to measure it.
-            let points = curve_samples(spline, a, b);
-            let err = if moved_end || !moved_start {
-                sampled_distance(&points, &cubics[j])
-            } else {
-                let (refit, err) = refit_end(&points, cubics[j]);
-                cubics[j] = refit;
-                err
-            };
-            worst = worst.max(err);
+            .collect();
+        if let Some(before) = ends.before {
+            share_start(&mut parts, before);
         }
-        (cubics, worst)
+        if let Some(after) = ends.after {
+            share_end(&mut parts, after);
+        }
+        span::fit_joint(&parts, self.goal, low)
     }
 
     /// Measures the span's blended cubic at each probe in `probes`; the largest error as a
@@ -517,16 +545,22 @@ impl<'a> Fitter<'a> {
             let samples = span.samples.get_or_insert_with(|| {
                 JointSamples::new(self.masters, (span.a, span.b), &span.cubics, goal)
             });
-            let hull = if self.same_shape {
-                *span
-                    .hull
-                    .get_or_insert_with(|| samples.hull_bound(&span.cubics, self.goal))
-            } else {
-                f64::INFINITY
-            };
+            // The bound for every position between the masters at once: exact for the
+            // blend of the masters' curves, which is the blended curve when `s` is the
+            // same; otherwise the blended curve's distance from that blend is added.
+            let hull = *span
+                .hull
+                .get_or_insert_with(|| samples.hull_bound(&span.cubics, self.goal));
             let convex = probe.weights.iter().all(|w| *w >= 0.0);
-            let err = if convex && hull <= goal {
-                hull
+            let gap = if !convex || hull > goal {
+                f64::INFINITY
+            } else if self.same_shape || k < self.masters.len() {
+                0.0
+            } else {
+                self.gap(k, span.a, span.b)
+            };
+            let err = if hull + gap <= goal {
+                hull + gap
             } else {
                 // At a master its own samples are the probe's (bit for bit): no evaluation.
                 let linear = self.same_shape || k < self.masters.len();
@@ -548,6 +582,70 @@ impl<'a> Fitter<'a> {
         worst
     }
 
+    /// An upper bound of `|X_k(T) - Σ w_j X_j(T)|` over `T` in `[a, b]`: the curve of probe
+    /// `k` against the blend of the masters' curves at its weights `w`, at the same
+    /// parameter (so also of the Fréchet distance between the two). With the bound of the
+    /// masters' blend from the blended cubic ([`JointSamples::hull_bound`]), it bounds the
+    /// probe's error without sampling the probe's curve for every span.
+    fn gap(&self, k: usize, a: f64, b: f64) -> f64 {
+        let table = self.gap_tables[k].get_or_init(|| self.gap_table(k));
+        let per = GAP_GRID_PER_SEGMENT as f64;
+        let len = table.len();
+        let first = (a * per).floor();
+        let last = (b * per).ceil() as i64 - 1;
+        let mut worst: f64 = 0.0;
+        let mut i = first as i64;
+        while i <= last {
+            worst = worst.max(table[i.rem_euclid(len as i64) as usize]);
+            i += 1;
+        }
+        worst
+    }
+
+    /// [`Fitter::gap`] per interval of a grid of [`GAP_GRID_PER_SEGMENT`] steps per
+    /// X-spline segment: the difference of the two curves is taken as its cubic Hermite
+    /// interpolant between grid points (as every bound here takes the curves), and its
+    /// Bézier control points bound it on the interval (convex hull). Both ends of an
+    /// interval are evaluated in its own segment.
+    fn gap_table(&self, k: usize) -> Vec<f64> {
+        let steps = GAP_GRID_PER_SEGMENT;
+        let masters = self.master_grid.get_or_init(|| {
+            self.masters
+                .iter()
+                .map(|m| segment_grid(m, steps))
+                .collect()
+        });
+        let probe = &self.probes[k];
+        let own = segment_grid(&probe.spline, steps);
+        let diff: Vec<(Vec2, Vec2)> = own
+            .iter()
+            .enumerate()
+            .map(|(i, (p, d))| {
+                let (mut p, mut d) = (p.to_vec2(), *d);
+                for (w, grid) in probe.weights.iter().zip(masters) {
+                    p -= *w * grid[i].0.to_vec2();
+                    d -= *w * grid[i].1;
+                }
+                (p, d)
+            })
+            .collect();
+        let third = 1.0 / (3.0 * steps as f64);
+        let count = probe.spline.segment_count();
+        let mut table = Vec::with_capacity(count * steps);
+        for j in 0..count {
+            for i in 0..steps {
+                let (p0, d0) = diff[j * (steps + 1) + i];
+                let (p1, d1) = diff[j * (steps + 1) + i + 1];
+                let hull = [p0, p0 + d0 * third, p1 - d1 * third, p1]
+                    .iter()
+                    .map(|v| v.hypot())
+                    .fold(0.0, f64::max);
+                table.push(hull);
+            }
+        }
+        table
+    }
+
     fn span(&self, a: f64, b: f64, stretch: (f64, f64), cubics: Vec<CubicBez>) -> Span {
         Span {
             a,
@@ -563,13 +661,14 @@ impl<'a> Fitter<'a> {
     /// The span `[a, a + h]` fitted and measured at the probes `checks`, if it fits there.
     fn fitted(
         &self,
+        grids: &mut [StretchGrid<'_>],
         a: f64,
         h: f64,
         stretch: (f64, f64),
         checks: &[usize],
         ends: Ends<'_>,
     ) -> Result<Span, f64> {
-        let (cubics, sampled) = self.trial(a, a + h, stretch, ends);
+        let (cubics, sampled) = self.trial(grids, (a, a + h), stretch, ends, 0.0);
         if sampled > self.goal {
             return Err(sampled);
         }
@@ -608,6 +707,11 @@ impl<'a> Fitter<'a> {
         let goal = self.goal;
         let mut a = from;
         let mut before = before;
+        let mut grids: Vec<StretchGrid> = self
+            .masters
+            .iter()
+            .map(|spline| StretchGrid::new(spline, stretch.0))
+            .collect();
         while t1 - a > 1e-12 * (1.0 + t1.abs()) {
             let rest = t1 - a;
             let after: Option<Vec<CubicBez>> = match &after {
@@ -627,7 +731,12 @@ impl<'a> Fitter<'a> {
             let mut fails: Option<f64> = None;
             let mut last: Option<(f64, f64)> = None;
             for _ in 0..fit::MAX_TRIES {
-                let (cubics, sampled) = self.trial(a, a + h, stretch, ends(h));
+                let low = if h < rest {
+                    LOW_EXIT * fit::NEAR_GOAL * goal
+                } else {
+                    0.0
+                };
+                let (cubics, sampled) = self.trial(&mut grids, (a, a + h), stretch, ends(h), low);
                 let mut err = sampled;
                 let taken = sampled <= goal && (h >= rest || sampled >= fit::NEAR_GOAL * goal);
                 let mut measured = None;
@@ -685,24 +794,35 @@ impl<'a> Fitter<'a> {
                     if self.measure(&mut span, checks.iter().copied()) <= goal {
                         span
                     } else {
-                        self.shortest(a, 0.5 * h, stretch, checks, ends(0.5 * h))
+                        self.shortest(&mut grids, a, 0.5 * h, stretch, checks, ends(0.5 * h))
                     }
                 }
-                None => self.shortest(a, h, stretch, checks, ends(h)),
+                None => self.shortest(&mut grids, a, h, stretch, checks, ends(h)),
             };
             let h = span.b - span.a;
             // No sliver at the stretch's end (see `fit::SLIVER`), nor a rest whose ends lie
-            // within the goal of each other in every master: near a sharp point an X-spline
+            // within the goal (or one font unit, the outputs' grid) of each other in every
+            // master: near a sharp point an X-spline
             // slows down, so a fair share of the parameter can be a fraction of a unit long,
             // which rounds to a zero-length segment.
             let short = |h: f64| {
                 self.masters
                     .iter()
-                    .all(|m| m.eval(a + h).distance(m.eval(t1)) < goal)
+                    .all(|m| m.eval(a + h).distance(m.eval(t1)) < goal.max(GRID_UNIT))
             };
             let span = if h < rest && (rest - h < fit::SLIVER * rest || short(h)) {
-                self.fitted(a, rest, stretch, checks, ends(rest))
-                    .unwrap_or(span)
+                match self.fitted(&mut grids, a, rest, stretch, checks, ends(rest)) {
+                    Ok(whole) => whole,
+                    // The rest does not fit whole: two spans are needed anyway, so cut it
+                    // where the curve is halfway (by distance to the end in master 0),
+                    // leaving no sliver, when the first half fits.
+                    Err(_) if short(h) => {
+                        let half = self.halfway(a, t1);
+                        self.fitted(&mut grids, a, half - a, stretch, checks, ends(half - a))
+                            .unwrap_or(span)
+                    }
+                    Err(_) => span,
+                }
             } else {
                 span
             };
@@ -716,6 +836,25 @@ impl<'a> Fitter<'a> {
         }
     }
 
+    /// The parameter in `[a, t1]` where master 0's curve is as far from its point at `t1`
+    /// as half the distance from `a` (by bisection; the curve near a stretch's end runs
+    /// towards it).
+    fn halfway(&self, a: f64, t1: f64) -> f64 {
+        let spline = self.masters[0];
+        let end = spline.eval(t1);
+        let target = 0.5 * spline.eval(a).distance(end);
+        let (mut lo, mut hi) = (a, t1);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if spline.eval(mid).distance(end) > target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
     /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
     ///
     /// Below [`SHORTEST_BLEND_SPAN`] only the masters bind: a blend that still fails is one
@@ -724,6 +863,7 @@ impl<'a> Fitter<'a> {
     /// `ends` applies to `[a, a + h]`; a shorter span matches only the start.
     fn shortest(
         &self,
+        grids: &mut [StretchGrid<'_>],
         a: f64,
         mut h: f64,
         stretch: (f64, f64),
@@ -734,13 +874,27 @@ impl<'a> Fitter<'a> {
         let mut checks = checks;
         let mut ends = ends;
         loop {
-            match self.fitted(a, h, stretch, checks, ends) {
+            match self.fitted(grids, a, h, stretch, checks, ends) {
                 Ok(span) => return span,
                 Err(_) if h < SHORTEST_BLEND_SPAN && checks.len() > masters.len() => {
                     checks = &masters;
                 }
                 Err(_) if h < 1e-9 => {
-                    let (cubics, _) = self.trial(a, a + h, stretch, ends);
+                    // Nothing fits: take the best cubics there are. With no neighbour to
+                    // share handles with, that is each master's own, fully polished by the
+                    // static fitter (no early stop); otherwise the joint trial's.
+                    let (t0, t1) = stretch;
+                    let cubics = if ends.before.is_none() && ends.after.is_none() {
+                        self.masters
+                            .iter()
+                            .map(|spline| {
+                                let d0 = fit::direction(spline, a, t0, t1);
+                                fit::fit_span(spline, a, a + h, d0, t0, t1, self.goal).0
+                            })
+                            .collect()
+                    } else {
+                        self.trial(grids, (a, a + h), stretch, ends, 0.0).0
+                    };
                     let mut span = self.span(a, a + h, stretch, cubics);
                     self.measure(&mut span, checks.iter().copied());
                     return span;
@@ -944,110 +1098,60 @@ const SHORT_HANDLE: f64 = 1e-9;
 /// Largest sine of the angle between two handles that count as collinear.
 const COLLINEAR: f64 = 1e-7;
 
-/// Sets the start handles of `cubics` (one per master) so that at the join with `before`
-/// the in-handle is `r` times the out-handle in **every** master, with one `r`: then the
-/// blend of the handles at any weights is `r` times the blended out-handle, collinear (a
-/// smooth point stays smooth at every position, not only at the masters). `r` is chosen
-/// by [`matched`]; each out-handle takes the in-handle's direction. Nothing changes at a
-/// join that is not smooth in every master (a cusp, or a sharp point), or where every
-/// handle is short. Returns whether it changed anything.
-fn match_start(cubics: &mut [CubicBez], before: &[CubicBez]) -> bool {
+/// [`fit::direction`] at `t` of the stretch `(t0, t1)`, from the curve's derivative
+/// there when the caller has it: inside the stretch, where the derivative does not vanish,
+/// that is the same value (one evaluation fewer per span end and trial).
+fn heading(spline: &XSpline, t: f64, (t0, t1): (f64, f64), deriv: Vec2) -> Vec2 {
+    let inside = (t - t0).abs() >= 1e-12 && (t - t1).abs() >= 1e-12;
+    let length = deriv.hypot();
+    if inside && length > 1e-9 * spline.extent() && length.is_finite() {
+        deriv / length
+    } else {
+        fit::direction(spline, t, t0, t1)
+    }
+}
+
+/// Ties the start handles of `parts` to the in-handles of `before` at their join: every
+/// master's out-handle becomes one shared factor times its in-handle (same direction), so
+/// the blend of the handles at any weights is that factor times the blended in-handle,
+/// collinear (a smooth point stays smooth at every position, not only at the masters). The
+/// factor starts where [`matched`] puts it. Nothing changes at a join that is not smooth
+/// in every master (a cusp, or a sharp point), or where every handle is short.
+fn share_start(parts: &mut [Part], before: &[CubicBez]) {
     let ins: Vec<Vec2> = before.iter().map(|c| c.p3 - c.p2).collect();
-    let outs: Vec<Vec2> = cubics.iter().map(|c| c.p1 - c.p0).collect();
+    let outs: Vec<Vec2> = parts
+        .iter()
+        .map(|p| p.start.direction * p.start.length)
+        .collect();
     let Some(lengths) = matched(&ins, &outs, false) else {
-        return false;
+        return;
     };
-    for ((cubic, handle), length) in cubics.iter_mut().zip(&ins).zip(lengths) {
-        cubic.p1 = cubic.p0 + unit(*handle) * length;
+    for ((part, handle), length) in parts.iter_mut().zip(&ins).zip(lengths) {
+        part.start = Handle {
+            direction: unit(*handle),
+            shared: Some(handle.hypot()),
+            length,
+        };
     }
-    true
 }
 
-/// The largest value of the Bernstein basis functions of an inner control point (4/9).
-const BASIS_PEAK: f64 = 4.0 / 9.0;
-/// A matched cubic moved by at most this fraction of the goal keeps the polished one's
-/// sampled error plus the shift; a larger move is sampled again.
-const SMALL_SHIFT: f64 = 0.25;
-/// Samples of the curve when refitting a span's end handle ([`refit_end`]).
-const REFIT_SAMPLES: usize = 16;
-
-/// Points of `[a, b]` of `spline` inside the span, evenly spaced in its parameter.
-fn curve_samples(spline: &XSpline, a: f64, b: f64) -> Vec<Point> {
-    (1..REFIT_SAMPLES)
-        .map(|i| spline.eval(a + (b - a) * i as f64 / REFIT_SAMPLES as f64))
-        .collect()
-}
-
-/// The largest distance from `points` to `cubic` (a lower bound of the span's error, as
-/// [`fit::fit_span`]'s sampled error is).
-fn sampled_distance(points: &[Point], cubic: &CubicBez) -> f64 {
-    let mut params = uniform_params();
-    nearest(points, &mut params, cubic)
-}
-
-/// Guesses of the cubic's parameters for [`curve_samples`].
-fn uniform_params() -> Vec<f64> {
-    (1..REFIT_SAMPLES)
-        .map(|i| i as f64 / REFIT_SAMPLES as f64)
-        .collect()
-}
-
-/// Projects `points` onto `cubic` from `params` (updated) and returns the largest distance.
-fn nearest(points: &[Point], params: &mut [f64], cubic: &CubicBez) -> f64 {
-    let mut worst: f64 = 0.0;
-    for (u, p) in params.iter_mut().zip(points) {
-        *u = fit::project_onto(cubic, *p, *u, PROJECT_STEPS);
-        worst = worst.max(cubic.eval(*u).distance(*p));
-    }
-    worst
-}
-
-/// `cubic` with its end handle's length refitted by least squares to `points` (the span's
-/// [`curve_samples`]), its start handle kept, and the largest distance from the points:
-/// after [`match_start`] moved the start handle, the polished end handle no longer
-/// balances it. The refit is kept only if that distance drops. (Hand-written: [`fit`]'s
-/// polish moves both handles, and a matched handle must stay.)
-fn refit_end(points: &[Point], cubic: CubicBez) -> (CubicBez, f64) {
-    let mut params = uniform_params();
-    let before = nearest(points, &mut params, &cubic);
-    let direction = unit(cubic.p3 - cubic.p2);
-    if direction == Vec2::ZERO {
-        return (cubic, before);
-    }
-    let mut best = (cubic, before);
-    let mut candidate = cubic;
-    // With q = p3 - β d: B(u) = base(u) - β d B2(u), B2 = 3u²(1 - u).
-    let base = CubicBez::new(cubic.p0, cubic.p1, cubic.p3, cubic.p3);
-    for _ in 0..2 {
-        let (mut num, mut den) = (0.0, 0.0);
-        for (u, p) in params.iter().zip(points) {
-            let b2 = 3.0 * u * u * (1.0 - u);
-            num += b2 * direction.dot(base.eval(*u) - *p);
-            den += b2 * b2;
-        }
-        if den <= 0.0 {
-            break;
-        }
-        candidate.p2 = cubic.p3 - direction * (num / den).max(0.0);
-        let err = nearest(points, &mut params, &candidate);
-        if err < best.1 {
-            best = (candidate, err);
-        }
-    }
-    best
-}
-
-/// [`match_start`] at the end of `cubics`, against the start handles of `after`.
-fn match_end(cubics: &mut [CubicBez], after: &[CubicBez]) -> bool {
+/// [`share_start`] at the end of `parts`, against the start handles of `after`.
+fn share_end(parts: &mut [Part], after: &[CubicBez]) {
     let outs: Vec<Vec2> = after.iter().map(|c| c.p1 - c.p0).collect();
-    let ins: Vec<Vec2> = cubics.iter().map(|c| c.p3 - c.p2).collect();
+    let ins: Vec<Vec2> = parts
+        .iter()
+        .map(|p| p.end.direction * p.end.length)
+        .collect();
     let Some(lengths) = matched(&ins, &outs, true) else {
-        return false;
+        return;
     };
-    for ((cubic, handle), length) in cubics.iter_mut().zip(&outs).zip(lengths) {
-        cubic.p2 = cubic.p3 - unit(*handle) * length;
+    for ((part, handle), length) in parts.iter_mut().zip(&outs).zip(lengths) {
+        part.end = Handle {
+            direction: unit(*handle),
+            shared: Some(handle.hypot()),
+            length,
+        };
     }
-    true
 }
 
 /// The new lengths of the handles on one side of a join (`outs` unless `set_ins`) for one
@@ -1317,15 +1421,12 @@ impl JointSamples {
         let n = self.t.len();
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
-            let pieces: Vec<[Vec2; 4]> = (0..2)
-                .map(|j| {
-                    let points = [self.p[j][i], self.p[j][i + 1]];
-                    let derivs = [self.d[j][i], self.d[j][i + 1]];
-                    self.hermite(i, points, derivs)
-                })
-                .collect();
+            let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
+                let points = [self.p[j][i], self.p[j][i + 1]];
+                let derivs = [self.d[j][i], self.d[j][i + 1]];
+                self.hermite(i, points, derivs)
+            });
             let ends = |j: usize| (self.u[j][i], self.u[j][i + 1]);
-            let pieces = [pieces[0], pieces[1]];
             let bound = interval_net_bound(pieces, cubics, [ends(0), ends(1)], goal, PAIR_SPLITS);
             worst = worst.max(bound);
             if worst > goal {
@@ -1607,8 +1708,17 @@ impl<'a> Run<'a> {
 
     fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
         let count = self.spline.segment_count();
-        let wrapped = big_t.rem_euclid(count as f64);
-        let j = (wrapped.floor() as usize).min(count - 1);
+        let n = count as f64;
+        // Span parameters lie in [0, 2n): there `T - n` is exact, and for `T >= 0`
+        // truncation is `floor` (both without a library call).
+        let wrapped = if (0.0..n).contains(&big_t) {
+            big_t
+        } else if (n..2.0 * n).contains(&big_t) {
+            big_t - n
+        } else {
+            big_t.rem_euclid(n)
+        };
+        let j = (wrapped as usize).min(count - 1);
         let segment = match self.current {
             Some((k, segment)) if k == j => segment,
             _ => {
@@ -1619,6 +1729,18 @@ impl<'a> Run<'a> {
         };
         segment.eval_deriv(wrapped - j as f64)
     }
+}
+
+/// Points and derivatives of every segment of `spline` at `steps + 1` evenly spaced
+/// parameters, both ends included (segment by segment, so `(steps + 1) * n` of them).
+fn segment_grid(spline: &XSpline, steps: usize) -> Vec<(Point, Vec2)> {
+    let count = spline.segment_count();
+    let mut out = Vec::with_capacity(count * (steps + 1));
+    for j in 0..count {
+        let segment = spline.segment(j);
+        out.extend((0..=steps).map(|i| segment.eval_deriv(i as f64 / steps as f64)));
+    }
+    out
 }
 
 /// De Casteljau at one half.
