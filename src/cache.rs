@@ -43,7 +43,7 @@ use kurbo::{BezPath, PathEl};
 
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
-use crate::record::{put_path, Reader};
+use crate::record::{put_path, Header, Reader};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// Name of the cache file in the output folder.
@@ -57,10 +57,14 @@ pub const FIT_VERSION: u32 = 3;
 /// changes what it returns (paths, errors or the bound between the masters).
 pub const COMPATIBLE_VERSION: u32 = 2;
 
-/// First bytes of a cache file.
-const MAGIC: &[u8; 8] = b"XGLYPHFC";
 /// Layout of the file itself.
 const FORMAT_VERSION: u32 = 3;
+/// The frame of a cache file.
+const HEADER: Header = Header {
+    magic: b"XGLYPHFC",
+    version: FORMAT_VERSION,
+    not_ours: "it is not an xglyph cache file",
+};
 
 /// What a fit depends on: the control points (bits of x, y, s) and the tolerance (bits).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -320,9 +324,7 @@ fn fitter_key() -> [u32; 4] {
 //   | one path per master
 
 fn encode(entries: &Entries) -> Vec<u8> {
-    let mut out = Vec::new();
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    let mut out = HEADER.start();
     for v in fitter_key() {
         out.extend_from_slice(&v.to_le_bytes());
     }
@@ -348,8 +350,7 @@ fn encode(entries: &Entries) -> Vec<u8> {
         }
         put_compatible_fit(&mut out, fit);
     }
-    let crc = crc32fast::hash(&out);
-    out.extend_from_slice(&crc.to_le_bytes());
+    Header::seal(&mut out);
     out
 }
 
@@ -401,25 +402,13 @@ impl Reader<'_> {
 }
 
 fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
-    let (body, crc) = bytes
-        .split_last_chunk::<4>()
-        .ok_or("the file is truncated")?;
-    if !body.starts_with(MAGIC) {
-        return Err("not an xglyph cache file");
-    }
-    if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
-        return Err("the checksum does not match (corrupt or truncated)");
-    }
-    let mut r = Reader::new(&body[MAGIC.len()..]);
-    if r.u32()? != FORMAT_VERSION {
-        return Err("written by another version of xglyph");
-    }
+    let mut r = HEADER.open(bytes)?;
     let key = fitter_key();
     if [r.u32()?, r.u32()?] != [key[0], key[1]] {
-        return Err("written by another version of the fitter");
+        return Err("it was written by another version of the fitter");
     }
     if [r.u32()?, r.u32()?] != [key[2], key[3]] {
-        return Err("written by another version of the compatible fitter");
+        return Err("it was written by another version of the compatible fitter");
     }
     let mut entries = Entries::default();
     let n = r.u64()?;

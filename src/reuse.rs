@@ -34,14 +34,18 @@ use std::sync::{Mutex, OnceLock};
 use kurbo::BezPath;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::record::{put_path, Reader};
+use crate::record::{put_path, Header};
 use sha2::{Digest, Sha256};
 
 /// Name of the record file in the output folder.
 pub const REUSE_FILE: &str = ".xglyph-outputs";
 
 /// First bytes of the record file.
-const MAGIC: &[u8; 8] = b"XGLYPHOR";
+const HEADER: Header = Header {
+    magic: b"XGLYPHOR",
+    version: FORMAT_VERSION,
+    not_ours: "it is not an xglyph output record",
+};
 /// Layout of the record file.
 const FORMAT_VERSION: u32 = 1;
 
@@ -264,9 +268,7 @@ impl Reuse {
             .now
             .lock()
             .map_err(|_| io::Error::other("a build thread panicked"))?;
-        let mut body = Vec::new();
-        body.extend_from_slice(MAGIC);
-        body.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        let mut body = HEADER.start();
         body.extend_from_slice(&(now.len() as u32).to_le_bytes());
         for (path, record) in now.iter() {
             let Some(name) = path.to_str() else { continue };
@@ -290,8 +292,7 @@ impl Reuse {
                 }
             }
         }
-        let crc = crc32fast::hash(&body);
-        body.extend_from_slice(&crc.to_le_bytes());
+        Header::seal(&mut body);
         let path = out.join(REUSE_FILE);
         if fs::read(&path).is_ok_and(|old| old == body) {
             return Ok(());
@@ -305,19 +306,7 @@ impl Reuse {
 fn parse(
     bytes: &[u8],
 ) -> Result<(HashMap<PathBuf, Record>, HashMap<Key, Option<BezPath>>), &'static str> {
-    let (body, crc) = bytes
-        .split_last_chunk::<4>()
-        .ok_or("the file is truncated")?;
-    if !body.starts_with(MAGIC) {
-        return Err("it is not an xglyph output record");
-    }
-    if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
-        return Err("its checksum does not match (the file is damaged)");
-    }
-    let mut r = Reader::new(&body[MAGIC.len()..]);
-    if r.u32()? != FORMAT_VERSION {
-        return Err("it was written by another version of xglyph");
-    }
+    let mut r = HEADER.open(bytes)?;
     let count = r.u32()? as usize;
     let mut records = HashMap::new();
     for _ in 0..count {

@@ -32,6 +32,7 @@
 //! out; each file is still whole, but the set may mix both builds.
 
 use std::fmt;
+use std::collections::HashSet;
 use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -464,7 +465,9 @@ pub fn remove_stale(dir: &Path, files: &[(PathBuf, Vec<u8>)]) {
     }) else {
         return;
     };
-    let ours: Vec<String> = files
+    // The legacy temporary names' stems, `.NAME.tmp`, looked up by hash: a folder of
+    // 20,000 outputs would otherwise compare every entry with every name.
+    let ours: HashSet<String> = files
         .iter()
         .filter(|(p, _)| parent(p) == dir)
         .filter_map(|(p, _)| Some(format!(".{}.tmp", p.file_name()?.to_str()?)))
@@ -473,9 +476,9 @@ pub fn remove_stale(dir: &Path, files: &[(PathBuf, Vec<u8>)]) {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let pid = stale_pid(name).or_else(|| {
-            ours.iter()
-                .find_map(|legacy| name.strip_prefix(legacy.as_str()))
-                .and_then(parse_pid)
+            let digits = name.len() - name.bytes().rev().take_while(u8::is_ascii_digit).count();
+            let (stem, pid) = name.split_at(digits);
+            ours.contains(stem).then(|| parse_pid(pid)).flatten()
         });
         let Some(pid) = pid else { continue };
         if process_alive(pid) {

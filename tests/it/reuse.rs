@@ -110,7 +110,7 @@ fn a_changed_output_or_a_damaged_record_is_not_trusted() {
     let mut flipped = record.clone();
     flipped[20] ^= 0x01;
     for (damaged, why) in [
-        (flipped, "its checksum does not match (the file is damaged)"),
+        (flipped, "its checksum does not match (the file is damaged or truncated)"),
         (record[..3].to_vec(), "the file is truncated"),
         (
             b"not a record at all".to_vec(),
