@@ -334,7 +334,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     let family = format!("{} {}", info.family, info.style);
     let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
     show_phase(&format!("writing {} files", files.len()), || {
-        pipeline::write_output_files(&args.font.out, files)
+        pipeline::write_output_files_with(&args.font.out, files, &reuse)
     })?;
     out!("{report}");
     if loaded.family.is_variable() {

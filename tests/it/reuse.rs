@@ -223,6 +223,31 @@ fn a_rebuild_takes_unchanged_outputs_and_writes_the_bytes_of_a_fresh_build() {
 }
 
 #[test]
+fn an_output_changed_in_out_is_rewritten_though_its_length_is_the_same() {
+    let tmp = scratch("stamps");
+    let out = tmp.join("out");
+    build(&repo("glyphs"), &out);
+    let built = output_files(&out);
+    // Same length, other bytes, in a glyph SVG and the OTF (never reused by key).
+    let svg = built.keys().find(|n| n.starts_with("svg/")).unwrap().clone();
+    let otf = built.keys().find(|n| n.ends_with(".otf")).unwrap().clone();
+    for name in [&svg, &otf] {
+        let mut bytes = built[name].clone();
+        let mid = bytes.len() / 2;
+        bytes[mid] ^= 0x20;
+        std::fs::write(out.join(name), &bytes).unwrap();
+    }
+    build(&repo("glyphs"), &out);
+    assert_eq!(output_files(&out), built);
+    // The record holds a stamp for every output file.
+    let record = std::fs::read(out.join(REUSE_FILE)).unwrap();
+    for name in built.keys() {
+        let found = record.windows(name.len()).any(|w| w == name.as_bytes());
+        assert!(found, "{name} has no stamp");
+    }
+}
+
+#[test]
 fn unions_from_the_record_are_those_made_anew() {
     use xglyph::overlap::{remove_overlaps_font, remove_overlaps_font_with};
     let dir = scratch("unions");
