@@ -293,10 +293,17 @@ impl FitCache {
     /// Writes the fits used in this run to `path`, atomically; nothing when the file
     /// there already holds them.
     pub fn save(&self, path: &Path) -> io::Result<()> {
-        if self.file_is_current(path) {
-            return Ok(());
+        match self.bytes_to_save(path) {
+            Some(bytes) => crate::write::write_atomic(path, &bytes),
+            None => Ok(()),
         }
-        crate::write::write_atomic(path, &self.to_bytes())
+    }
+
+    /// What [`FitCache::save`] would write to `path`: `None` when the file there already
+    /// holds it. (Encoded early, the cache itself can be dropped before the file is
+    /// written.)
+    pub fn bytes_to_save(&self, path: &Path) -> Option<Vec<u8>> {
+        (!self.file_is_current(path)).then(|| self.to_bytes())
     }
 }
 
