@@ -35,8 +35,8 @@
 //! affected. A second build writing into the same folder at the same time is not locked
 //! out; each file is still whole, but the set may mix both builds.
 
-use std::fmt;
 use std::collections::{HashMap, HashSet};
+use std::fmt;
 use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -762,13 +762,19 @@ mod tests {
         assert_eq!(stamps[&a].meta[0], 4);
 
         // The same bytes again: nothing is staged, the stamps are unchanged.
-        let again = set("new1").trusting(stamps.clone()).commit_stamped().unwrap();
+        let again = set("new1")
+            .trusting(stamps.clone())
+            .commit_stamped()
+            .unwrap();
         assert_eq!(again, stamps);
 
         // Another writer replaces a.txt with bytes of the same length: its metadata no
         // longer match the stamp, so the file is read, found different and rewritten.
         std::fs::write(&a, "XXXX").unwrap();
-        let after = set("new1").trusting(stamps.clone()).commit_stamped().unwrap();
+        let after = set("new1")
+            .trusting(stamps.clone())
+            .commit_stamped()
+            .unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), b"new1");
         assert_ne!(after[&a].meta, stamps[&a].meta);
         assert_eq!(after[&b], stamps[&b]);

@@ -110,7 +110,10 @@ fn a_changed_output_or_a_damaged_record_is_not_trusted() {
     let mut flipped = record.clone();
     flipped[20] ^= 0x01;
     for (damaged, why) in [
-        (flipped, "its checksum does not match (the file is damaged or truncated)"),
+        (
+            flipped,
+            "its checksum does not match (the file is damaged or truncated)",
+        ),
         (record[..3].to_vec(), "the file is truncated"),
         (
             b"not a record at all".to_vec(),
@@ -229,7 +232,11 @@ fn an_output_changed_in_out_is_rewritten_though_its_length_is_the_same() {
     build(&repo("glyphs"), &out);
     let built = output_files(&out);
     // Same length, other bytes, in a glyph SVG and the OTF (never reused by key).
-    let svg = built.keys().find(|n| n.starts_with("svg/")).unwrap().clone();
+    let svg = built
+        .keys()
+        .find(|n| n.starts_with("svg/"))
+        .unwrap()
+        .clone();
     let otf = built.keys().find(|n| n.ends_with(".otf")).unwrap().clone();
     for name in [&svg, &otf] {
         let mut bytes = built[name].clone();
