@@ -13,7 +13,8 @@
 //!    can be given the [`FileStamp`]s of the last commit ([`OutputSet::trusting`]): a file
 //!    whose length, inode, modification and change times are those recorded, and whose
 //!    recorded SHA-256 is that of the new bytes, holds them already. Anything else is
-//!    compared byte for byte.
+//!    compared byte for byte. A file changed in the last 50 ms gets no stamp (the file
+//!    system's clock is coarse: see [`FileStamp`]).
 //! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
 //!    system; a link at the final name is replaced, never followed). A file it replaces is
 //!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file
@@ -75,14 +76,22 @@ pub struct FileStamp {
     pub sha256: [u8; 32],
 }
 
+/// How long after its last change a file gets a [`FileStamp`]. File systems keep times
+/// from a coarse clock (a tick of a few milliseconds): a file changed again within the tick
+/// of its last change would keep its times. A file older than this can only be changed in a
+/// later tick, which moves its change time. (Git's "racy" index entries, the same problem.)
+const SETTLED: std::time::Duration = std::time::Duration::from_millis(50);
+
 impl FileStamp {
-    /// The stamp of the file at `path` (not following a link), holding bytes of `sha256`.
+    /// The stamp of the file at `path` (not following a link), holding bytes of `sha256`;
+    /// none for a file changed less than [`SETTLED`] ago (the next commit compares it).
     fn of(path: &Path, sha256: [u8; 32]) -> Option<FileStamp> {
         let meta = fs::symlink_metadata(path).ok()?;
-        Some(FileStamp {
-            meta: stamp_meta(&meta)?,
-            sha256,
-        })
+        let meta = stamp_meta(&meta)?;
+        let changed =
+            std::time::UNIX_EPOCH + std::time::Duration::new(meta[4], u32::try_from(meta[5]).ok()?);
+        let age = std::time::SystemTime::now().duration_since(changed).ok()?;
+        (age >= SETTLED).then_some(FileStamp { meta, sha256 })
     }
 }
 
@@ -756,6 +765,9 @@ mod tests {
             set.add(&b, "bee");
             set
         };
+        // Just written: too fresh to stamp (see `SETTLED`).
+        assert!(set("new1").commit_stamped().unwrap().is_empty());
+        std::thread::sleep(SETTLED * 2);
         let stamps = set("new1").commit_stamped().unwrap();
         assert_eq!(stamps.len(), 2);
         assert_eq!(stamps[&a].sha256, sha256(b"new1"));
@@ -771,17 +783,19 @@ mod tests {
         // Another writer replaces a.txt with bytes of the same length: its metadata no
         // longer match the stamp, so the file is read, found different and rewritten.
         std::fs::write(&a, "XXXX").unwrap();
+        std::thread::sleep(SETTLED * 2);
         let after = set("new1")
             .trusting(stamps.clone())
             .commit_stamped()
             .unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), b"new1");
-        assert_ne!(after[&a].meta, stamps[&a].meta);
+        assert!(!after.contains_key(&a), "rewritten just now: not stamped");
         assert_eq!(after[&b], stamps[&b]);
 
         // The trust is in the metadata: a stamp claiming the new bytes for the file as it
         // is now (forged here) makes the commit leave the file alone, unread.
         std::fs::write(&a, "YYYY").unwrap();
+        std::thread::sleep(SETTLED * 2);
         let forged = FileStamp::of(&a, sha256(b"new1")).unwrap();
         set("new1")
             .trusting(HashMap::from([(a.clone(), forged)]))
