@@ -25,7 +25,10 @@
 //! fit is bit-for-bit the fit it stored, so outputs are the same with and without the cache.
 //!
 //! The file holds exactly the entries used by the last run (entries of deleted or edited
-//! contours are dropped), sorted by key, so the same input writes the same bytes. It is
+//! contours are dropped), sorted by key, so the same input writes the same bytes. A run
+//! that used every entry of the file it loaded and fitted nothing new leaves the file
+//! alone (a CJK font's cache is 100 MB). A hit is not copied into a second map: each
+//! loaded entry carries a flag saying whether this run used it. It is
 //! written atomically ([`crate::write::write_atomic`]). Limit: a deliberately forged file
 //! with a valid checksum is trusted; the cache is the user's own file in their output
 //! folder, not an input from others.
@@ -36,14 +39,14 @@ use std::collections::{BTreeMap, HashMap};
 use std::fs;
 use std::io;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
 use kurbo::{BezPath, PathEl};
 
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
-use crate::record::{put_path, Reader};
+use crate::record::{put_path, Header, Reader};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// Name of the cache file in the output folder.
@@ -57,10 +60,14 @@ pub const FIT_VERSION: u32 = 4;
 /// changes what it returns (paths, errors or the bound between the masters).
 pub const COMPATIBLE_VERSION: u32 = 3;
 
-/// First bytes of a cache file.
-const MAGIC: &[u8; 8] = b"XGLYPHFC";
 /// Layout of the file itself.
 const FORMAT_VERSION: u32 = 3;
+/// The frame of a cache file.
+const HEADER: Header = Header {
+    magic: b"XGLYPHFC",
+    version: FORMAT_VERSION,
+    not_ours: "it is not an xglyph cache file",
+};
 
 /// What a fit depends on: the control points (bits of x, y, s) and the tolerance (bits).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -125,14 +132,35 @@ pub enum LoadOutcome {
     Ignored(String),
 }
 
-/// Fitted contours by key: those loaded from the file, and those used in this run.
+/// An entry of the cache file, and whether this run used it.
+#[derive(Debug)]
+struct FromFile<T> {
+    fit: T,
+    used: AtomicBool,
+}
+
+impl<T> FromFile<T> {
+    fn new(fit: T) -> Self {
+        FromFile {
+            fit,
+            used: AtomicBool::new(false),
+        }
+    }
+}
+
+/// Fitted contours by key: those loaded from the file, and those made in this run.
 #[derive(Debug, Default)]
 pub struct FitCache {
-    /// From the file, read-only while fitting.
-    loaded: HashMap<Key, ContourFit>,
-    loaded_compatible: HashMap<CompatibleKey, CompatibleFit>,
-    /// Every fit handed out in this run (hits and misses): what [`FitCache::save`] writes.
-    used: Mutex<Entries>,
+    /// From the file, read-only while fitting (but for the flags).
+    loaded: HashMap<Key, FromFile<ContourFit>>,
+    loaded_compatible: HashMap<CompatibleKey, FromFile<CompatibleFit>>,
+    /// The file they came from.
+    source: Option<std::path::PathBuf>,
+    /// Loaded entries used in this run.
+    loaded_used: AtomicUsize,
+    /// Fits made in this run (not in the file): with the loaded entries used, what
+    /// [`FitCache::save`] writes.
+    made: Mutex<Entries>,
     hits: AtomicUsize,
     reused: AtomicUsize,
     misses: AtomicUsize,
@@ -158,8 +186,9 @@ impl FitCache {
             Ok(entries) => {
                 let n = entries.fits.len() + entries.compatible.len();
                 let cache = FitCache {
-                    loaded: entries.fits.into_iter().collect(),
-                    loaded_compatible: entries.compatible.into_iter().collect(),
+                    loaded: from_file(entries.fits),
+                    loaded_compatible: from_file(entries.compatible),
+                    source: Some(path.to_path_buf()),
                     ..FitCache::default()
                 };
                 (cache, LoadOutcome::Loaded(n))
@@ -171,13 +200,12 @@ impl FitCache {
     /// [`fit_contour`]`(spline, tolerance)`, from the cache when it holds this contour.
     pub fn fit(&self, spline: &XSpline, tolerance: f64) -> ContourFit {
         let key = Key::new(spline, tolerance);
-        if let Some(fit) = self.loaded.get(&key) {
-            self.hits.fetch_add(1, Ordering::Relaxed);
-            self.lock_used().fits.insert(key, fit.clone());
-            return fit.clone();
+        if let Some(entry) = self.loaded.get(&key) {
+            self.hit(&entry.used);
+            return entry.fit.clone();
         }
         // The same contour placed twice in this run (a component at the same offset).
-        if let Some(fit) = self.lock_used().fits.get(&key) {
+        if let Some(fit) = self.lock_made().fits.get(&key) {
             self.reused.fetch_add(1, Ordering::Relaxed);
             return fit.clone();
         }
@@ -185,7 +213,7 @@ impl FitCache {
         // Fitted outside the lock; two threads fitting the same new contour at once both
         // get the same (deterministic) fit.
         let fit = fit_contour(spline, tolerance);
-        self.lock_used().fits.insert(key, fit.clone());
+        self.lock_made().fits.insert(key, fit.clone());
         fit
     }
 
@@ -200,25 +228,32 @@ impl FitCache {
         tolerance: f64,
     ) -> Result<CompatibleFit, CompatibleError> {
         let key = CompatibleKey::new(masters, positions, tolerance);
-        if let Some(fit) = self.loaded_compatible.get(&key) {
-            self.hits.fetch_add(1, Ordering::Relaxed);
-            self.lock_used().compatible.insert(key, fit.clone());
-            return Ok(fit.clone());
+        if let Some(entry) = self.loaded_compatible.get(&key) {
+            self.hit(&entry.used);
+            return Ok(entry.fit.clone());
         }
-        if let Some(fit) = self.lock_used().compatible.get(&key) {
+        if let Some(fit) = self.lock_made().compatible.get(&key) {
             self.reused.fetch_add(1, Ordering::Relaxed);
             return Ok(fit.clone());
         }
         self.misses.fetch_add(1, Ordering::Relaxed);
         let fit = fit_compatible(masters, positions, tolerance)?;
-        self.lock_used().compatible.insert(key, fit.clone());
+        self.lock_made().compatible.insert(key, fit.clone());
         Ok(fit)
     }
 
-    fn lock_used(&self) -> std::sync::MutexGuard<'_, Entries> {
+    /// Counts a hit on a loaded entry whose flag is `used`.
+    fn hit(&self, used: &AtomicBool) {
+        self.hits.fetch_add(1, Ordering::Relaxed);
+        if !used.swap(true, Ordering::Relaxed) {
+            self.loaded_used.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    fn lock_made(&self) -> std::sync::MutexGuard<'_, Entries> {
         // A poisoned lock only means another thread panicked; every entry in the map was
         // inserted whole.
-        self.used.lock().unwrap_or_else(|e| e.into_inner())
+        self.made.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Contours served from the cache file so far.
@@ -238,12 +273,37 @@ impl FitCache {
 
     /// The cache file's bytes: every fit used in this run, sorted by key.
     pub fn to_bytes(&self) -> Vec<u8> {
-        encode(&self.lock_used())
+        let made = self.lock_made();
+        let fits = used_and_made(&self.loaded, &made.fits);
+        let compatible = used_and_made(&self.loaded_compatible, &made.compatible);
+        encode(&fits, &compatible)
     }
 
-    /// Writes the fits used in this run to `path`, atomically.
+    /// Whether the file at `path` already holds [`FitCache::to_bytes`]: it is the file this
+    /// cache was loaded from, every entry of it was used, and nothing new was fitted.
+    fn file_is_current(&self, path: &Path) -> bool {
+        let made = self.lock_made();
+        self.source.as_deref() == Some(path)
+            && made.fits.is_empty()
+            && made.compatible.is_empty()
+            && self.loaded_used.load(Ordering::Relaxed)
+                == self.loaded.len() + self.loaded_compatible.len()
+    }
+
+    /// Writes the fits used in this run to `path`, atomically; nothing when the file
+    /// there already holds them.
     pub fn save(&self, path: &Path) -> io::Result<()> {
-        crate::write::write_atomic(path, &self.to_bytes())
+        match self.bytes_to_save(path) {
+            Some(bytes) => crate::write::write_atomic(path, &bytes),
+            None => Ok(()),
+        }
+    }
+
+    /// What [`FitCache::save`] would write to `path`: `None` when the file there already
+    /// holds it. (Encoded early, the cache itself can be dropped before the file is
+    /// written.)
+    pub fn bytes_to_save(&self, path: &Path) -> Option<Vec<u8>> {
+        (!self.file_is_current(path)).then(|| self.to_bytes())
     }
 }
 
@@ -319,22 +379,47 @@ fn fitter_key() -> [u32; 4] {
 //   | segments u32 | between_masters (u8 0, or u8 1 and f64) | max_error (f64 per position)
 //   | one path per master
 
-fn encode(entries: &Entries) -> Vec<u8> {
-    let mut out = Vec::new();
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+/// The loaded entries this run used and those it made, sorted by key (no key is in both:
+/// a fit is made only when the file lacks it).
+fn used_and_made<'a, K: Ord + std::hash::Hash, T>(
+    loaded: &'a HashMap<K, FromFile<T>>,
+    made: &'a BTreeMap<K, T>,
+) -> Vec<(&'a K, &'a T)> {
+    let mut all: Vec<(&K, &T)> = loaded
+        .iter()
+        .filter(|(_, e)| e.used.load(Ordering::Relaxed))
+        .map(|(k, e)| (k, &e.fit))
+        .chain(made.iter())
+        .collect();
+    all.sort_unstable_by(|a, b| a.0.cmp(b.0));
+    all
+}
+
+/// Loaded entries, none used yet.
+fn from_file<K: std::hash::Hash + Eq, T>(entries: BTreeMap<K, T>) -> HashMap<K, FromFile<T>> {
+    entries
+        .into_iter()
+        .map(|(k, fit)| (k, FromFile::new(fit)))
+        .collect()
+}
+
+fn encode(
+    fits: &[(&Key, &ContourFit)],
+    compatible: &[(&CompatibleKey, &CompatibleFit)],
+) -> Vec<u8> {
+    let mut out = HEADER.start();
     for v in fitter_key() {
         out.extend_from_slice(&v.to_le_bytes());
     }
-    out.extend_from_slice(&(entries.fits.len() as u64).to_le_bytes());
-    for (key, fit) in &entries.fits {
+    out.extend_from_slice(&(fits.len() as u64).to_le_bytes());
+    for &(key, fit) in fits {
         out.extend_from_slice(&key.tolerance.to_le_bytes());
         out.extend_from_slice(&(key.points.len() as u32).to_le_bytes());
         put_points(&mut out, &key.points);
         put_fit(&mut out, fit);
     }
-    out.extend_from_slice(&(entries.compatible.len() as u64).to_le_bytes());
-    for (key, fit) in &entries.compatible {
+    out.extend_from_slice(&(compatible.len() as u64).to_le_bytes());
+    for &(key, fit) in compatible {
         out.extend_from_slice(&key.tolerance.to_le_bytes());
         let points = key.masters.first().map_or(0, Vec::len);
         for count in [key.masters.len(), points, key.positions.len()] {
@@ -348,8 +433,7 @@ fn encode(entries: &Entries) -> Vec<u8> {
         }
         put_compatible_fit(&mut out, fit);
     }
-    let crc = crc32fast::hash(&out);
-    out.extend_from_slice(&crc.to_le_bytes());
+    Header::seal(&mut out);
     out
 }
 
@@ -401,25 +485,13 @@ impl Reader<'_> {
 }
 
 fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
-    let (body, crc) = bytes
-        .split_last_chunk::<4>()
-        .ok_or("the file is truncated")?;
-    if !body.starts_with(MAGIC) {
-        return Err("not an xglyph cache file");
-    }
-    if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
-        return Err("the checksum does not match (corrupt or truncated)");
-    }
-    let mut r = Reader::new(&body[MAGIC.len()..]);
-    if r.u32()? != FORMAT_VERSION {
-        return Err("written by another version of xglyph");
-    }
+    let mut r = HEADER.open(bytes)?;
     let key = fitter_key();
     if [r.u32()?, r.u32()?] != [key[0], key[1]] {
-        return Err("written by another version of the fitter");
+        return Err("it was written by another version of the fitter");
     }
     if [r.u32()?, r.u32()?] != [key[2], key[3]] {
-        return Err("written by another version of the compatible fitter");
+        return Err("it was written by another version of the compatible fitter");
     }
     let mut entries = Entries::default();
     let n = r.u64()?;
@@ -559,12 +631,65 @@ mod tests {
         assert_eq!(back.path, fit.path);
         // Encoding is deterministic.
         let again = FitCache {
-            loaded: loaded.fits.into_iter().collect(),
+            loaded: from_file(loaded.fits),
             ..FitCache::default()
         };
         again.fit(&square(), 0.5);
         assert_eq!((again.hits(), again.misses()), (1, 0));
         assert_eq!(again.to_bytes(), bytes);
+    }
+
+    #[test]
+    fn the_file_is_rewritten_only_when_this_run_changed_its_entries() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(CACHE_FILE);
+        let moved = |dx: f64| {
+            let points = square()
+                .points()
+                .iter()
+                .map(|p| ControlPoint::new(p.pos.x + dx, p.pos.y, p.s))
+                .collect();
+            XSpline::new(points).unwrap()
+        };
+        let first = FitCache::new();
+        first.fit(&moved(0.0), 0.5);
+        first.fit(&moved(5.0), 0.5);
+        assert!(!first.file_is_current(&path));
+        first.save(&path).unwrap();
+        let bytes = fs::read(&path).unwrap();
+
+        // Every entry used, nothing fitted: current, and `save` leaves the file alone.
+        let (all, outcome) = FitCache::load(&path);
+        assert_eq!(outcome, LoadOutcome::Loaded(2));
+        all.fit(&moved(5.0), 0.5);
+        all.fit(&moved(0.0), 0.5);
+        all.fit(&moved(0.0), 0.5);
+        assert_eq!((all.hits(), all.misses()), (3, 0));
+        assert!(all.file_is_current(&path));
+        assert_eq!(all.to_bytes(), bytes);
+        // (Elsewhere it is written.)
+        assert!(!all.file_is_current(&dir.path().join("other")));
+
+        // One entry unused: the file must drop it.
+        let (some, _) = FitCache::load(&path);
+        some.fit(&moved(0.0), 0.5);
+        assert!(!some.file_is_current(&path));
+        let only = FitCache::new();
+        only.fit(&moved(0.0), 0.5);
+        assert_eq!(some.to_bytes(), only.to_bytes());
+
+        // One contour new: the file must gain it, in key order with the loaded ones.
+        let (more, _) = FitCache::load(&path);
+        for dx in [0.0, 5.0, -5.0] {
+            more.fit(&moved(dx), 0.5);
+        }
+        assert_eq!((more.hits(), more.misses()), (2, 1));
+        assert!(!more.file_is_current(&path));
+        let fresh = FitCache::new();
+        for dx in [-5.0, 5.0, 0.0] {
+            fresh.fit(&moved(dx), 0.5);
+        }
+        assert_eq!(more.to_bytes(), fresh.to_bytes());
     }
 
     #[test]

@@ -23,6 +23,7 @@
 //! same type: outline the model instantiated there.
 
 use std::borrow::Cow;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
@@ -103,9 +104,22 @@ impl OutlinedFont {
         self.glyphs.iter().find(|g| g.name == name)
     }
 
-    /// The glyph mapped to code point `c`.
+    /// The glyph mapped to code point `c` (a linear search: to look up many characters,
+    /// build [`OutlinedFont::char_map`] once).
     pub fn glyph_for_char(&self, c: char) -> Option<&OutlinedGlyph> {
         self.glyphs.iter().find(|g| g.unicodes.contains(&c))
+    }
+
+    /// Every mapped code point and its glyph: the one [`OutlinedFont::glyph_for_char`]
+    /// finds (the first in glyph order when two glyphs claim a code point).
+    pub fn char_map(&self) -> HashMap<char, &OutlinedGlyph> {
+        let mut map = HashMap::with_capacity(self.glyphs.len());
+        for g in &self.glyphs {
+            for &c in &g.unicodes {
+                map.entry(c).or_insert(g);
+            }
+        }
+        map
     }
 
     /// Kerning value between two glyph names (0 when there is no pair).
@@ -392,6 +406,29 @@ mod tests {
         assert_eq!(two.path.bounding_box(), Rect::new(10.0, 0.0, 300.0, 120.0));
         // Squares of sharp points are exact: lines only.
         assert_eq!(out.max_error(), 0.0);
+    }
+
+    #[test]
+    fn the_char_map_finds_what_the_search_finds() {
+        let mapped = |name: &str, unicodes: &[char]| Glyph {
+            unicodes: unicodes.to_vec(),
+            ..glyph(name, vec![square(0.0, 0.0, 10.0)], vec![])
+        };
+        let font = Font {
+            info: info(),
+            features: None,
+            glyphs: vec![mapped("a", &['a', 'A']), mapped("alt", &['a', 'b'])],
+            kerning: Vec::new(),
+        };
+        let out = outline_font(&font, 0.5);
+        let map = out.char_map();
+        assert_eq!(map.len(), 3);
+        for c in ['a', 'A', 'b', 'z'] {
+            let by_map = map.get(&c).map(|g| g.name.as_str());
+            assert_eq!(by_map, out.glyph_for_char(c).map(|g| g.name.as_str()));
+        }
+        assert_eq!(map[&'a'].name, "a");
+        assert_eq!(map[&'b'].name, "alt");
     }
 
     #[test]

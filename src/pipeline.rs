@@ -626,11 +626,29 @@ pub fn write_outputs(out: &Path, files: &[OutputFile]) -> Result<(), PipelineErr
 /// [`write_outputs`] taking the files, so that their bytes are not copied (a CJK font's
 /// outputs are hundreds of megabytes).
 pub fn write_output_files(out: &Path, files: Vec<OutputFile>) -> Result<(), PipelineError> {
+    write_output_files_with(out, files, &Reuse::off())
+}
+
+/// [`write_output_files`] trusting the file stamps `reuse` holds from the last build (a
+/// file not touched since is not read back: [`OutputSet::trusting`]), and giving it this
+/// build's stamps to save.
+pub fn write_output_files_with(
+    out: &Path,
+    files: Vec<OutputFile>,
+    reuse: &Reuse,
+) -> Result<(), PipelineError> {
     let mut set = OutputSet::new();
     for (path, bytes) in files {
         set.add(out.join(path), bytes);
     }
-    set.commit().map_err(|error| PipelineError::Write {
+    let result = if reuse.is_on() {
+        set.trusting(reuse.file_stamps())
+            .commit_stamped()
+            .map(|stamps| reuse.files_written(stamps))
+    } else {
+        set.commit()
+    };
+    result.map_err(|error| PipelineError::Write {
         dir: out.to_path_buf(),
         error,
     })

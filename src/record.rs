@@ -3,6 +3,10 @@
 //! little-endian, reals are stored as their bits, and a path is its element count followed by
 //! tagged elements. The bytes on disk are untrusted, so [`Reader`] checks every read against
 //! what remains and refuses non-finite numbers: a damaged file is refused, never trusted.
+//!
+//! Every such file is framed the same way ([`Header`]): an 8-byte magic, a format version
+//! (u32), the body, and a CRC-32 of everything before it. [`Header::open`] is the one
+//! place that checks the frame.
 
 use kurbo::{BezPath, PathEl, Point};
 
@@ -11,6 +15,51 @@ pub(crate) const TAG_LINE: u8 = 1;
 pub(crate) const TAG_QUAD: u8 = 2;
 pub(crate) const TAG_CUBIC: u8 = 3;
 pub(crate) const TAG_CLOSE: u8 = 4;
+
+/// The frame of one kind of file: its magic, its layout's version, and what it is called
+/// in the message that refuses another file.
+pub(crate) struct Header {
+    pub(crate) magic: &'static [u8; 8],
+    pub(crate) version: u32,
+    /// "it is not …", e.g. "it is not an xglyph cache file".
+    pub(crate) not_ours: &'static str,
+}
+
+impl Header {
+    /// A new file's bytes so far: the magic and the version (the body follows, then
+    /// [`Header::seal`]).
+    pub(crate) fn start(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        out.extend_from_slice(self.magic);
+        out.extend_from_slice(&self.version.to_le_bytes());
+        out
+    }
+
+    /// Appends the CRC-32 of everything written so far.
+    pub(crate) fn seal(out: &mut Vec<u8>) {
+        let crc = crc32fast::hash(out);
+        out.extend_from_slice(&crc.to_le_bytes());
+    }
+
+    /// The body of `bytes` (after the version, before the checksum), once the magic, the
+    /// checksum and the version are checked, in that order.
+    pub(crate) fn open<'a>(&self, bytes: &'a [u8]) -> Result<Reader<'a>, &'static str> {
+        let (body, crc) = bytes
+            .split_last_chunk::<4>()
+            .ok_or("the file is truncated")?;
+        if !body.starts_with(self.magic) {
+            return Err(self.not_ours);
+        }
+        if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
+            return Err("its checksum does not match (the file is damaged or truncated)");
+        }
+        let mut r = Reader::new(&body[self.magic.len()..]);
+        if r.u32()? != self.version {
+            return Err("it was written by another version of xglyph");
+        }
+        Ok(r)
+    }
+}
 
 /// Appends `path`: its element count (u32), then per element a tag and its points.
 pub(crate) fn put_path(out: &mut Vec<u8>, path: &BezPath) {
@@ -124,5 +173,50 @@ impl<'a> Reader<'a> {
             return Err("an outline is not closed subpaths");
         }
         Ok(path)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TEST: Header = Header {
+        magic: b"XGLYPHTS",
+        version: 7,
+        not_ours: "it is not a test file",
+    };
+
+    #[test]
+    fn the_frame_is_checked_before_the_body_is_read() {
+        let mut good = TEST.start();
+        good.extend_from_slice(&42u32.to_le_bytes());
+        Header::seal(&mut good);
+        let mut r = TEST.open(&good).unwrap();
+        assert_eq!(r.u32(), Ok(42));
+        assert!(r.is_empty());
+
+        let mut other_version = Header { version: 8, ..TEST }.start();
+        other_version.extend_from_slice(&42u32.to_le_bytes());
+        Header::seal(&mut other_version);
+        let mut flipped = good.clone();
+        flipped[12] ^= 4;
+        for (bytes, why) in [
+            (&good[..3], "the file is truncated"),
+            (b"PNG\0 other".as_slice(), "it is not a test file"),
+            (
+                &flipped[..],
+                "its checksum does not match (the file is damaged or truncated)",
+            ),
+            (
+                &good[..good.len() - 1],
+                "its checksum does not match (the file is damaged or truncated)",
+            ),
+            (
+                &other_version[..],
+                "it was written by another version of xglyph",
+            ),
+        ] {
+            assert_eq!(TEST.open(bytes).err(), Some(why));
+        }
     }
 }

@@ -21,6 +21,11 @@
 //! that a rebuild unions only the glyphs that changed. A union equal to its input (a glyph
 //! without overlaps) is recorded as such, not stored again.
 //!
+//! It also holds each output file's [`FileStamp`] after the commit (its metadata and the
+//! SHA-256 of its bytes), so that the next commit need not read back the ~42,000 files of a
+//! CJK build to find those that did not change ([`crate::write`]): a file whose metadata
+//! changed is read and compared as before.
+//!
 //! Limit: a key is as complete as the code that builds it; an output depends only on what
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
@@ -34,16 +39,21 @@ use std::sync::{Mutex, OnceLock};
 use kurbo::BezPath;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::record::{put_path, Reader};
+use crate::record::{put_path, Header, Reader};
+use crate::write::FileStamp;
 use sha2::{Digest, Sha256};
 
 /// Name of the record file in the output folder.
 pub const REUSE_FILE: &str = ".xglyph-outputs";
 
 /// First bytes of the record file.
-const MAGIC: &[u8; 8] = b"XGLYPHOR";
+const HEADER: Header = Header {
+    magic: b"XGLYPHOR",
+    version: FORMAT_VERSION,
+    not_ours: "it is not an xglyph output record",
+};
 /// Layout of the record file.
-const FORMAT_VERSION: u32 = 1;
+const FORMAT_VERSION: u32 = 2;
 
 /// What an output's bytes are made from, hashed (SHA-256).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -148,6 +158,10 @@ pub struct Reuse {
     earlier_paths: HashMap<Key, Option<BezPath>>,
     /// Those of this build.
     now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
+    /// The output files as the last build's commit left them, by path relative to `out`.
+    earlier_files: HashMap<PathBuf, FileStamp>,
+    /// As this build's commit left them.
+    now_files: Mutex<BTreeMap<PathBuf, FileStamp>>,
 }
 
 impl Reuse {
@@ -173,9 +187,10 @@ impl Reuse {
             Err(e) => return (reuse, Some(crate::write::reason(&e))),
         };
         match parse(&bytes) {
-            Ok((earlier, paths)) => {
-                reuse.earlier = earlier;
-                reuse.earlier_paths = paths;
+            Ok(parsed) => {
+                reuse.earlier = parsed.records;
+                reuse.earlier_paths = parsed.paths;
+                reuse.earlier_files = parsed.files;
                 (reuse, None)
             }
             Err(why) => (reuse, Some(why.to_string())),
@@ -244,6 +259,30 @@ impl Reuse {
         }
     }
 
+    /// The stamps of OUT's files as the last build left them (paths under OUT), for
+    /// [`crate::write::OutputSet::trusting`].
+    pub fn file_stamps(&self) -> HashMap<PathBuf, FileStamp> {
+        match &self.out {
+            Some(out) => self
+                .earlier_files
+                .iter()
+                .map(|(path, stamp)| (out.join(path), *stamp))
+                .collect(),
+            None => HashMap::new(),
+        }
+    }
+
+    /// Keeps the stamps this build's commit returned (paths under OUT) for
+    /// [`Reuse::save`].
+    pub fn files_written(&self, stamps: HashMap<PathBuf, FileStamp>) {
+        let Some(out) = &self.out else { return };
+        if let Ok(mut now) = self.now_files.lock() {
+            now.extend(stamps.into_iter().filter_map(|(path, stamp)| {
+                Some((path.strip_prefix(out).ok()?.to_path_buf(), stamp))
+            }));
+        }
+    }
+
     /// Whether outputs may come from OUT (false for [`Reuse::off`]).
     pub fn is_on(&self) -> bool {
         self.out.is_some()
@@ -264,9 +303,7 @@ impl Reuse {
             .now
             .lock()
             .map_err(|_| io::Error::other("a build thread panicked"))?;
-        let mut body = Vec::new();
-        body.extend_from_slice(MAGIC);
-        body.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        let mut body = HEADER.start();
         body.extend_from_slice(&(now.len() as u32).to_le_bytes());
         for (path, record) in now.iter() {
             let Some(name) = path.to_str() else { continue };
@@ -290,8 +327,25 @@ impl Reuse {
                 }
             }
         }
-        let crc = crc32fast::hash(&body);
-        body.extend_from_slice(&crc.to_le_bytes());
+        let files = self
+            .now_files
+            .lock()
+            .map_err(|_| io::Error::other("a build thread panicked"))?;
+        // A name that is not UTF-8 is left out (its file is compared next time).
+        let named: Vec<(&str, &FileStamp)> = files
+            .iter()
+            .filter_map(|(path, stamp)| Some((path.to_str()?, stamp)))
+            .collect();
+        body.extend_from_slice(&(named.len() as u32).to_le_bytes());
+        for (name, stamp) in named {
+            body.extend_from_slice(&(name.len() as u32).to_le_bytes());
+            body.extend_from_slice(name.as_bytes());
+            for v in stamp.meta {
+                body.extend_from_slice(&v.to_le_bytes());
+            }
+            body.extend_from_slice(&stamp.sha256);
+        }
+        Header::seal(&mut body);
         let path = out.join(REUSE_FILE);
         if fs::read(&path).is_ok_and(|old| old == body) {
             return Ok(());
@@ -300,34 +354,20 @@ impl Reuse {
     }
 }
 
+/// What a record file holds.
+struct Parsed {
+    records: HashMap<PathBuf, Record>,
+    paths: HashMap<Key, Option<BezPath>>,
+    files: HashMap<PathBuf, FileStamp>,
+}
+
 /// The records of a record file, or what is wrong with it.
-#[allow(clippy::type_complexity)]
-fn parse(
-    bytes: &[u8],
-) -> Result<(HashMap<PathBuf, Record>, HashMap<Key, Option<BezPath>>), &'static str> {
-    let (body, crc) = bytes
-        .split_last_chunk::<4>()
-        .ok_or("the file is truncated")?;
-    if !body.starts_with(MAGIC) {
-        return Err("it is not an xglyph output record");
-    }
-    if crc32fast::hash(body) != u32::from_le_bytes(*crc) {
-        return Err("its checksum does not match (the file is damaged)");
-    }
-    let mut r = Reader::new(&body[MAGIC.len()..]);
-    if r.u32()? != FORMAT_VERSION {
-        return Err("it was written by another version of xglyph");
-    }
+fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
+    let mut r = HEADER.open(bytes)?;
     let count = r.u32()? as usize;
     let mut records = HashMap::new();
     for _ in 0..count {
-        let len = r.u32()? as usize;
-        let name = std::str::from_utf8(r.take(len)?).map_err(|_| "a path is not UTF-8")?;
-        let path = PathBuf::from(name);
-        // Only plain relative paths inside OUT.
-        if name.is_empty() || !path.components().all(|c| matches!(c, Component::Normal(_))) {
-            return Err("a path leaves the output folder");
-        }
+        let path = relative_path(&mut r)?;
         let key = Key(r.array()?);
         let bytes = r.array()?;
         if records.insert(path, Record { key, bytes }).is_some() {
@@ -347,10 +387,39 @@ fn parse(
             return Err("an outline is recorded twice");
         }
     }
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 4 + 48 + 32)?;
+    let mut files = HashMap::with_capacity(count);
+    for _ in 0..count {
+        let path = relative_path(&mut r)?;
+        let mut meta = [0; 6];
+        for v in &mut meta {
+            *v = r.u64()?;
+        }
+        let sha256 = r.array()?;
+        if files.insert(path, FileStamp { meta, sha256 }).is_some() {
+            return Err("a file is recorded twice");
+        }
+    }
     if !r.is_empty() {
         return Err("bytes follow the last record");
     }
-    Ok((records, paths))
+    Ok(Parsed {
+        records,
+        paths,
+        files,
+    })
+}
+
+/// A path relative to OUT (its length, then UTF-8): plain names only, never leaving OUT.
+fn relative_path(r: &mut Reader<'_>) -> Result<PathBuf, &'static str> {
+    let len = r.u32()? as usize;
+    let name = std::str::from_utf8(r.take(len)?).map_err(|_| "a path is not UTF-8")?;
+    let path = PathBuf::from(name);
+    if name.is_empty() || !path.components().all(|c| matches!(c, Component::Normal(_))) {
+        return Err("a path leaves the output folder");
+    }
+    Ok(path)
 }
 
 /// The key of one glyph as drawn: name, code points, advance and outline, and with

@@ -9,7 +9,12 @@
 //!    link at a guessed name is never opened or followed. The staged files are flushed to
 //!    disk. An output whose file already holds exactly its bytes (a regular file, not a
 //!    link) is not staged at all: a rebuild rewrites only what changed, and a build that
-//!    changes nothing writes nothing.
+//!    changes nothing writes nothing. To know that without reading the file back, a set
+//!    can be given the [`FileStamp`]s of the last commit ([`OutputSet::trusting`]): a file
+//!    whose length, inode, modification and change times are those recorded, and whose
+//!    recorded SHA-256 is that of the new bytes, holds them already. Anything else is
+//!    compared byte for byte. A file changed in the last 50 ms gets no stamp (the file
+//!    system's clock is coarse: see [`FileStamp`]).
 //! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
 //!    system; a link at the final name is replaced, never followed). A file it replaces is
 //!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file
@@ -31,12 +36,14 @@
 //! affected. A second build writing into the same folder at the same time is not locked
 //! out; each file is still whole, but the set may mix both builds.
 
+use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+use rayon::prelude::*;
 use tempfile::{Builder, TempPath};
 
 /// Prefix of every temporary or backup file we create (followed by `PID-`).
@@ -52,6 +59,67 @@ const RANDOM_LEN: usize = 10;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct OutputSet {
     files: Vec<(PathBuf, Vec<u8>)>,
+    /// What the last commit left in the files (by output path), trusted while the files'
+    /// metadata match.
+    earlier: HashMap<PathBuf, FileStamp>,
+}
+
+/// What a file held when a commit last wrote (or kept) it: its metadata (length, inode,
+/// modification and change times, to the nanosecond) and the SHA-256 of its bytes. The
+/// change time cannot be set back by a user, so a file whose metadata still match was not
+/// written since. Only on Unix; elsewhere no stamp matches and files are compared.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FileStamp {
+    /// Length, inode, modification time (s, ns), change time (s, ns).
+    pub meta: [u64; 6],
+    /// SHA-256 of the bytes.
+    pub sha256: [u8; 32],
+}
+
+/// How long after its last change a file gets a [`FileStamp`]. File systems keep times
+/// from a coarse clock (a tick of a few milliseconds): a file changed again within the tick
+/// of its last change would keep its times. A file older than this can only be changed in a
+/// later tick, which moves its change time. (Git's "racy" index entries, the same problem.)
+const SETTLED: std::time::Duration = std::time::Duration::from_millis(50);
+
+impl FileStamp {
+    /// The stamp of the file at `path` (not following a link), holding bytes of `sha256`;
+    /// none for a file changed less than [`SETTLED`] ago (the next commit compares it).
+    fn of(path: &Path, sha256: [u8; 32]) -> Option<FileStamp> {
+        let meta = fs::symlink_metadata(path).ok()?;
+        let meta = stamp_meta(&meta)?;
+        let changed =
+            std::time::UNIX_EPOCH + std::time::Duration::new(meta[4], u32::try_from(meta[5]).ok()?);
+        let age = std::time::SystemTime::now().duration_since(changed).ok()?;
+        (age >= SETTLED).then_some(FileStamp { meta, sha256 })
+    }
+}
+
+/// The metadata a [`FileStamp`] records, of a regular file (`None` for anything else).
+#[cfg(unix)]
+fn stamp_meta(meta: &fs::Metadata) -> Option<[u64; 6]> {
+    use std::os::unix::fs::MetadataExt;
+    meta.is_file().then(|| {
+        [
+            meta.len(),
+            meta.ino(),
+            meta.mtime() as u64,
+            meta.mtime_nsec() as u64,
+            meta.ctime() as u64,
+            meta.ctime_nsec() as u64,
+        ]
+    })
+}
+
+#[cfg(not(unix))]
+fn stamp_meta(_: &fs::Metadata) -> Option<[u64; 6]> {
+    None
+}
+
+/// The SHA-256 of `bytes`.
+pub fn sha256(bytes: &[u8]) -> [u8; 32] {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(bytes).into()
 }
 
 /// Why an [`OutputSet`] could not be committed: the output path and the reason.
@@ -154,19 +222,52 @@ impl OutputSet {
         self.files.is_empty()
     }
 
+    /// Trusts `earlier` (by output path, as [`OutputSet::commit_stamped`] returned them):
+    /// an output whose file still has its stamp's metadata, and whose bytes have its
+    /// stamp's hash, is left alone without being read.
+    pub fn trusting(mut self, earlier: HashMap<PathBuf, FileStamp>) -> Self {
+        self.earlier = earlier;
+        self
+    }
+
     /// Writes every output, or none (see the module docs). Stale temporary files of a
     /// killed earlier commit in the output folders are removed first.
     pub fn commit(self) -> Result<(), WriteError> {
-        self.commit_with(Transaction::default())
+        self.commit_with(Transaction::default(), false).map(drop)
     }
 
-    fn commit_with(self, mut tx: Transaction) -> Result<(), WriteError> {
+    /// [`OutputSet::commit`], returning each output's [`FileStamp`] after the commit (for
+    /// the next commit's [`OutputSet::trusting`]); an output whose file cannot be stat'ed
+    /// has none.
+    pub fn commit_stamped(self) -> Result<HashMap<PathBuf, FileStamp>, WriteError> {
+        self.commit_with(Transaction::default(), true)
+    }
+
+    fn commit_with(
+        self,
+        mut tx: Transaction,
+        stamped: bool,
+    ) -> Result<HashMap<PathBuf, FileStamp>, WriteError> {
         let _committing = Committing::start();
-        let result = tx.run(self.files);
+        // Hashed on every core (a CJK font's 700 MB of outputs), only when stamps are used.
+        let hashes: Vec<[u8; 32]> = if stamped || !self.earlier.is_empty() {
+            self.files.par_iter().map(|(_, b)| sha256(b)).collect()
+        } else {
+            Vec::new()
+        };
+        let result = tx.run(&self.files, &hashes, &self.earlier);
         match result {
             Ok(()) => {
                 tx.finish();
-                Ok(())
+                if !stamped {
+                    return Ok(HashMap::new());
+                }
+                Ok(self
+                    .files
+                    .par_iter()
+                    .zip(hashes)
+                    .filter_map(|((path, _), sha)| Some((path.clone(), FileStamp::of(path, sha)?)))
+                    .collect())
             }
             Err(mut err) => {
                 err.rollback = tx.roll_back();
@@ -200,22 +301,30 @@ struct Transaction {
 }
 
 impl Transaction {
-    fn run(&mut self, files: Vec<(PathBuf, Vec<u8>)>) -> Result<(), WriteError> {
+    fn run(
+        &mut self,
+        files: &[(PathBuf, Vec<u8>)],
+        hashes: &[[u8; 32]],
+        earlier: &HashMap<PathBuf, FileStamp>,
+    ) -> Result<(), WriteError> {
         let mut seen = std::collections::HashSet::new();
-        for (path, _) in &files {
+        for (path, _) in files {
             if !seen.insert(path.clone()) {
                 return Err(error(path, WriteErrorKind::Duplicate));
             }
         }
         let mut cleaned = std::collections::HashSet::new();
-        for (path, bytes) in &files {
+        for (k, (path, bytes)) in files.iter().enumerate() {
             let dir = parent(path);
             self.create_dirs(dir)?;
             if cleaned.insert(dir.to_path_buf()) {
-                remove_stale(dir, &files);
+                remove_stale(dir, files);
             }
             check_interrupt(path)?;
-            if !unchanged(path, bytes) {
+            let stamp = earlier
+                .get(path)
+                .filter(|s| hashes.get(k) == Some(&s.sha256));
+            if !unchanged(path, bytes, stamp) {
                 self.stage(path, bytes)?;
             }
         }
@@ -464,7 +573,9 @@ pub fn remove_stale(dir: &Path, files: &[(PathBuf, Vec<u8>)]) {
     }) else {
         return;
     };
-    let ours: Vec<String> = files
+    // The legacy temporary names' stems, `.NAME.tmp`, looked up by hash: a folder of
+    // 20,000 outputs would otherwise compare every entry with every name.
+    let ours: HashSet<String> = files
         .iter()
         .filter(|(p, _)| parent(p) == dir)
         .filter_map(|(p, _)| Some(format!(".{}.tmp", p.file_name()?.to_str()?)))
@@ -473,9 +584,9 @@ pub fn remove_stale(dir: &Path, files: &[(PathBuf, Vec<u8>)]) {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let pid = stale_pid(name).or_else(|| {
-            ours.iter()
-                .find_map(|legacy| name.strip_prefix(legacy.as_str()))
-                .and_then(parse_pid)
+            let digits = name.len() - name.bytes().rev().take_while(u8::is_ascii_digit).count();
+            let (stem, pid) = name.split_at(digits);
+            ours.contains(stem).then(|| parse_pid(pid)).flatten()
         });
         let Some(pid) = pid else { continue };
         if process_alive(pid) {
@@ -519,11 +630,15 @@ fn process_alive(pid: u32) -> bool {
 
 /// Whether `path` is a regular file (not a link) holding exactly `bytes` already: then the
 /// commit leaves it alone (no staging, no rename, no flush), so a rebuild that changes one
-/// glyph rewrites only the files that glyph is in. Any doubt (unreadable, a link, another
-/// length) counts as changed.
-fn unchanged(path: &Path, bytes: &[u8]) -> bool {
+/// glyph rewrites only the files that glyph is in. A `stamp` of these bytes whose metadata
+/// the file still has answers without reading it; otherwise the file is read and compared.
+/// Any doubt (unreadable, a link, another length) counts as changed.
+fn unchanged(path: &Path, bytes: &[u8], stamp: Option<&FileStamp>) -> bool {
     match fs::symlink_metadata(path) {
         Ok(meta) if meta.is_file() && meta.len() == bytes.len() as u64 => {
+            if stamp.is_some_and(|s| stamp_meta(&meta) == Some(s.meta)) {
+                return true;
+            }
             fs::read(path).is_ok_and(|old| old == bytes)
         }
         _ => false,
@@ -641,6 +756,63 @@ mod tests {
 
     #[cfg(unix)]
     #[test]
+    fn a_stamp_is_trusted_only_while_the_file_is_untouched() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        let set = |a_bytes: &str| {
+            let mut set = OutputSet::new();
+            set.add(&a, a_bytes);
+            set.add(&b, "bee");
+            set
+        };
+        // Just written: too fresh to stamp (see `SETTLED`).
+        assert!(set("new1").commit_stamped().unwrap().is_empty());
+        std::thread::sleep(SETTLED * 2);
+        let stamps = set("new1").commit_stamped().unwrap();
+        assert_eq!(stamps.len(), 2);
+        assert_eq!(stamps[&a].sha256, sha256(b"new1"));
+        assert_eq!(stamps[&a].meta[0], 4);
+
+        // The same bytes again: nothing is staged, the stamps are unchanged.
+        let again = set("new1")
+            .trusting(stamps.clone())
+            .commit_stamped()
+            .unwrap();
+        assert_eq!(again, stamps);
+
+        // Another writer replaces a.txt with bytes of the same length: its metadata no
+        // longer match the stamp, so the file is read, found different and rewritten.
+        std::fs::write(&a, "XXXX").unwrap();
+        std::thread::sleep(SETTLED * 2);
+        let after = set("new1")
+            .trusting(stamps.clone())
+            .commit_stamped()
+            .unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"new1");
+        assert!(!after.contains_key(&a), "rewritten just now: not stamped");
+        assert_eq!(after[&b], stamps[&b]);
+
+        // The trust is in the metadata: a stamp claiming the new bytes for the file as it
+        // is now (forged here) makes the commit leave the file alone, unread.
+        std::fs::write(&a, "YYYY").unwrap();
+        std::thread::sleep(SETTLED * 2);
+        let forged = FileStamp::of(&a, sha256(b"new1")).unwrap();
+        set("new1")
+            .trusting(HashMap::from([(a.clone(), forged)]))
+            .commit()
+            .unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"YYYY");
+        // A stamp of other bytes is not used: the file is compared and rewritten.
+        let other = FileStamp::of(&a, sha256(b"new2")).unwrap();
+        set("new1")
+            .trusting(HashMap::from([(a.clone(), other)]))
+            .commit()
+            .unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"new1");
+    }
+
+    #[cfg(unix)]
+    #[test]
     fn new_files_get_the_usual_mode_and_replaced_files_keep_theirs() {
         use std::os::unix::fs::PermissionsExt;
         let dir = tempfile::tempdir().unwrap();
@@ -695,7 +867,7 @@ mod tests {
                 fail_before_rename: Some(fail_at),
                 ..Transaction::default()
             };
-            let err = set.commit_with(tx).unwrap_err();
+            let err = set.commit_with(tx, false).unwrap_err();
             let failed = ["a.txt", "c/new.txt", "link", "b.txt"][fail_at];
             assert_eq!(
                 err.to_string(),

@@ -312,16 +312,25 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         keep_overlaps: args.keep_overlaps,
         ..BuildOptions::default()
     };
+    // A font without masters fits nothing more: its cache is encoded now and its maps
+    // dropped (hundreds of MB for a CJK font) before the outputs are made; the file is
+    // still written after them, so a failed build leaves OUT alone.
+    let (cache, mut to_save) = if loaded.family.is_variable() {
+        (Some(cache), None)
+    } else {
+        let stats = (cache.hits(), cache.misses());
+        (None, Some((cache.bytes_to_save(&cache_path), stats)))
+    };
     // The three groups of outputs on every core (rayon); errors in this order.
     let ((files, instance_files), variable) = show_phase("rendering the outputs", || {
         rayon::join(
             || {
                 rayon::join(
                     || pipeline::outputs_with(&loaded.font, &opts, &reuse),
-                    || pipeline::instance_outputs_with(&loaded, &opts, Some(&cache)),
+                    || pipeline::instance_outputs_with(&loaded, &opts, cache.as_ref()),
                 )
             },
-            || pipeline::variable_outputs_with(&loaded, Some(&cache), &reuse),
+            || pipeline::variable_outputs_with(&loaded, cache.as_ref(), &reuse),
         )
     });
     let mut files = files?;
@@ -334,7 +343,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     let family = format!("{} {}", info.family, info.style);
     let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
     show_phase(&format!("writing {} files", files.len()), || {
-        pipeline::write_output_files(&args.font.out, files)
+        pipeline::write_output_files_with(&args.font.out, files, &reuse)
     })?;
     out!("{report}");
     if loaded.family.is_variable() {
@@ -346,11 +355,16 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             variable_line(fs, &loaded.family, loaded.font.tolerance)
         );
     }
-    if cache.hits() > 0 {
+    if let Some(cache) = &cache {
+        to_save = Some((
+            cache.bytes_to_save(&cache_path),
+            (cache.hits(), cache.misses()),
+        ));
+    }
+    let (cache_bytes, (hits, misses)) = to_save.unwrap_or((None, (0, 0)));
+    if hits > 0 {
         outln!(
-            "refitted {} contours; {} fits from the cache {}",
-            cache.misses(),
-            cache.hits(),
+            "refitted {misses} contours; {hits} fits from the cache {}",
             cache_path.display()
         );
     }
@@ -368,7 +382,12 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             crate::write::reason(&e)
         );
     }
-    if let Err(e) = cache.save(&cache_path) {
+    let saved = cache_bytes.map_or(Ok(()), |bytes| {
+        let mut set = crate::write::OutputSet::new();
+        set.add(&cache_path, bytes);
+        set.commit().map_err(std::io::Error::other)
+    });
+    if let Err(e) = saved {
         errln!(
             "warning: cannot write the fit cache {}: {}",
             cache_path.display(),

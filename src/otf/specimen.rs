@@ -95,10 +95,11 @@ pub fn specimen_text(font: &OutlinedFont) -> String {
 /// Width of `text` in font units: advances plus kerning between neighbours, as a shaper
 /// applying the `kern` feature gives it.
 fn text_width(font: &OutlinedFont, text: &str) -> f64 {
+    let chars = font.char_map();
     let mut width = 0.0;
     let mut prev: Option<&str> = None;
     for c in text.chars() {
-        let Some(glyph) = font.glyph_for_char(c) else {
+        let Some(glyph) = chars.get(&c) else {
             continue;
         };
         if let Some(p) = prev {

@@ -6,7 +6,7 @@
 
 use kurbo::{Affine, BezPath, PathEl, Point};
 
-use super::xml::num;
+use super::xml::push_num;
 
 /// Path data of `path` after `transform` (e.g. a y flip), like `M20 0L280 700C…Z`.
 pub fn path_data(path: &BezPath, transform: Affine) -> String {
@@ -16,13 +16,12 @@ pub fn path_data(path: &BezPath, transform: Affine) -> String {
     let elements = path.elements();
     let pt = |d: &mut String, p: Point| {
         let p = transform * p;
-        let (x, y) = (num(p.x), num(p.y));
         if !d.is_empty() && !d.ends_with(char::is_alphabetic) {
             d.push(' ');
         }
-        d.push_str(&x);
+        push_num(d, p.x);
         d.push(' ');
-        d.push_str(&y);
+        push_num(d, p.y);
     };
     for (i, el) in elements.iter().enumerate() {
         match *el {

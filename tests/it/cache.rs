@@ -146,32 +146,32 @@ fn a_corrupt_or_stale_cache_is_ignored_and_rebuilt() {
         (
             "not ours",
             b"PNG\0 something else entirely".to_vec(),
-            "not an xglyph cache file",
+            "it is not an xglyph cache file",
         ),
         (
             "stale fitter",
             stale_fitter,
-            "written by another version of the fitter",
+            "it was written by another version of the fitter",
         ),
         (
             "stale fingerprint",
             stale_fingerprint,
-            "written by another version of the fitter",
+            "it was written by another version of the fitter",
         ),
         (
             "stale format",
             stale_format,
-            "written by another version of xglyph",
+            "it was written by another version of xglyph",
         ),
         (
             "unsigned edit",
             flip(12, 1),
-            "the checksum does not match (corrupt or truncated)",
+            "its checksum does not match (the file is damaged or truncated)",
         ),
         (
             "trailing byte",
             [&good[..], &[0]].concat(),
-            "the checksum does not match (corrupt or truncated)",
+            "its checksum does not match (the file is damaged or truncated)",
         ),
     ];
     for cut in [n - 1, n - 4, n - 5, n / 2, 30, 9] {
@@ -326,12 +326,12 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
         (
             "stale compatible fitter",
             resign(flip(20, 1)),
-            "written by another version of the compatible fitter",
+            "it was written by another version of the compatible fitter",
         ),
         (
             "stale compatible fingerprint",
             resign(flip(26, 4)),
-            "written by another version of the compatible fitter",
+            "it was written by another version of the compatible fitter",
         ),
         (
             "no masters",
