@@ -173,7 +173,7 @@ fn location(ds: &Designspace, dims: &[Dimension]) -> Result<Location, String> {
 }
 
 /// The master folder of a style: lower case, without spaces (`Semi Bold` -> `semibold`).
-fn folder_name(style: &str) -> String {
+pub(crate) fn folder_name(style: &str) -> String {
     let name: String = style
         .chars()
         .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_'))

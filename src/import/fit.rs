@@ -222,6 +222,157 @@ pub fn fit_xspline(cut: &Cut, target: f64) -> Option<FittedXSpline> {
     (points.len() >= 3).then_some(FittedXSpline { points, fit_error })
 }
 
+/// Fits one contour of several masters at once, within `target` in each: the cuts have one
+/// structure ([`super::contour::cut_at`] at the break points of all masters), and every
+/// smooth stretch gets the same number of interior points with the same shapes in every
+/// master (the most any master needs alone, more while one misses), each master's
+/// positions fitted to its own outline. So the results have the same points with sharp
+/// points at the same places, and interpolate as X-splines. `None` when the cuts differ
+/// in structure, the contour encloses nothing, or a stretch misses the target in some
+/// master at every count tried.
+pub fn fit_compatible(cuts: &[Cut], target: f64) -> Option<Vec<FittedXSpline>> {
+    let spacing = (target * 4.0).max(1e-3);
+    let mut points: Vec<Vec<ControlPoint>> = vec![Vec::new(); cuts.len()];
+    let mut errors = vec![0.0f64; cuts.len()];
+    let add = |points: &mut [Vec<ControlPoint>], errors: &mut [f64], fits: Vec<Fit>, open: bool| {
+        for ((points, error), fit) in points.iter_mut().zip(errors.iter_mut()).zip(fits) {
+            *error = error.max(fit.error);
+            let n = fit.chain.pts.len() - usize::from(open);
+            points.extend(
+                fit.chain.pts[..n]
+                    .iter()
+                    .zip(&fit.chain.s)
+                    .map(|(p, &s)| cp(*p, s)),
+            );
+        }
+    };
+    match &cuts[0] {
+        Cut::Loop(_) => {
+            let stretches = cuts
+                .iter()
+                .map(|c| match c {
+                    Cut::Loop(segs) => Some((segs.as_slice(), [false; 2])),
+                    Cut::Pieces(_) => None,
+                })
+                .collect::<Option<Vec<_>>>()?;
+            add(&mut points, &mut errors, fit_together(&stretches, true, spacing, target)?, false);
+        }
+        Cut::Pieces(first) => {
+            let all = cuts
+                .iter()
+                .map(|c| match c {
+                    Cut::Pieces(p) if p.len() == first.len() => Some(p.as_slice()),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()?;
+            let count = first.len();
+            for k in 0..count {
+                if let Piece::Edge(_) = first[k] {
+                    for (points, pieces) in points.iter_mut().zip(&all) {
+                        let Piece::Edge(line) = pieces[k] else {
+                            return None;
+                        };
+                        points.push(cp(line.p0, 0.0));
+                    }
+                    continue;
+                }
+                let stretches = all
+                    .iter()
+                    .map(|pieces| {
+                        let Piece::Smooth(segs) = &pieces[k] else {
+                            return None;
+                        };
+                        let before = piece_end_tangent(&pieces[(k + count - 1) % count]);
+                        let after = piece_start_tangent(&pieces[(k + 1) % count]);
+                        let corners = [
+                            turn_degrees(before, start_tangent(segs[0])) > CORNER_DEGREES,
+                            turn_degrees(end_tangent(segs[segs.len() - 1]), after) > CORNER_DEGREES,
+                        ];
+                        Some((segs.as_slice(), corners))
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                add(&mut points, &mut errors, fit_together(&stretches, false, spacing, target)?, true);
+            }
+        }
+    }
+    (points[0].len() >= 3).then(|| {
+        points
+            .into_iter()
+            .zip(errors)
+            .map(|(points, fit_error)| FittedXSpline { points, fit_error })
+            .collect()
+    })
+}
+
+/// One stretch in every master (segments, and whether its ends are corners) fitted with
+/// one interior point count and the [`PRIMARY`] settings: from the most that a master
+/// needs alone, one more while a master misses `target`.
+fn fit_together(
+    stretches: &[(&[PathSeg], [bool; 2])],
+    closed: bool,
+    spacing: f64,
+    target: f64,
+) -> Option<Vec<Fit>> {
+    let samples: Vec<StretchSamples> = stretches
+        .iter()
+        .map(|(segs, corners)| StretchSamples::new(segs, spacing, closed, *corners))
+        .collect();
+    let mut interior = stretches
+        .iter()
+        .zip(&samples)
+        .map(|((segs, _), samples)| fit_stretch(segs, samples, closed, PRIMARY, target).interior)
+        .max()?;
+    let min_inner = if closed { 3 } else { 0 };
+    let longest = stretches.iter().map(|(segs, _)| segs.len()).max()?;
+    let max_inner = min_inner + 3 * longest + 8;
+    loop {
+        let fits: Vec<Fit> = stretches
+            .iter()
+            .zip(&samples)
+            .map(|((segs, _), samples)| attempt(segs, samples, closed, PRIMARY, interior, target))
+            .collect();
+        if fits.iter().all(|f| f.error <= target) {
+            return Some(fits);
+        }
+        if interior >= max_inner {
+            return None;
+        }
+        interior += 1;
+    }
+}
+
+/// The contour of several masters as polylines of sharp points with one structure: each
+/// segment cut at the same parameters in every master, as many as the most curved master
+/// needs for `tolerance`. The bound is on the parameter (a chord against the curve at the
+/// same `t`: `h² · max|B''| / 8` over a step `h`), and that error interpolates linearly
+/// between masters, so every blend of the polylines is within `tolerance` of the same
+/// blend of the originals. The importer's last resort for masters.
+pub fn compatible_polylines(masters: &[&[PathSeg]], tolerance: f64) -> Vec<Vec<ControlPoint>> {
+    let mut out = vec![Vec::new(); masters.len()];
+    for i in 0..masters[0].len() {
+        let steps = masters
+            .iter()
+            .map(|segs| {
+                let second = match segs[i] {
+                    PathSeg::Line(_) => 0.0,
+                    PathSeg::Quad(q) => 2.0 * (q.p0 - 2.0 * q.p1.to_vec2() + q.p2.to_vec2()).to_vec2().hypot(),
+                    PathSeg::Cubic(c) => {
+                        let a = (c.p0 - 2.0 * c.p1.to_vec2() + c.p2.to_vec2()).to_vec2().hypot();
+                        let b = (c.p1 - 2.0 * c.p2.to_vec2() + c.p3.to_vec2()).to_vec2().hypot();
+                        6.0 * a.max(b)
+                    }
+                };
+                (second / (8.0 * tolerance)).sqrt().ceil().max(1.0) as usize
+            })
+            .max()
+            .unwrap_or(1);
+        for (points, segs) in out.iter_mut().zip(masters) {
+            points.extend((0..steps).map(|k| cp(segs[i].eval(k as f64 / steps as f64), 0.0)));
+        }
+    }
+    out
+}
+
 fn piece_start_tangent(piece: &Piece) -> Vec2 {
     match piece {
         Piece::Edge(line) => start_tangent(PathSeg::Line(*line)),

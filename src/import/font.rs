@@ -26,6 +26,8 @@ pub struct SourceFont {
     pub glyphs: Vec<SourceGlyph>,
     /// Characters asked for that the font does not map.
     pub missing: Vec<char>,
+    /// The glyph id of each of `glyphs`, in the same order.
+    pub ids: Vec<u16>,
 }
 
 /// Parses a glyph list: comma-separated characters and inclusive ranges, e.g.
@@ -132,6 +134,7 @@ pub fn read_font(
         }
     }
     let mut glyphs = Vec::new();
+    let mut ids = Vec::new();
     let mut used_names = std::collections::BTreeSet::new();
     for (gid, unicodes) in by_glyph {
         let gid = GlyphId(gid);
@@ -167,6 +170,7 @@ pub fn read_font(
             ));
         }
         check_limits(path, &name, f64::from(advance), &outline)?;
+        ids.push(gid.0);
         glyphs.push(SourceGlyph {
             name,
             unicodes,
@@ -178,6 +182,7 @@ pub fn read_font(
         info,
         glyphs,
         missing,
+        ids,
     })
 }
 
