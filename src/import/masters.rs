@@ -3,8 +3,8 @@
 //!
 //! ```text
 //! contour::compatible_contours (one cleaning for all masters)
-//!   -> contour::cut_at the union of the masters' break points (a corner anywhere is a
-//!      corner everywhere, as `check` demands)
+//!   -> contour::cut_at the masters' joint break points (a corner in one master is a
+//!      corner in all, as `check` demands)
 //!   -> fit::fit_compatible (one point count per stretch, each master's positions fitted
 //!      to its own outline)
 //!   -> rounded alike, and measured: every master against its own outline, and every
@@ -122,8 +122,9 @@ struct Compatible {
 }
 
 /// The first candidate whose every master and checkpoint measures within
-/// `IMPORT_SHARE · tolerance`: compatible fits at the import's targets, then compatible
-/// polylines (taken even when a checkpoint misses: the report shows it). `None` when the
+/// `IMPORT_SHARE · tolerance`: compatible fits at the import's targets, cut at the joint
+/// break points ([`contour::compatible_breaks`]), then at every master's corners, then
+/// compatible polylines (taken even when a checkpoint misses: the report shows it). `None` when the
 /// contour encloses nothing in some master.
 fn import_contour(
     originals: &[&SourceContour],
@@ -132,14 +133,6 @@ fn import_contour(
     grid: f64,
 ) -> Option<Compatible> {
     let bound = IMPORT_SHARE * tolerance;
-    let breaks: Vec<bool> = originals
-        .iter()
-        .map(|o| contour::breaks(o))
-        .reduce(|a, b| a.iter().zip(&b).map(|(x, y)| *x || *y).collect())?;
-    let cuts: Vec<contour::Cut> = originals
-        .iter()
-        .map(|o| contour::cut_at(o, &breaks))
-        .collect();
     let measure = |points: &[Vec<ControlPoint>], strict: bool| {
         [grid, grid / 100.0].iter().find_map(|&g| {
             let splines = points
@@ -168,13 +161,22 @@ fn import_contour(
             })
         })
     };
-    let targets = std::iter::once(first_target(tolerance, grid))
-        .chain(RETRY_SHARES.iter().map(|share| share * tolerance));
-    for target in targets {
-        if let Some(fitted) = fit::fit_compatible(&cuts, target) {
-            let points: Vec<Vec<ControlPoint>> = fitted.into_iter().map(|f| f.points).collect();
-            if let Some(found) = measure(&points, true) {
-                return Some(found);
+    let weights: Vec<Vec<f64>> = between.iter().map(|(w, _)| w.clone()).collect();
+    for every_corner in [false, true] {
+        let breaks = contour::compatible_breaks(originals, every_corner);
+        let cuts: Vec<contour::Cut> = originals
+            .iter()
+            .map(|o| contour::cut_at(o, &breaks))
+            .collect();
+        let targets = std::iter::once(first_target(tolerance, grid))
+            .chain(RETRY_SHARES.iter().map(|share| share * tolerance));
+        for target in targets {
+            if let Some(fitted) = fit::fit_compatible(&cuts, target, &weights) {
+                let points: Vec<Vec<ControlPoint>> =
+                    fitted.into_iter().map(|f| f.points).collect();
+                if let Some(found) = measure(&points, true) {
+                    return Some(found);
+                }
             }
         }
     }

@@ -153,6 +153,10 @@ pub struct Imported {
     pub font: Font,
     /// Points and errors per glyph.
     pub report: Report,
+    /// The original outline of each glyph fitted from its outline (not taken from an
+    /// xglyph lib), by name: what a compatible refit across masters starts from
+    /// ([`designspace`]). Filled by the UFO import only.
+    pub outlines: BTreeMap<String, SourceGlyph>,
 }
 
 /// Imports a TrueType/OpenType font from its bytes (`path` names it in messages).
@@ -301,6 +305,7 @@ fn import_glyphs(
             tolerance,
             notes: Vec::new(),
         },
+        outlines: BTreeMap::new(),
     })
 }
 
