@@ -253,3 +253,112 @@ fn blend_segments(masters: &[&SourceContour], weights: &[f64]) -> Vec<PathSeg> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::{RoundedRect, Shape};
+
+    fn source(path: BezPath) -> SourceGlyph {
+        SourceGlyph {
+            name: "o".into(),
+            unicodes: vec!['o'],
+            advance: 600.0,
+            path,
+        }
+    }
+
+    #[test]
+    fn two_masters_get_one_structure_and_their_blend_follows_the_originals() {
+        // A light and a heavy rounded rectangle: the same Bézier structure, other radii.
+        let light = RoundedRect::new(100.0, 0.0, 500.0, 700.0, 120.0).to_path(1e-9);
+        let heavy = RoundedRect::new(60.0, -10.0, 560.0, 710.0, 220.0).to_path(1e-9);
+        let halfway = RoundedRect::new(80.0, -5.0, 530.0, 705.0, 170.0).to_path(1e-9);
+        let checkpoint = Checkpoint {
+            weights: vec![0.5, 0.5],
+            original: None,
+        };
+        let fitted = import_compatible_glyph(
+            &[source(light.clone()), source(heavy.clone())],
+            &[checkpoint],
+            1.0,
+            0.1,
+        )
+        .unwrap();
+        let shape = |g: &Glyph| -> Vec<Vec<bool>> {
+            g.contours
+                .iter()
+                .map(|c| c.points().iter().map(|p| p.is_sharp()).collect())
+                .collect()
+        };
+        assert_eq!(shape(&fitted[0].glyph), shape(&fitted[1].glyph));
+        // Four straight edges: eight sharp points, and curves between them.
+        assert_eq!(shape(&fitted[0].glyph)[0].iter().filter(|&&s| s).count(), 8);
+        for (f, original) in fitted.iter().zip([&light, &heavy]) {
+            let spline = f.glyph.contours[0].spline();
+            let error = fit::contour_error(spline, &contour::contours(original)[0].segs);
+            assert!(error <= 0.75 && f.report.max_error <= 0.75, "{error}");
+        }
+        let splines: Vec<XSpline> = fitted
+            .iter()
+            .map(|f| f.glyph.contours[0].spline().clone())
+            .collect();
+        let blend = blend_splines(&splines, &[0.5, 0.5]).unwrap();
+        let error = fit::contour_error(&blend, &contour::contours(&halfway)[0].segs);
+        assert!(error <= 0.75, "halfway: {error}");
+    }
+
+    #[test]
+    fn masters_of_other_structures_are_an_error() {
+        let square = kurbo::Rect::new(0.0, 0.0, 100.0, 100.0).to_path(1e-9);
+        let circle = kurbo::Circle::new((50.0, 50.0), 50.0).to_path(1e-9);
+        let err = import_compatible_glyph(&[source(square), source(circle)], &[], 1.0, 0.1)
+            .unwrap_err();
+        assert_eq!(
+            err,
+            "glyph `o`: the masters' outlines differ: contour 0: master 1 has other segments \
+             than the default (CCCC against LLLL)"
+        );
+    }
+
+    #[test]
+    fn compatible_polylines_blend_within_their_tolerance() {
+        let a = [PathSeg::Quad(kurbo::QuadBez::new(
+            (0.0, 0.0),
+            (100.0, 200.0),
+            (200.0, 0.0),
+        ))];
+        let b = [PathSeg::Quad(kurbo::QuadBez::new(
+            (0.0, 0.0),
+            (150.0, 400.0),
+            (260.0, 10.0),
+        ))];
+        let lines = fit::compatible_polylines(&[&a, &b], 0.5);
+        assert_eq!(lines[0].len(), lines[1].len());
+        let w = 0.3;
+        let blend = |p: Point, q: Point| p.lerp(q, w);
+        let curve = kurbo::QuadBez::new(
+            blend(Point::new(0.0, 0.0), Point::new(0.0, 0.0)),
+            blend(Point::new(100.0, 200.0), Point::new(150.0, 400.0)),
+            blend(Point::new(200.0, 0.0), Point::new(260.0, 10.0)),
+        );
+        let steps = lines[0].len();
+        // The blended chord from vertex k to k + 1 against the blended curve there.
+        for k in 0..steps {
+            let (p, q) = (
+                blend(lines[0][k].pos, lines[1][k].pos),
+                if k + 1 < steps {
+                    blend(lines[0][k + 1].pos, lines[1][k + 1].pos)
+                } else {
+                    curve.p2
+                },
+            );
+            for j in 0..=8 {
+                let u = j as f64 / 8.0;
+                let t = (k as f64 + u) / steps as f64;
+                let d = (p.lerp(q, u) - curve.eval(t)).hypot();
+                assert!(d <= 0.5, "vertex {k}, u {u}: {d}");
+            }
+        }
+    }
+}

@@ -93,6 +93,7 @@ pub fn import_variable_font(
         ));
     }
     let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
+    check_gvar(&font, &source).map_err(fail)?;
     let masters = master_locations(&font, &designspace);
     let style_of = |m: &MasterAt| m.name.clone();
     // Every glyph in every master, read first (a damaged gvar is an error naming the file).
@@ -252,20 +253,46 @@ fn outline_at(
 ) -> Result<(BezPath, f64), String> {
     let id = skrifa::GlyphId::new(u32::from(gid));
     let location = LocationRef::from(coords);
-    let advance = font
+    let mut advance = font
         .glyph_metrics(Size::unscaled(), location)
         .advance_width(id)
         .ok_or("no horizontal advance (damaged hmtx or HVAR table)")?;
     let mut pen = Pen(BezPath::new());
     if let Some(glyph) = font.outline_glyphs().get(id) {
-        glyph
+        let adjusted = glyph
             .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
             .map_err(|e| format!("cannot read the outline ({e}); the font may be damaged"))?;
+        // Without HVAR, the advance varies by gvar's phantom points, which drawing applies.
+        if font.hvar().is_err() {
+            advance = adjusted.advance_width.unwrap_or(advance);
+        }
     }
     if !pen.0.is_finite() {
         return Err("non-finite coordinates".into());
     }
     Ok((pen.0, f64::from(advance)))
+}
+
+/// Refuses a `gvar` table that does not parse, or whose data for a glyph of `source` does not:
+/// skrifa draws the default outline when it cannot read gvar, which would import every
+/// master as the default.
+fn check_gvar(font: &FontRef, source: &font::SourceFont) -> Result<(), String> {
+    if font.table_data(skrifa::Tag::new(b"gvar")).is_none() {
+        return Ok(());
+    }
+    let gvar = font
+        .gvar()
+        .map_err(|e| format!("cannot read the gvar table ({e}); the font may be damaged"))?;
+    for (g, &gid) in source.glyphs.iter().zip(&source.ids) {
+        gvar.glyph_variation_data(skrifa::GlyphId::new(u32::from(gid)))
+            .map_err(|e| {
+                format!(
+                    "cannot read the gvar data of glyph `{}` ({e}); the font may be damaged",
+                    g.name
+                )
+            })?;
+    }
+    Ok(())
 }
 
 /// Refuses an `avar` that maps some axis non-linearly (the design space has no axis map).

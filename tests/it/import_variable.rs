@@ -157,10 +157,12 @@ fn the_imported_family_checks_and_matches_the_original_between_the_masters() {
                 "U+{c:04X} at wght {wght}"
             );
             let d = paths::two_sided(&outline(&a, ga, &la), &outline(&b, gb, &lb), 32);
-            // Import and build stay within T of the original; skrifa adds each font's
-            // interpolated deltas rounded to whole units (as FreeType does), up to half a
-            // unit per coordinate in each font between the masters.
-            let bound = TOLERANCE + if wght == 400.0 || wght == 700.0 { 0.0 } else { 2.0 * 0.5f64.hypot(0.5) };
+            // Import and build stay within T of the original; the rebuilt glyf rounds
+            // every point to whole units (half a unit per coordinate), and between the
+            // masters skrifa adds each font's interpolated deltas rounded to whole units
+            // (as FreeType does), another half unit per coordinate in each font.
+            let half = 0.5f64.hypot(0.5);
+            let bound = TOLERANCE + if wght == 400.0 || wght == 700.0 { half } else { 3.0 * half };
             assert!(d <= bound, "U+{c:04X} at wght {wght}: {d} > {bound}");
             worst = worst.max(d);
         }
@@ -189,10 +191,10 @@ fn a_damaged_variable_font_is_an_error_naming_the_file() {
     let out = trip.dir.path().join("truncated-out");
     let err = import_fails(&[s(&path)], &out);
     assert!(
-        err.starts_with(&format!("error: {}: glyph `", path.display())),
+        err.starts_with(&format!("error: {}: cannot read the gvar", path.display())),
         "{err}"
     );
-    assert!(err.contains("cannot read the outline"), "{err}");
+    assert!(err.ends_with("the font may be damaged\n"), "{err}");
     // A non-linear avar: the design space has no axis map.
     let mut builder = write_fonts::FontBuilder::new();
     for r in font.table_directory.table_records() {
