@@ -162,7 +162,9 @@ fn kind(seg: &PathSeg) -> u8 {
 
 /// `L`, `Q`, `C` per segment, for messages.
 fn describe(segs: &[PathSeg]) -> String {
-    segs.iter().map(|s| ["L", "Q", "C"][usize::from(kind(s))]).collect()
+    segs.iter()
+        .map(|s| ["L", "Q", "C"][usize::from(kind(s))])
+        .collect()
 }
 
 /// [`clean`] for one contour in several masters at once, deciding every step for all.

@@ -167,7 +167,11 @@ fn refit_compatible(
         .2
         .outlines
         .keys()
-        .filter(|name| order.iter().all(|&i| imported[i].2.outlines.contains_key(*name)))
+        .filter(|name| {
+            order
+                .iter()
+                .all(|&i| imported[i].2.outlines.contains_key(*name))
+        })
         .cloned()
         .collect();
     let grid = grid_for(tolerance);

@@ -259,7 +259,12 @@ pub fn fit_compatible(
                     Cut::Pieces(_) => None,
                 })
                 .collect::<Option<Vec<_>>>()?;
-            add(&mut points, &mut errors, fit_together(&stretches, true, spacing, target, checkpoints)?, false);
+            add(
+                &mut points,
+                &mut errors,
+                fit_together(&stretches, true, spacing, target, checkpoints)?,
+                false,
+            );
         }
         Cut::Pieces(first) => {
             let all = cuts
@@ -295,7 +300,12 @@ pub fn fit_compatible(
                         Some((segs.as_slice(), corners))
                     })
                     .collect::<Option<Vec<_>>>()?;
-                add(&mut points, &mut errors, fit_together(&stretches, false, spacing, target, checkpoints)?, true);
+                add(
+                    &mut points,
+                    &mut errors,
+                    fit_together(&stretches, false, spacing, target, checkpoints)?,
+                    true,
+                );
             }
         }
     }
@@ -360,15 +370,18 @@ fn fit_together(
     let max_inner = min_inner + 3 * nseg + 8;
     let holds = |fits: &[Fit]| {
         fits.iter().all(|f| f.error <= target)
-            && checkpoints.iter().zip(&blended).all(|(weights, (segs, samples))| {
-                let chain = blend_chains(fits, weights);
-                let last = samples.pts.len().saturating_sub(1).max(1) as f64;
-                let mut ts: Vec<f64> = (0..samples.pts.len())
-                    .map(|k| k as f64 / last * chain.nseg() as f64)
-                    .collect();
-                project(&chain, samples, &mut ts, NEWTON_STEPS, None);
-                stretch_error(&chain, samples, &mut ts, segs) <= target
-            })
+            && checkpoints
+                .iter()
+                .zip(&blended)
+                .all(|(weights, (segs, samples))| {
+                    let chain = blend_chains(fits, weights);
+                    let last = samples.pts.len().saturating_sub(1).max(1) as f64;
+                    let mut ts: Vec<f64> = (0..samples.pts.len())
+                        .map(|k| k as f64 / last * chain.nseg() as f64)
+                        .collect();
+                    project(&chain, samples, &mut ts, NEWTON_STEPS, None);
+                    stretch_error(&chain, samples, &mut ts, segs) <= target
+                })
     };
     let mut best = loop {
         let fits = attempt_together(stretches, &samples, closed, PRIMARY, interior, target);
@@ -487,10 +500,9 @@ fn fits_of<'a>(
 fn blend_chains(fits: &[Fit], weights: &[f64]) -> Chain {
     let mut chain = fits[0].chain.clone();
     for (i, p) in chain.pts.iter_mut().enumerate() {
-        *p = fits
-            .iter()
-            .zip(weights)
-            .fold(Point::ZERO, |acc, (f, w)| acc + *w * f.chain.pts[i].to_vec2());
+        *p = fits.iter().zip(weights).fold(Point::ZERO, |acc, (f, w)| {
+            acc + *w * f.chain.pts[i].to_vec2()
+        });
     }
     chain
 }
@@ -537,10 +549,18 @@ pub fn compatible_polylines(masters: &[&[PathSeg]], tolerance: f64) -> Vec<Vec<C
             .map(|segs| {
                 let second = match segs[i] {
                     PathSeg::Line(_) => 0.0,
-                    PathSeg::Quad(q) => 2.0 * (q.p0 - 2.0 * q.p1.to_vec2() + q.p2.to_vec2()).to_vec2().hypot(),
+                    PathSeg::Quad(q) => {
+                        2.0 * (q.p0 - 2.0 * q.p1.to_vec2() + q.p2.to_vec2())
+                            .to_vec2()
+                            .hypot()
+                    }
                     PathSeg::Cubic(c) => {
-                        let a = (c.p0 - 2.0 * c.p1.to_vec2() + c.p2.to_vec2()).to_vec2().hypot();
-                        let b = (c.p1 - 2.0 * c.p2.to_vec2() + c.p3.to_vec2()).to_vec2().hypot();
+                        let a = (c.p0 - 2.0 * c.p1.to_vec2() + c.p2.to_vec2())
+                            .to_vec2()
+                            .hypot();
+                        let b = (c.p1 - 2.0 * c.p2.to_vec2() + c.p3.to_vec2())
+                            .to_vec2()
+                            .hypot();
                         6.0 * a.max(b)
                     }
                 };

@@ -232,9 +232,8 @@ fn master_locations(font: &FontRef, ds: &Designspace) -> Vec<MasterAt> {
                 continue;
             }
             let location = Location([(a.tag.clone(), end)].into_iter().collect());
-            let name = named(&location).unwrap_or_else(|| {
-                format!("{} {}", a.name, crate::source::emit::number(end))
-            });
+            let name = named(&location)
+                .unwrap_or_else(|| format!("{} {}", a.name, crate::source::emit::number(end)));
             out.push(MasterAt {
                 name,
                 coords: at(location.clone()),
@@ -308,7 +307,9 @@ fn check_avar(font: &FontRef) -> Result<(), String> {
             .iter()
             .find(|m| m.from_coordinate() != m.to_coordinate())
         {
-            let tag = axes.get(i).map_or_else(|| format!("#{i}"), |a| a.tag().to_string());
+            let tag = axes
+                .get(i)
+                .map_or_else(|| format!("#{i}"), |a| a.tag().to_string());
             return Err(format!(
                 "avar maps axis `{tag}` non-linearly ({} -> {}); xglyph's design space has no \
                  axis map yet, so this font cannot be imported with its masters",

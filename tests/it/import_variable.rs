@@ -92,7 +92,13 @@ fn the_imported_family_has_the_axes_instances_and_masters_of_fvar() {
             axis["default"].as_integer(),
             axis["max"].as_integer()
         ),
-        (Some("wght"), Some("Weight"), Some(400), Some(400), Some(700))
+        (
+            Some("wght"),
+            Some("Weight"),
+            Some(400),
+            Some(400),
+            Some(700)
+        )
     );
     let names = |key: &str| -> Vec<String> {
         toml[key]
@@ -115,10 +121,16 @@ fn the_imported_family_has_the_axes_instances_and_masters_of_fvar() {
     assert_eq!(toml["style"].as_str(), Some("Regular"));
     assert!(trip.imported.join("bold/A_.toml").is_file());
     // The report: one table per master, every glyph within the import share (0.75 T).
-    assert!(trip.report.starts_with("master Regular:\n"), "{}", trip.report);
+    assert!(
+        trip.report.starts_with("master Regular:\n"),
+        "{}",
+        trip.report
+    );
     assert!(trip.report.contains("\nmaster Bold:\n"));
     for line in trip.report.lines().filter(|l| l.starts_with("total:")) {
-        let error: f64 = line.split("max error ").nth(1).unwrap()[..5].parse().unwrap();
+        let error: f64 = line.split("max error ").nth(1).unwrap()[..5]
+            .parse()
+            .unwrap();
         assert!(error <= 0.75 * TOLERANCE, "{line}");
     }
     // The rebuilt variable font has the same axis and named instances.
@@ -162,7 +174,12 @@ fn the_imported_family_checks_and_matches_the_original_between_the_masters() {
             // masters skrifa adds each font's interpolated deltas rounded to whole units
             // (as FreeType does), another half unit per coordinate in each font.
             let half = 0.5f64.hypot(0.5);
-            let bound = TOLERANCE + if wght == 400.0 || wght == 700.0 { half } else { 3.0 * half };
+            let bound = TOLERANCE
+                + if wght == 400.0 || wght == 700.0 {
+                    half
+                } else {
+                    3.0 * half
+                };
             assert!(d <= bound, "U+{c:04X} at wght {wght}: {d} > {bound}");
             worst = worst.max(d);
         }
@@ -198,7 +215,10 @@ fn a_damaged_variable_font_is_an_error_naming_the_file() {
     // A non-linear avar: the design space has no axis map.
     let mut builder = write_fonts::FontBuilder::new();
     for r in font.table_directory.table_records() {
-        builder.add_raw(r.tag(), font.table_data(r.tag()).unwrap().as_bytes().to_vec());
+        builder.add_raw(
+            r.tag(),
+            font.table_data(r.tag()).unwrap().as_bytes().to_vec(),
+        );
     }
     use write_fonts::tables::avar::{Avar, AxisValueMap, SegmentMaps};
     use write_fonts::types::F2Dot14;
@@ -233,12 +253,17 @@ fn a_foreign_designspace_imports_compatibly() {
     std::fs::create_dir_all(&foreign).unwrap();
     for style in ["Regular", "Bold"] {
         let mut ufo = norad::Font::load(built.join(format!("XglyphSans-{style}.ufo"))).unwrap();
-        let names: Vec<_> = ufo.default_layer().iter().map(|g| g.name().clone()).collect();
+        let names: Vec<_> = ufo
+            .default_layer()
+            .iter()
+            .map(|g| g.name().clone())
+            .collect();
         for name in names {
             let g = ufo.default_layer_mut().get_glyph_mut(&name).unwrap();
             g.lib.remove("org.xglyph.xspline");
         }
-        ufo.save(foreign.join(format!("XglyphSans-{style}.ufo"))).unwrap();
+        ufo.save(foreign.join(format!("XglyphSans-{style}.ufo")))
+            .unwrap();
     }
     std::fs::copy(
         built.join("XglyphSans.designspace"),
@@ -280,7 +305,9 @@ fn a_foreign_designspace_imports_compatibly() {
         assert_eq!(points(&out, g), points(&out.join("bold"), g), "{g}");
     }
     for line in report.lines().filter(|l| l.starts_with("total:")) {
-        let error: f64 = line.split("max error ").nth(1).unwrap()[..5].parse().unwrap();
+        let error: f64 = line.split("max error ").nth(1).unwrap()[..5]
+            .parse()
+            .unwrap();
         assert!(error <= 0.75 * TOLERANCE, "{line}");
     }
     let (code, out_text, err) = xglyph(&["check", s(&out)]);
@@ -304,7 +331,14 @@ fn fvar(font: &FontRef) -> Fvar {
     (
         font.axes()
             .iter()
-            .map(|a| (a.tag().to_string(), a.min_value(), a.default_value(), a.max_value()))
+            .map(|a| {
+                (
+                    a.tag().to_string(),
+                    a.min_value(),
+                    a.default_value(),
+                    a.max_value(),
+                )
+            })
             .collect(),
         font.named_instances()
             .iter()
@@ -335,7 +369,10 @@ impl OutlinePen for Pen {
         self.0.line_to((f64::from(x), f64::from(y)));
     }
     fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
-        self.0.quad_to((f64::from(cx0), f64::from(cy0)), (f64::from(x), f64::from(y)));
+        self.0.quad_to(
+            (f64::from(cx0), f64::from(cy0)),
+            (f64::from(x), f64::from(y)),
+        );
     }
     fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
         self.0.curve_to(
