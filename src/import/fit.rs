@@ -27,6 +27,10 @@
 //! (cosine spacing) save about a fifth, because near an `s = 0` point the X-spline leaves
 //! straight and needs short segments to follow a curved original.
 //!
+//! Masters ([`fit_compatible`], for [`super::masters`]): the same search per stretch for
+//! all masters at once, with shared sample places and shared curve parameters, so that a
+//! blend of the fitted masters follows the same blend of the originals.
+//!
 //! Limits: the distances are measured by sampling (dense, but not a proof); the caller
 //! re-measures the final rounded contour independently ([`contour_error`]).
 
@@ -222,14 +226,15 @@ pub fn fit_xspline(cut: &Cut, target: f64) -> Option<FittedXSpline> {
     (points.len() >= 3).then_some(FittedXSpline { points, fit_error })
 }
 
-/// Fits one contour of several masters at once, within `target` in each: the cuts have one
-/// structure ([`super::contour::cut_at`] at the break points of all masters), and every
-/// smooth stretch gets the same number of interior points with the same shapes in every
-/// master (the most any master needs alone, more while one misses), each master's
-/// positions fitted to its own outline. So the results have the same points with sharp
-/// points at the same places, and interpolate as X-splines. `None` when the cuts differ
-/// in structure, the contour encloses nothing, or a stretch misses the target in some
-/// master at every count tried.
+/// Fits one contour of several masters at once, within `target` in each and at each
+/// checkpoint (blend weights per master, measured against the same blend of the
+/// originals): the cuts have one structure ([`super::contour::cut_at`] at the masters'
+/// joint break points), and every smooth stretch gets the same number of interior points
+/// with the same shapes in every master ([`fit_together`]), each master's positions fitted
+/// to its own outline with curve parameters shared by all. So the results have the same
+/// points with sharp points at the same places, and interpolate as X-splines. `None` when
+/// the cuts differ in structure, the contour encloses nothing, or a stretch misses the
+/// target somewhere at every count tried.
 pub fn fit_compatible(
     cuts: &[Cut],
     target: f64,

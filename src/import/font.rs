@@ -2,9 +2,10 @@
 //!
 //! Quadratic (`glyf`) and cubic (`CFF`) outlines both arrive as kurbo paths in font units
 //! (y up). Composite glyphs arrive flattened (ttf-parser resolves them), so they import as
-//! plain contours. Limits: one font of a collection at a time; variable fonts at their
-//! default instance; metrics from hhea/OS/2 as ttf-parser reports them. A collection
-//! (.ttc, .otc) gives one of its fonts, by index.
+//! plain contours. Limits: one font of a collection at a time; a variable font's masters
+//! are read by `variable.rs` (this module gives its names, metrics and code points);
+//! metrics from hhea/OS/2 as ttf-parser reports them. A collection (.ttc, .otc) gives one
+//! of its fonts, by index.
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -6,6 +6,11 @@
 //!   -> contour.rs (closed contours, corners, edges, smooth stretches)
 //!   -> fit.rs (X-spline control points within the fit target)
 //!   -> a model::Font (emitted by source::emit) and a report.rs summary
+//!
+//! variable.rs (skrifa: each master of a variable font) | designspace.rs (foreign UFOs)
+//!   -> masters.rs (one X-spline structure per glyph for every master: contour.rs's
+//!      compatible_contours, fit.rs's fit_compatible)
+//!   -> a model::Family (font.toml axes, masters, instances; one folder per master)
 //! ```
 //!
 //! Glyphs are fitted in parallel on rayon's pool, each on its own, so the output does not
