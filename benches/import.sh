@@ -10,8 +10,53 @@
 # with this worktree's target/, so only the xglyph crate compiles), times that one in the
 # same run and prints the ratios; both outputs are also compared for point counts and the
 # largest error from their reports.
+#
+#   benches/import.sh --variable
+#
+# Import of a variable font (issue 16, item 6): builds the bundled family's variable TTF,
+# imports it (two masters fitted with one structure per glyph), and in the same run imports
+# its default and Bold instances alone (fontTools `varLib.instancer`, the same outlines as
+# static fonts); prints CPU seconds on one thread and X-spline points of each, and the
+# ratios, and checks that 1 and 2 threads write identical files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--variable" ]; then
+    cargo build --release --quiet
+    WORK=$(mktemp -d)
+    trap 'rm -rf "$WORK"' EXIT
+    BIN=target/release/xglyph
+    "$BIN" build glyphs -o "$WORK/built" >/dev/null
+    VF="$WORK/built/XglyphSans[wght].ttf"
+    fonttools varLib.instancer "$VF" wght=400 -q -o "$WORK/regular.ttf"
+    fonttools varLib.instancer "$VF" wght=700 -q -o "$WORK/bold.ttf"
+    # cpu INPUT OUT THREADS: CPU seconds (user + system) of one import; keeps its report.
+    cpu() {
+        rm -rf "$WORK/$2"
+        { TIMEFORMAT='%U %S'; time RAYON_NUM_THREADS=$3 "$BIN" import "$1" -o "$WORK/$2" >"$WORK/$2.txt" 2>/dev/null; } 2>&1 |
+            awk '{ printf "%.2f\n", $1 + $2 }'
+    }
+    points() { grep '^total' "$WORK/$1.txt" | head -1 | sed 's/.* \([0-9]*\) X-spline points.*/\1/'; }
+    vf=$(cpu "$VF" vf 1)
+    regular=$(cpu "$WORK/regular.ttf" regular 1)
+    bold=$(cpu "$WORK/bold.ttf" bold 1)
+    cpu "$VF" vf2 2 >/dev/null
+    echo "variable font, 2 masters: $vf s CPU, $(points vf) points per master"
+    echo "Regular alone: $regular s CPU, $(points regular) points"
+    echo "Bold alone:    $bold s CPU, $(points bold) points"
+    # The most demanding master per glyph: the larger of the two static counts.
+    most=$(paste <(awk 'NF == 4 && $2 ~ /^[0-9]+$/ { print $3 }' "$WORK/regular.txt") \
+                 <(awk 'NF == 4 && $2 ~ /^[0-9]+$/ { print $3 }' "$WORK/bold.txt") |
+           awk '{ s += ($1 > $2 ? $1 : $2) } END { print s }')
+    echo "per glyph, the larger static count: $most points"
+    echo "ratios: points $(echo "scale=3; $(points vf) / $(points regular)" | bc)x Regular alone, $(echo "scale=3; $(points vf) / $most" | bc)x the larger per glyph; CPU $(echo "scale=2; $vf / ($regular + $bold)" | bc)x both static imports"
+    if diff -rq "$WORK/vf" "$WORK/vf2" >/dev/null; then
+        echo "1 thread and 2 threads: identical files"
+    else
+        echo "1 thread and 2 threads: FILES DIFFER"
+        exit 1
+    fi
+    exit 0
+fi
 FONT=/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc
 GLYPHS='一-丿'
 COUNT=64

@@ -89,8 +89,15 @@ pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
     check_output_dir(&args.output, args.force)?;
     let progress = std::io::stderr().is_terminal().then(terminal_progress);
     if let [one] = args.inputs.as_slice() {
-        if let Ok(Kind::Designspace) = kind(one) {
-            return import_family(&args, Progress(progress));
+        match kind(one) {
+            Ok(Kind::Designspace) => return import_family(&args, Progress(progress)),
+            Ok(Kind::Font) => {
+                let data = read(one)?;
+                if import::variable::is_variable(&data, args.face.unwrap_or(0)) {
+                    return import_variable(&args, &data, Progress(progress));
+                }
+            }
+            _ => {}
         }
     }
     let imported = import_inputs(&args, Progress(progress))?;
@@ -114,6 +121,56 @@ fn import_family(args: &ImportArgs, progress: Progress) -> Result<ExitCode, Comm
     }
     outln!("wrote {written} files to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// A variable font: its masters as a font with masters, each master's report in turn.
+fn import_variable(
+    args: &ImportArgs,
+    data: &[u8],
+    progress: Progress,
+) -> Result<ExitCode, CommandError> {
+    refuse_svg_flags(args)?;
+    let opts = ImportOptions {
+        tolerance: args.tolerance,
+        family: args.family.clone(),
+        face: args.face.unwrap_or(0),
+        glyphs: args.glyphs.as_deref().map(parse_glyph_list).transpose()?,
+        progress,
+        ..ImportOptions::default()
+    };
+    let imported = import::variable::import_variable_font(&args.inputs[0], data, &opts)?;
+    write_family(args, &imported)
+}
+
+/// Writes an imported family and prints each master's report.
+fn write_family(
+    args: &ImportArgs,
+    imported: &import::designspace::ImportedFamily,
+) -> Result<ExitCode, CommandError> {
+    let files = import::designspace::family_sources(&imported.family);
+    let written = write_font_dir(&args.output, &files)?;
+    for (style, report) in &imported.reports {
+        outln!("master {style}:");
+        out!("{}", report.render());
+    }
+    outln!("wrote {written} files to {}", args.output.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses the SVG-only flags for a font.
+fn refuse_svg_flags(args: &ImportArgs) -> Result<(), ImportError> {
+    for (given, flag) in [
+        (args.codepoints.is_some(), "--codepoints"),
+        (args.first_codepoint.is_some(), "--first-codepoint"),
+        (args.units_per_em.is_some(), "--units-per-em"),
+    ] {
+        if given {
+            return Err(ImportError::plain(format!(
+                "{flag} applies to SVG drawings, not to fonts"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// A `\r12/345 glyphs` counter on stderr, redrawn about 200 times in all, ended by a
@@ -212,17 +269,7 @@ pub fn import_inputs(
                 "import one font at a time, and fonts and SVG drawings separately",
             ));
         }
-        for (given, flag) in [
-            (args.codepoints.is_some(), "--codepoints"),
-            (args.first_codepoint.is_some(), "--first-codepoint"),
-            (args.units_per_em.is_some(), "--units-per-em"),
-        ] {
-            if given {
-                return Err(ImportError::plain(format!(
-                    "{flag} applies to SVG drawings, not to fonts"
-                )));
-            }
-        }
+        refuse_svg_flags(args)?;
         opts.glyphs = args.glyphs.as_deref().map(parse_glyph_list).transpose()?;
         let path = &args.inputs[0];
         return import::import_font(path, &read(path)?, &opts);

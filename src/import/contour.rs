@@ -48,6 +48,16 @@ pub enum Cut {
 
 /// Closed contours of `path` (open subpaths are closed by a line, as filling does).
 pub fn contours(path: &BezPath) -> Vec<SourceContour> {
+    raw_contours(path)
+        .into_iter()
+        .map(|segs| SourceContour { segs: clean(segs) })
+        .filter(|c| !c.segs.is_empty())
+        .collect()
+}
+
+/// The subpaths of `path` as segment lists, each closed by a line back to its start when
+/// it does not end there, not yet cleaned.
+fn raw_contours(path: &BezPath) -> Vec<Vec<PathSeg>> {
     let mut out = Vec::new();
     let mut segs: Vec<PathSeg> = Vec::new();
     let mut start = Point::ZERO;
@@ -59,9 +69,7 @@ pub fn contours(path: &BezPath) -> Vec<SourceContour> {
         if last != start {
             segs.push(PathSeg::Line(Line::new(last, start)));
         }
-        out.push(SourceContour {
-            segs: std::mem::take(segs),
-        });
+        out.push(std::mem::take(segs));
     };
     for el in path.elements() {
         match *el {
@@ -89,12 +97,136 @@ pub fn contours(path: &BezPath) -> Vec<SourceContour> {
         }
     }
     finish(&mut segs, last, start);
-    out.into_iter()
-        .map(|c| SourceContour {
-            segs: clean(c.segs),
-        })
-        .filter(|c| !c.segs.is_empty())
+    out
+}
+
+/// The closed contours of several masters' outlines of one glyph, cleaned alike so that
+/// they keep one structure: contour `i` has the same segment kinds in every master. A
+/// curve becomes a line only where it is straight in every master; a segment is dropped
+/// where it is degenerate in one master and no longer than `tiny` in all (a closing line
+/// a TrueType contour has at one location and not at another); collinear lines merge only
+/// where they are collinear in every master. `Err` says how the outlines differ (they do
+/// not interpolate as Béziers either).
+pub fn compatible_contours(
+    paths: &[&BezPath],
+    tiny: f64,
+) -> Result<Vec<Vec<SourceContour>>, String> {
+    let raw: Vec<Vec<Vec<PathSeg>>> = paths.iter().map(|p| raw_contours(p)).collect();
+    let count = raw[0].len();
+    if let Some((m, other)) = raw.iter().enumerate().find(|(_, r)| r.len() != count) {
+        return Err(format!(
+            "master {m} has {} contours, the default {count}",
+            other.len()
+        ));
+    }
+    let mut out: Vec<Vec<SourceContour>> = vec![Vec::new(); paths.len()];
+    for c in 0..count {
+        // A contour closed by a line in one master and not in another (its last point on
+        // its first there): the missing line is a zero-length line.
+        let len = raw.iter().map(|r| r[c].len()).max().unwrap_or(0);
+        let mut masters: Vec<Vec<PathSeg>> = Vec::with_capacity(raw.len());
+        for r in &raw {
+            let mut segs = r[c].clone();
+            if segs.len() + 1 == len && len > 1 {
+                let p = segs[0].start();
+                segs.push(PathSeg::Line(Line::new(p, p)));
+            }
+            masters.push(segs);
+        }
+        let kinds = |segs: &[PathSeg]| segs.iter().map(kind).collect::<Vec<_>>();
+        let first = kinds(&masters[0]);
+        if let Some(m) = masters.iter().position(|s| kinds(s) != first) {
+            return Err(format!(
+                "contour {c}: master {m} has other segments than the default ({} against {})",
+                describe(&masters[m]),
+                describe(&masters[0])
+            ));
+        }
+        for (out, segs) in out.iter_mut().zip(clean_joint(masters, tiny)) {
+            if !segs.is_empty() {
+                out.push(SourceContour { segs });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// 0 for a line, 1 for a quadratic, 2 for a cubic.
+fn kind(seg: &PathSeg) -> u8 {
+    match seg {
+        PathSeg::Line(_) => 0,
+        PathSeg::Quad(_) => 1,
+        PathSeg::Cubic(_) => 2,
+    }
+}
+
+/// `L`, `Q`, `C` per segment, for messages.
+fn describe(segs: &[PathSeg]) -> String {
+    segs.iter()
+        .map(|s| ["L", "Q", "C"][usize::from(kind(s))])
         .collect()
+}
+
+/// [`clean`] for one contour in several masters at once, deciding every step for all.
+fn clean_joint(masters: Vec<Vec<PathSeg>>, tiny: f64) -> Vec<Vec<PathSeg>> {
+    let n = masters[0].len();
+    let mut keep = Vec::with_capacity(n);
+    let mut lines = Vec::with_capacity(n);
+    for i in 0..n {
+        let straight = masters
+            .iter()
+            .all(|m| matches!(flatten_if_straight(m[i]), PathSeg::Line(_)));
+        lines.push(straight);
+        let extent = |seg: PathSeg| chord(seg).hypot().max(max_control_offset(seg));
+        let degenerate = masters.iter().any(|m| extent(m[i]) < MIN_LENGTH);
+        let small = masters.iter().all(|m| extent(m[i]) <= tiny);
+        keep.push(!(degenerate && small));
+    }
+    let mut out: Vec<Vec<PathSeg>> = masters
+        .into_iter()
+        .map(|m| {
+            let mut segs: Vec<PathSeg> = m
+                .into_iter()
+                .zip(&lines)
+                .zip(&keep)
+                .filter(|(_, &k)| k)
+                .map(|((seg, &line), _)| {
+                    if line {
+                        PathSeg::Line(Line::new(seg.start(), seg.end()))
+                    } else {
+                        seg
+                    }
+                })
+                .collect();
+            let n = segs.len();
+            for i in 0..n {
+                let end = segs[i].end();
+                set_start(&mut segs[(i + 1) % n], end);
+            }
+            segs
+        })
+        .collect();
+    // Merge lines collinear in every master.
+    let mut changed = true;
+    while changed && out[0].len() > 1 {
+        changed = false;
+        let n = out[0].len();
+        let collinear = |segs: &[PathSeg], i: usize| match (segs[i], segs[(i + 1) % n]) {
+            (PathSeg::Line(a), PathSeg::Line(b)) => turn_degrees(a.p1 - a.p0, b.p1 - b.p0) < 1e-6,
+            _ => false,
+        };
+        if let Some(i) = (0..n).find(|&i| out.iter().all(|m| collinear(m, i))) {
+            let j = (i + 1) % n;
+            for segs in &mut out {
+                if let (PathSeg::Line(a), PathSeg::Line(b)) = (segs[i], segs[j]) {
+                    segs[i] = PathSeg::Line(Line::new(a.p0, b.p1));
+                    segs.remove(j);
+                }
+            }
+            changed = true;
+        }
+    }
+    out
 }
 
 /// Stored points of a contour as a font file counts them: on-curve plus off-curve points,
@@ -244,18 +376,64 @@ pub fn end_tangent(seg: PathSeg) -> Vec2 {
 
 /// Cuts a contour into edges and smooth stretches at corners and line ends.
 pub fn cut(contour: &SourceContour) -> Cut {
+    cut_at(contour, &breaks(contour))
+}
+
+/// Whether the join at the start of each segment is a break point: an end of a straight
+/// segment, or a turn above [`CORNER_DEGREES`].
+pub fn breaks(contour: &SourceContour) -> Vec<bool> {
+    turns(contour)
+        .into_iter()
+        .map(|t| t > CORNER_DEGREES)
+        .collect()
+}
+
+/// The turn in degrees at the start of each segment; 180 at an end of a straight segment
+/// (always a break point).
+fn turns(contour: &SourceContour) -> Vec<f64> {
     let segs = &contour.segs;
     let n = segs.len();
-    // breaks[i]: the join at the start of segment i is a break point.
-    let breaks: Vec<bool> = (0..n)
+    (0..n)
         .map(|i| {
             let prev = segs[(i + n - 1) % n];
             let cur = segs[i];
-            matches!(prev, PathSeg::Line(_))
-                || matches!(cur, PathSeg::Line(_))
-                || turn_degrees(end_tangent(prev), start_tangent(cur)) > CORNER_DEGREES
+            if matches!(prev, PathSeg::Line(_)) || matches!(cur, PathSeg::Line(_)) {
+                180.0
+            } else {
+                turn_degrees(end_tangent(prev), start_tangent(cur))
+            }
         })
-        .collect();
+        .collect()
+}
+
+/// The break points of one contour in several masters (one structure): a join whose
+/// turn, averaged over the masters, is above [`CORNER_DEGREES`], or that turns by more
+/// than three times that in some master (a corner there, whatever the others do). Not
+/// simply a corner in any master: quadratic outlines rounded to integers kink smooth
+/// joins by a few degrees here and there (two joins of the bundled Bold `O`'s counter turn
+/// by 5.3° and 4.1°, the Regular's by 0.6° and 0.1°), and a sharp point at each such kink
+/// splits a smooth loop into stretches that need more points.
+///
+/// With `every_corner`, a corner in any master is a break point (the importer's second
+/// choice, when a kink the first choice smooths over cannot be followed).
+pub fn compatible_breaks(masters: &[&SourceContour], every_corner: bool) -> Vec<bool> {
+    let all: Vec<Vec<f64>> = masters.iter().map(|c| turns(c)).collect();
+    (0..all[0].len())
+        .map(|i| {
+            let mean = all.iter().map(|t| t[i]).sum::<f64>() / all.len() as f64;
+            let most = all.iter().map(|t| t[i]).fold(0.0, f64::max);
+            let limit = if every_corner { 1.0 } else { 3.0 };
+            mean > CORNER_DEGREES || most > limit * CORNER_DEGREES
+        })
+        .collect()
+}
+
+/// Cuts a contour at the given break points (`breaks[i]`: at the start of segment `i`;
+/// the ends of every line must be among them). Masters cut at the union of their break
+/// points get the same pieces.
+pub fn cut_at(contour: &SourceContour, breaks: &[bool]) -> Cut {
+    let segs = &contour.segs;
+    let n = segs.len();
     let Some(first) = breaks.iter().position(|&b| b) else {
         return Cut::Loop(segs.clone());
     };

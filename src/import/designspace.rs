@@ -6,10 +6,13 @@
 //! The source at every axis default becomes the font folder itself; every other source a
 //! master whose folder is its style name in lower case without spaces (`bold/`).
 //!
-//! Limits: the masters must be compatible X-splines once imported (same contours, same
-//! number of points, sharp points at the same places). Foreign UFOs without xglyph's lib are
-//! fitted one master at a time, so that holds only when the fits happen to agree; when it
-//! does not, the error names the glyph and master. Discrete axes, axis maps (`avar`),
+//! A glyph that every source fits from its outline (foreign UFOs, without xglyph's lib) is
+//! fitted again for all sources at once ([`super::masters`]): one X-spline structure,
+//! each source's points fitted to its own outline, and the blend halfway between the
+//! default and each other source measured against the blended outlines. Limits: the
+//! sources' outlines of such a glyph must have one Bézier structure (else the error names
+//! the glyph); a glyph taken from xglyph's lib in one source and fitted in another must
+//! come out compatible by itself (else the error names the glyph and master). Discrete axes, axis maps (`avar`),
 //! sources on a layer other than the default, and rules are not supported (an error says
 //! which); locations are read as user coordinates (`uservalue`, else `xvalue`, which equals
 //! it without a map).
@@ -19,8 +22,11 @@ use std::path::{Path, PathBuf};
 
 use norad::designspace::{DesignSpaceDocument, Dimension};
 
+use rayon::prelude::*;
+
+use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
-use super::{import_ufo, ImportError, ImportOptions};
+use super::{grid_for, import_ufo, ImportError, ImportOptions, Imported, SourceGlyph};
 use crate::designspace::{Axis, Designspace, Location, NamedInstance};
 use crate::model::{Family, Glyph, Master};
 
@@ -83,6 +89,11 @@ pub fn import_designspace(
     for (style, location, ufo) in &sources {
         imported.push((style.clone(), location.clone(), import_ufo(ufo, opts)?));
     }
+    let tolerance = super::check_tolerance(
+        opts.tolerance,
+        imported[default_index].2.font.info.units_per_em,
+    )?;
+    refit_compatible(&mut imported, default_index, tolerance).map_err(fail)?;
     let (style, _, default) = imported.remove(default_index);
     let mut font = default.font;
     font.info.style = style.clone();
@@ -129,6 +140,65 @@ pub fn import_designspace(
     })
 }
 
+/// Fits again, with one structure for all sources ([`import_compatible_glyph`]), every
+/// glyph that every source fitted from its outline (foreign UFOs: fitted one source at a
+/// time, the masters matched only by luck). The glyphs' components, anchors and advances
+/// stay as each source's import made them; the report rows are replaced.
+fn refit_compatible(
+    imported: &mut [(String, Location, Imported)],
+    default_index: usize,
+    tolerance: f64,
+) -> Result<(), String> {
+    // The default first, as the compatible import takes them.
+    let mut order: Vec<usize> = vec![default_index];
+    order.extend((0..imported.len()).filter(|&i| i != default_index));
+    let checkpoints: Vec<Checkpoint> = (1..order.len())
+        .map(|k| {
+            let mut weights = vec![0.0; order.len()];
+            weights[0] = 0.5;
+            weights[k] = 0.5;
+            Checkpoint {
+                weights,
+                original: None,
+            }
+        })
+        .collect();
+    let names: Vec<String> = imported[default_index]
+        .2
+        .outlines
+        .keys()
+        .filter(|name| {
+            order
+                .iter()
+                .all(|&i| imported[i].2.outlines.contains_key(*name))
+        })
+        .cloned()
+        .collect();
+    let grid = grid_for(tolerance);
+    let refits = names
+        .par_iter()
+        .map(|name| {
+            let sources: Vec<SourceGlyph> = order
+                .iter()
+                .map(|&i| imported[i].2.outlines[name].clone())
+                .collect();
+            import_compatible_glyph(&sources, &checkpoints, tolerance, grid)
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    for fitted in refits {
+        for (f, &i) in fitted.into_iter().zip(&order) {
+            let one = &mut imported[i].2;
+            if let Some(g) = one.font.glyphs.iter_mut().find(|g| g.name == f.glyph.name) {
+                g.contours = f.glyph.contours;
+            }
+            if let Some(row) = one.report.rows.iter_mut().find(|r| r.name == f.report.name) {
+                *row = f.report;
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The continuous axes of `doc`.
 fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
     doc.axes
@@ -173,7 +243,7 @@ fn location(ds: &Designspace, dims: &[Dimension]) -> Result<Location, String> {
 }
 
 /// The master folder of a style: lower case, without spaces (`Semi Bold` -> `semibold`).
-fn folder_name(style: &str) -> String {
+pub(crate) fn folder_name(style: &str) -> String {
     let name: String = style
         .chars()
         .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_'))

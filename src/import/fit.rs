@@ -27,6 +27,10 @@
 //! (cosine spacing) save about a fifth, because near an `s = 0` point the X-spline leaves
 //! straight and needs short segments to follow a curved original.
 //!
+//! Masters ([`fit_compatible`], for [`super::masters`]): the same search per stretch for
+//! all masters at once, with shared sample places and shared curve parameters, so that a
+//! blend of the fitted masters follows the same blend of the originals.
+//!
 //! Limits: the distances are measured by sampling (dense, but not a proof); the caller
 //! re-measures the final rounded contour independently ([`contour_error`]).
 
@@ -222,6 +226,360 @@ pub fn fit_xspline(cut: &Cut, target: f64) -> Option<FittedXSpline> {
     (points.len() >= 3).then_some(FittedXSpline { points, fit_error })
 }
 
+/// Fits one contour of several masters at once, within `target` in each and at each
+/// checkpoint (blend weights per master, measured against the same blend of the
+/// originals): the cuts have one structure ([`super::contour::cut_at`] at the masters'
+/// joint break points), and every smooth stretch gets the same number of interior points
+/// with the same shapes in every master ([`fit_together`]), each master's positions fitted
+/// to its own outline with curve parameters shared by all. So the results have the same
+/// points with sharp points at the same places, and interpolate as X-splines. `None` when
+/// the cuts differ in structure, the contour encloses nothing, or a stretch misses the
+/// target somewhere at every count tried.
+pub fn fit_compatible(
+    cuts: &[Cut],
+    target: f64,
+    checkpoints: &[Vec<f64>],
+) -> Option<Vec<FittedXSpline>> {
+    let spacing = (target * 4.0).max(1e-3);
+    let mut points: Vec<Vec<ControlPoint>> = vec![Vec::new(); cuts.len()];
+    let mut errors = vec![0.0f64; cuts.len()];
+    let add = |points: &mut [Vec<ControlPoint>], errors: &mut [f64], fits: Vec<Fit>, open: bool| {
+        for ((points, error), fit) in points.iter_mut().zip(errors.iter_mut()).zip(fits) {
+            *error = error.max(fit.error);
+            let n = fit.chain.pts.len() - usize::from(open);
+            points.extend(
+                fit.chain.pts[..n]
+                    .iter()
+                    .zip(&fit.chain.s)
+                    .map(|(p, &s)| cp(*p, s)),
+            );
+        }
+    };
+    match &cuts[0] {
+        Cut::Loop(_) => {
+            let stretches = cuts
+                .iter()
+                .map(|c| match c {
+                    Cut::Loop(segs) => Some((segs.as_slice(), [false; 2])),
+                    Cut::Pieces(_) => None,
+                })
+                .collect::<Option<Vec<_>>>()?;
+            add(
+                &mut points,
+                &mut errors,
+                fit_together(&stretches, true, spacing, target, checkpoints)?,
+                false,
+            );
+        }
+        Cut::Pieces(first) => {
+            let all = cuts
+                .iter()
+                .map(|c| match c {
+                    Cut::Pieces(p) if p.len() == first.len() => Some(p.as_slice()),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()?;
+            let count = first.len();
+            for k in 0..count {
+                if let Piece::Edge(_) = first[k] {
+                    for (points, pieces) in points.iter_mut().zip(&all) {
+                        let Piece::Edge(line) = pieces[k] else {
+                            return None;
+                        };
+                        points.push(cp(line.p0, 0.0));
+                    }
+                    continue;
+                }
+                let stretches = all
+                    .iter()
+                    .map(|pieces| {
+                        let Piece::Smooth(segs) = &pieces[k] else {
+                            return None;
+                        };
+                        let before = piece_end_tangent(&pieces[(k + count - 1) % count]);
+                        let after = piece_start_tangent(&pieces[(k + 1) % count]);
+                        let corners = [
+                            turn_degrees(before, start_tangent(segs[0])) > CORNER_DEGREES,
+                            turn_degrees(end_tangent(segs[segs.len() - 1]), after) > CORNER_DEGREES,
+                        ];
+                        Some((segs.as_slice(), corners))
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                add(
+                    &mut points,
+                    &mut errors,
+                    fit_together(&stretches, false, spacing, target, checkpoints)?,
+                    true,
+                );
+            }
+        }
+    }
+    (points[0].len() >= 3).then(|| {
+        points
+            .into_iter()
+            .zip(errors)
+            .map(|(points, fit_error)| FittedXSpline { points, fit_error })
+            .collect()
+    })
+}
+
+/// One stretch in every master (segments, and whether its ends are corners) fitted with
+/// one interior point count and one setting: the [`PRIMARY`] settings from the most that
+/// a master needs alone, one more while a master or a checkpoint misses `target`; then
+/// the [`ALTERNATIVES`] with one point fewer while one holds.
+///
+/// The masters share their samples' places (the same parameters of the same original
+/// segments) and their curve parameters (each round projects every master and takes the
+/// mean), so a blend of the masters' X-splines follows the same blend of the originals:
+/// fitted alone, each master's points drift along its curve in its own way, and halfway
+/// between two masters fitted within 0.5 units the blend missed by 1.5 to 2.3 (`S`, `m`
+/// of the bundled family). Each checkpoint (blend weights per master) is measured like a
+/// master, against the blended original.
+fn fit_together(
+    stretches: &[(&[PathSeg], [bool; 2])],
+    closed: bool,
+    spacing: f64,
+    target: f64,
+    checkpoints: &[Vec<f64>],
+) -> Option<Vec<Fit>> {
+    let nseg = stretches.first()?.0.len();
+    let counts: Vec<usize> = (0..nseg)
+        .map(|i| {
+            stretches
+                .iter()
+                .map(|(segs, _)| sample_count(&segs[i], spacing))
+                .max()
+                .unwrap_or(SEG_SAMPLES.0)
+        })
+        .collect();
+    let samples: Vec<StretchSamples> = stretches
+        .iter()
+        .map(|(segs, corners)| StretchSamples::with_counts(segs, &counts, closed, *corners))
+        .collect();
+    let blended: Vec<(Vec<PathSeg>, StretchSamples)> = checkpoints
+        .iter()
+        .map(|weights| {
+            let segs = blend_stretch(stretches, weights);
+            let samples = StretchSamples::with_counts(&segs, &counts, closed, [false; 2]);
+            (segs, samples)
+        })
+        .collect();
+    let mut interior = stretches
+        .iter()
+        .map(|(segs, corners)| {
+            let alone = StretchSamples::new(segs, spacing, closed, *corners);
+            fit_stretch(segs, &alone, closed, PRIMARY, target).interior
+        })
+        .max()?;
+    let min_inner = if closed { 3 } else { 0 };
+    let max_inner = min_inner + 3 * nseg + 8;
+    let holds = |fits: &[Fit]| {
+        fits.iter().all(|f| f.error <= target)
+            && checkpoints
+                .iter()
+                .zip(&blended)
+                .all(|(weights, (segs, samples))| {
+                    let chain = blend_chains(fits, weights);
+                    let last = samples.pts.len().saturating_sub(1).max(1) as f64;
+                    let mut ts: Vec<f64> = (0..samples.pts.len())
+                        .map(|k| k as f64 / last * chain.nseg() as f64)
+                        .collect();
+                    project(&chain, samples, &mut ts, NEWTON_STEPS, None);
+                    stretch_error(&chain, samples, &mut ts, segs) <= target
+                })
+    };
+    let mut best = loop {
+        let fits = attempt_together(stretches, &samples, closed, PRIMARY, interior, target);
+        if holds(&fits) {
+            break fits;
+        }
+        if interior >= max_inner {
+            return None;
+        }
+        interior += 1;
+    };
+    // As for one master ([`best_fit`]): the alternatives with one point fewer, while one
+    // of them holds in every master and checkpoint.
+    let floor = if closed { min_inner } else { 1 };
+    while interior > floor {
+        let better = ALTERNATIVES
+            .iter()
+            .map(|&settings| {
+                attempt_together(stretches, &samples, closed, settings, interior - 1, target)
+            })
+            .find(|fits| holds(fits));
+        match better {
+            Some(fits) => {
+                best = fits;
+                interior -= 1;
+            }
+            None => break,
+        }
+    }
+    Some(best)
+}
+
+/// One fit of every master with `interior` points and shared curve parameters.
+fn attempt_together(
+    stretches: &[(&[PathSeg], [bool; 2])],
+    samples: &[StretchSamples],
+    closed: bool,
+    settings: Settings,
+    interior: usize,
+    target: f64,
+) -> Vec<Fit> {
+    let mut chains: Vec<Chain> = stretches
+        .iter()
+        .zip(samples)
+        .map(|((segs, _), samples)| initial_chain(samples, segs, closed, interior, settings))
+        .collect();
+    let nseg = chains[0].nseg() as f64;
+    let grade = if closed { 0.0 } else { settings.grade };
+    let count = samples[0].pts.len();
+    let mut ts: Vec<f64> = (0..count)
+        .map(|k| {
+            let sum: f64 = samples.iter().map(|s| s.ungraded(grade)[k]).sum();
+            sum / samples.len() as f64 * nseg
+        })
+        .collect();
+    let mut bases = Vec::with_capacity(count);
+    for round in 0..ROUNDS {
+        let tangential = if round == 0 { 1.0 } else { TANGENTIAL };
+        let mut moved: f64 = 0.0;
+        let mut sum = vec![0.0; count];
+        let mut solved = true;
+        for (chain, own_samples) in chains.iter_mut().zip(samples) {
+            let before = chain.pts.clone();
+            if !solve_positions(chain, own_samples, &ts, &mut bases, tangential) {
+                solved = false;
+                break;
+            }
+            let mut own = ts.clone();
+            project(chain, own_samples, &mut own, ROUND_STEPS, Some(&bases));
+            sum.iter_mut().zip(&own).for_each(|(s, t)| *s += t);
+            moved = before
+                .iter()
+                .zip(&chain.pts)
+                .map(|(a, b)| (*a - *b).hypot())
+                .fold(moved, f64::max);
+        }
+        if !solved {
+            break;
+        }
+        ts = sum.iter().map(|s| s / chains.len() as f64).collect();
+        if moved < CONVERGED * target {
+            break;
+        }
+    }
+    fits_of(chains, samples_and_segs(stretches, samples))
+}
+
+fn samples_and_segs<'a>(
+    stretches: &'a [(&'a [PathSeg], [bool; 2])],
+    samples: &'a [StretchSamples],
+) -> impl Iterator<Item = (&'a StretchSamples, &'a [PathSeg])> {
+    samples.iter().zip(stretches.iter().map(|(segs, _)| *segs))
+}
+
+/// Each chain with its own measured error (its own projection of the samples).
+fn fits_of<'a>(
+    chains: Vec<Chain>,
+    originals: impl Iterator<Item = (&'a StretchSamples, &'a [PathSeg])>,
+) -> Vec<Fit> {
+    chains
+        .into_iter()
+        .zip(originals)
+        .map(|(chain, (samples, segs))| {
+            let last = samples.pts.len().saturating_sub(1).max(1) as f64;
+            let mut ts: Vec<f64> = (0..samples.pts.len())
+                .map(|k| k as f64 / last * chain.nseg() as f64)
+                .collect();
+            project(&chain, samples, &mut ts, NEWTON_STEPS, None);
+            let error = stretch_error(&chain, samples, &mut ts, segs);
+            Fit { chain, error }
+        })
+        .collect()
+}
+
+/// The masters' chains blended by `weights` (one structure: the same points and shapes).
+fn blend_chains(fits: &[Fit], weights: &[f64]) -> Chain {
+    let mut chain = fits[0].chain.clone();
+    for (i, p) in chain.pts.iter_mut().enumerate() {
+        *p = fits.iter().zip(weights).fold(Point::ZERO, |acc, (f, w)| {
+            acc + *w * f.chain.pts[i].to_vec2()
+        });
+    }
+    chain
+}
+
+/// One stretch's segments blended by `weights`, as Bézier masters interpolate (every
+/// control point; the masters' segments have one kind each).
+fn blend_stretch(stretches: &[(&[PathSeg], [bool; 2])], weights: &[f64]) -> Vec<PathSeg> {
+    let controls = |seg: PathSeg| -> Vec<Point> {
+        match seg {
+            PathSeg::Line(l) => vec![l.p0, l.p1],
+            PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+            PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+        }
+    };
+    (0..stretches[0].0.len())
+        .map(|i| {
+            let mut mixed = vec![Point::ZERO; controls(stretches[0].0[i]).len()];
+            for ((segs, _), w) in stretches.iter().zip(weights) {
+                for (m, p) in mixed.iter_mut().zip(controls(segs[i])) {
+                    *m += *w * p.to_vec2();
+                }
+            }
+            match mixed.as_slice() {
+                [a, b] => PathSeg::Line(kurbo::Line::new(*a, *b)),
+                [a, b, c] => PathSeg::Quad(kurbo::QuadBez::new(*a, *b, *c)),
+                [a, b, c, d] => PathSeg::Cubic(kurbo::CubicBez::new(*a, *b, *c, *d)),
+                _ => unreachable!("a segment has two to four control points"),
+            }
+        })
+        .collect()
+}
+
+/// The contour of several masters as polylines of sharp points with one structure: each
+/// segment cut at the same parameters in every master, as many as the most curved master
+/// needs for `tolerance`. The bound is on the parameter (a chord against the curve at the
+/// same `t`: `h² · max|B''| / 8` over a step `h`), and that error interpolates linearly
+/// between masters, so every blend of the polylines is within `tolerance` of the same
+/// blend of the originals. The importer's last resort for masters.
+pub fn compatible_polylines(masters: &[&[PathSeg]], tolerance: f64) -> Vec<Vec<ControlPoint>> {
+    let mut out = vec![Vec::new(); masters.len()];
+    for i in 0..masters[0].len() {
+        let steps = masters
+            .iter()
+            .map(|segs| {
+                let second = match segs[i] {
+                    PathSeg::Line(_) => 0.0,
+                    PathSeg::Quad(q) => {
+                        2.0 * (q.p0 - 2.0 * q.p1.to_vec2() + q.p2.to_vec2())
+                            .to_vec2()
+                            .hypot()
+                    }
+                    PathSeg::Cubic(c) => {
+                        let a = (c.p0 - 2.0 * c.p1.to_vec2() + c.p2.to_vec2())
+                            .to_vec2()
+                            .hypot();
+                        let b = (c.p1 - 2.0 * c.p2.to_vec2() + c.p3.to_vec2())
+                            .to_vec2()
+                            .hypot();
+                        6.0 * a.max(b)
+                    }
+                };
+                (second / (8.0 * tolerance)).sqrt().ceil().max(1.0) as usize
+            })
+            .max()
+            .unwrap_or(1);
+        for (points, segs) in out.iter_mut().zip(masters) {
+            points.extend((0..steps).map(|k| cp(segs[i].eval(k as f64 / steps as f64), 0.0)));
+        }
+    }
+    out
+}
+
 fn piece_start_tangent(piece: &Piece) -> Vec2 {
     match piece {
         Piece::Edge(line) => start_tangent(PathSeg::Line(*line)),
@@ -301,10 +659,15 @@ struct StretchSamples {
 
 impl StretchSamples {
     fn new(segs: &[PathSeg], spacing: f64, closed: bool, corners: [bool; 2]) -> Self {
+        let counts: Vec<usize> = segs.iter().map(|seg| sample_count(seg, spacing)).collect();
+        Self::with_counts(segs, &counts, closed, corners)
+    }
+
+    /// Samples at `counts[i]` even parameter steps of segment `i`: the same counts for
+    /// every master of a stretch make sample `j` the same place of the outline in each.
+    fn with_counts(segs: &[PathSeg], counts: &[usize], closed: bool, corners: [bool; 2]) -> Self {
         let mut pts = Vec::new();
-        for seg in segs {
-            let k =
-                ((seg.arclen(1e-3) / spacing).ceil() as usize).clamp(SEG_SAMPLES.0, SEG_SAMPLES.1);
+        for (seg, &k) in segs.iter().zip(counts) {
             pts.extend((0..k).map(|i| seg.eval(i as f64 / k as f64)));
         }
         let last = segs.last().map_or(Point::ZERO, |s| s.end());
@@ -356,6 +719,12 @@ impl StretchSamples {
         cache.push((grade, shares.clone()));
         shares
     }
+}
+
+/// Samples on one original segment: one per four target distances (`spacing`), within
+/// [`SEG_SAMPLES`].
+fn sample_count(seg: &PathSeg, spacing: f64) -> usize {
+    ((seg.arclen(1e-3) / spacing).ceil() as usize).clamp(SEG_SAMPLES.0, SEG_SAMPLES.1)
 }
 
 /// One fitted chain and its measured (sampled, two-sided) error.

@@ -2,9 +2,10 @@
 //!
 //! Quadratic (`glyf`) and cubic (`CFF`) outlines both arrive as kurbo paths in font units
 //! (y up). Composite glyphs arrive flattened (ttf-parser resolves them), so they import as
-//! plain contours. Limits: one font of a collection at a time; variable fonts at their
-//! default instance; metrics from hhea/OS/2 as ttf-parser reports them. A collection
-//! (.ttc, .otc) gives one of its fonts, by index.
+//! plain contours. Limits: one font of a collection at a time; a variable font's masters
+//! are read by `variable.rs` (this module gives its names, metrics and code points);
+//! metrics from hhea/OS/2 as ttf-parser reports them. A collection (.ttc, .otc) gives one
+//! of its fonts, by index.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -26,6 +27,8 @@ pub struct SourceFont {
     pub glyphs: Vec<SourceGlyph>,
     /// Characters asked for that the font does not map.
     pub missing: Vec<char>,
+    /// The glyph id of each of `glyphs`, in the same order.
+    pub ids: Vec<u16>,
 }
 
 /// Parses a glyph list: comma-separated characters and inclusive ranges, e.g.
@@ -132,6 +135,7 @@ pub fn read_font(
         }
     }
     let mut glyphs = Vec::new();
+    let mut ids = Vec::new();
     let mut used_names = std::collections::BTreeSet::new();
     for (gid, unicodes) in by_glyph {
         let gid = GlyphId(gid);
@@ -167,6 +171,7 @@ pub fn read_font(
             ));
         }
         check_limits(path, &name, f64::from(advance), &outline)?;
+        ids.push(gid.0);
         glyphs.push(SourceGlyph {
             name,
             unicodes,
@@ -178,6 +183,7 @@ pub fn read_font(
         info,
         glyphs,
         missing,
+        ids,
     })
 }
 

@@ -6,6 +6,11 @@
 //!   -> contour.rs (closed contours, corners, edges, smooth stretches)
 //!   -> fit.rs (X-spline control points within the fit target)
 //!   -> a model::Font (emitted by source::emit) and a report.rs summary
+//!
+//! variable.rs (skrifa: each master of a variable font) | designspace.rs (foreign UFOs)
+//!   -> masters.rs (one X-spline structure per glyph for every master: contour.rs's
+//!      compatible_contours, fit.rs's fit_compatible)
+//!   -> a model::Family (font.toml axes, masters, instances; one folder per master)
 //! ```
 //!
 //! Glyphs are fitted in parallel on rayon's pool, each on its own, so the output does not
@@ -25,9 +30,11 @@ pub mod contour;
 pub mod designspace;
 pub mod fit;
 pub mod font;
+pub mod masters;
 pub mod report;
 pub mod svg;
 pub mod ufo;
+pub mod variable;
 
 pub use ufo::import_ufo;
 
@@ -151,6 +158,10 @@ pub struct Imported {
     pub font: Font,
     /// Points and errors per glyph.
     pub report: Report,
+    /// The original outline of each glyph fitted from its outline (not taken from an
+    /// xglyph lib), by name: what a compatible refit across masters starts from
+    /// ([`designspace`]). Filled by the UFO import only.
+    pub outlines: BTreeMap<String, SourceGlyph>,
 }
 
 /// Imports a TrueType/OpenType font from its bytes (`path` names it in messages).
@@ -256,7 +267,7 @@ pub fn import_svgs(
     import_glyphs(&glyphs, info, tolerance, &opts.progress)
 }
 
-fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
+pub(crate) fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {
     check_tolerance_flag(tolerance.unwrap_or(f64::from(upm) / 1000.0)).map_err(ImportError::plain)
 }
 
@@ -299,6 +310,7 @@ fn import_glyphs(
             tolerance,
             notes: Vec::new(),
         },
+        outlines: BTreeMap::new(),
     })
 }
 
@@ -306,7 +318,7 @@ fn import_glyphs(
 /// ([`crate::source::limits`]): a smooth control point sits outside the curve it shapes, so
 /// an outline inside the limits can still need a point beyond them, and a drawing far
 /// outside its viewBox scales past them (found by the `import_svg` fuzz target).
-fn check_fitted_limits(glyph: &Glyph) -> Result<(), ImportError> {
+pub(crate) fn check_fitted_limits(glyph: &Glyph) -> Result<(), ImportError> {
     use crate::source::limits::MAX_COORDINATE;
     let far = glyph
         .contours
@@ -330,7 +342,7 @@ pub fn grid_for(tolerance: f64) -> f64 {
     10f64.powf((tolerance / 10.0).log10().floor())
 }
 
-fn round_to(x: f64, grid: f64) -> f64 {
+pub(crate) fn round_to(x: f64, grid: f64) -> f64 {
     // Dividing by the integer 1/grid (not multiplying by grid) gives the shortest decimal.
     let inv = (1.0 / grid).round();
     if inv >= 1.0 {
@@ -384,12 +396,12 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
 /// when a fit's rounded contour measures above the bound: a tighter target buys more
 /// points. The fitter measures by sampling, so a fit can pass its own measure and still
 /// miss (each retry is a guard; on the 2,000 CJK glyphs U+4E00–U+55CF no glyph is over).
-const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
+pub(crate) const RETRY_SHARES: [f64; 2] = [0.4, 0.2];
 
 /// The first fit target: the bound less the most that rounding to `grid` can move a curve
 /// point (half the grid cell's diagonal: the fitter's shapes are all in 0..1, whose
 /// blending weights are non-negative and sum to one), at most [`FIT_SHARE`]` · T`.
-fn first_target(tolerance: f64, grid: f64) -> f64 {
+pub(crate) fn first_target(tolerance: f64, grid: f64) -> f64 {
     (IMPORT_SHARE * tolerance - grid * std::f64::consts::FRAC_1_SQRT_2).min(FIT_SHARE * tolerance)
 }
 

@@ -113,10 +113,16 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
             "{from_lib} glyph(s) taken exactly from their {XSPLINE_KEY} lib"
         ));
     }
-    let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) = fitted
-        .into_iter()
-        .map(|f| (f.fitted.glyph, f.fitted.report))
-        .unzip();
+    let mut outlines = BTreeMap::new();
+    let mut glyphs = Vec::with_capacity(fitted.len());
+    let mut rows = Vec::with_capacity(fitted.len());
+    for f in fitted {
+        if let Some(outline) = f.outline {
+            outlines.insert(outline.name.clone(), outline);
+        }
+        glyphs.push(f.fitted.glyph);
+        rows.push(f.fitted.report);
+    }
     for g in &glyphs {
         super::check_fitted_limits(g)?;
     }
@@ -136,12 +142,15 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
             tolerance,
             notes,
         },
+        outlines,
     })
 }
 
 /// One imported glyph and how it was made.
 struct UfoGlyph {
     fitted: FittedGlyph,
+    /// The outline it was fitted from (none when taken from the lib).
+    outline: Option<SourceGlyph>,
     from_lib: bool,
     stale_lib: bool,
 }
@@ -293,6 +302,7 @@ fn import_one(
                 };
                 return Ok(UfoGlyph {
                     fitted: FittedGlyph { glyph, report },
+                    outline: None,
                     from_lib: true,
                     stale_lib: false,
                 });
@@ -310,6 +320,7 @@ fn import_one(
     fitted.glyph.anchors = anchors(g);
     Ok(UfoGlyph {
         fitted,
+        outline: Some(source),
         from_lib: false,
         stale_lib: lib.is_some(),
     })

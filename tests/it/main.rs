@@ -19,6 +19,7 @@ mod import_malformed;
 mod import_output;
 mod import_points;
 mod import_svg;
+mod import_variable;
 mod ir;
 mod limits;
 mod masters;

@@ -1,0 +1,371 @@
+//! Variable fonts (fvar with gvar, or CFF2) -> a font with X-spline masters.
+//!
+//! ```text
+//! font.rs (ttf-parser): names, metrics, code points, glyph names at the default
+//! skrifa: each glyph's outline and advance at every master location (gvar/CFF2, HVAR)
+//!   -> masters.rs: one X-spline structure per glyph for all masters
+//!   -> a model::Family (axes and named instances from fvar, one folder per master)
+//! ```
+//!
+//! Masters: the default location and, per axis, each end that differs from the default
+//! (`wght` 100..400..900 gives Thin, Regular and Black). The masters' outlines are
+//! measured against their originals, and the midpoint between the default and each other
+//! master against the blend of their Bézier outlines, which is what the font's own
+//! interpolation gives when its variations peak at the axis ends.
+//!
+//! Limits: a non-linear `avar` is refused (the design space has no axis map yet); variation
+//! regions that peak inside an axis (intermediate masters) or at corners of two axes are
+//! not taken: the masters at the ends interpolate linearly, and such a font is reported
+//! with a note. Kerning (GPOS) is not read, as for static fonts.
+
+use std::path::Path;
+
+use kurbo::BezPath;
+use rayon::prelude::*;
+use skrifa::instance::{LocationRef, Size};
+use skrifa::outline::{DrawSettings, OutlinePen};
+use skrifa::raw::TableProvider;
+use skrifa::{FontRef, MetadataProvider};
+
+use super::designspace::{folder_name, ImportedFamily};
+use super::masters::{import_compatible_glyph, Checkpoint};
+use super::report::{GlyphReport, Report};
+use super::{font, grid_for, ImportError, ImportOptions, SourceGlyph, BUILD_SHARE};
+use crate::designspace::{Axis, Designspace, Location, NamedInstance};
+use crate::model::{Family, Font, FontInfo, Glyph, Master};
+
+/// Whether the font bytes (font `index` of a collection) have variation axes (`fvar`).
+pub fn is_variable(data: &[u8], index: u32) -> bool {
+    FontRef::from_index(data, index).is_ok_and(|f| !f.axes().is_empty())
+}
+
+/// One master to read: its name and location (user and skrifa's normalised).
+struct MasterAt {
+    name: String,
+    location: Location,
+    coords: skrifa::instance::Location,
+}
+
+/// Imports a variable font: axes, named instances and one master per axis end.
+pub fn import_variable_font(
+    path: &Path,
+    data: &[u8],
+    opts: &ImportOptions,
+) -> Result<ImportedFamily, ImportError> {
+    let fail = |m: String| ImportError::at(path, m);
+    let font = FontRef::from_index(data, opts.face)
+        .map_err(|e| fail(format!("not a readable TrueType/OpenType font ({e})")))?;
+    check_avar(&font).map_err(fail)?;
+    let name = |id| {
+        font.localized_strings(id)
+            .english_or_first()
+            .map(|s| s.chars().collect::<String>())
+    };
+    let axes: Vec<Axis> = font
+        .axes()
+        .iter()
+        .map(|a| Axis {
+            tag: a.tag().to_string(),
+            name: name(a.name_id()).unwrap_or_else(|| a.tag().to_string()),
+            min: f64::from(a.min_value()),
+            default: f64::from(a.default_value()),
+            max: f64::from(a.max_value()),
+        })
+        .collect();
+    let instances: Vec<NamedInstance> = font
+        .named_instances()
+        .iter()
+        .map(|i| NamedInstance {
+            name: name(i.subfamily_name_id()).unwrap_or_else(|| "Instance".into()),
+            location: Location(
+                axes.iter()
+                    .zip(i.user_coords())
+                    .map(|(a, v)| (a.tag.clone(), f64::from(v)))
+                    .collect(),
+            ),
+        })
+        .collect();
+    let designspace = Designspace { axes, instances };
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
+    if source.glyphs.is_empty() {
+        return Err(fail(
+            "none of the requested characters has a glyph in this font".into(),
+        ));
+    }
+    let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
+    check_gvar(&font, &source).map_err(fail)?;
+    let masters = master_locations(&font, &designspace);
+    let style_of = |m: &MasterAt| m.name.clone();
+    // Every glyph in every master, read first (a damaged gvar is an error naming the file).
+    let mut per_glyph: Vec<Vec<SourceGlyph>> = Vec::with_capacity(source.glyphs.len());
+    for (g, &gid) in source.glyphs.iter().zip(&source.ids) {
+        let mut versions = Vec::with_capacity(masters.len());
+        for m in &masters {
+            let (path_at, advance) = outline_at(&font, gid, &m.coords)
+                .map_err(|e| fail(format!("glyph `{}` at {}: {e}", g.name, style_of(m))))?;
+            versions.push(SourceGlyph {
+                name: g.name.clone(),
+                unicodes: g.unicodes.clone(),
+                advance,
+                path: path_at,
+            });
+        }
+        per_glyph.push(versions);
+    }
+    let checkpoints: Vec<Checkpoint> = (1..masters.len())
+        .map(|k| {
+            let mut weights = vec![0.0; masters.len()];
+            weights[0] = 0.5;
+            weights[k] = 0.5;
+            Checkpoint {
+                weights,
+                original: None,
+            }
+        })
+        .collect();
+    let grid = grid_for(tolerance);
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let mut fitted = per_glyph
+        .par_iter()
+        .map(|versions| {
+            let one = import_compatible_glyph(versions, &checkpoints, tolerance, grid);
+            if let Some(tell) = &opts.progress.0 {
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                tell(n, per_glyph.len());
+            }
+            one
+        })
+        .collect::<Result<Vec<_>, String>>()
+        .map_err(fail)?;
+    fitted.sort_by(|a, b| crate::model::glyph_order(&a[0].glyph.name, &b[0].glyph.name));
+    let mut glyphs: Vec<Vec<Glyph>> = vec![Vec::new(); masters.len()];
+    let mut rows: Vec<Vec<GlyphReport>> = vec![Vec::new(); masters.len()];
+    for versions in fitted {
+        for (k, f) in versions.into_iter().enumerate() {
+            super::check_fitted_limits(&f.glyph)?;
+            glyphs[k].push(f.glyph);
+            rows[k].push(f.report);
+        }
+    }
+    let mut glyphs = glyphs.into_iter();
+    let mut rows = rows.into_iter();
+    let mut notes: Vec<String> = source
+        .missing
+        .iter()
+        .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
+        .collect();
+    if let Some(note) = inner_regions(&font) {
+        notes.push(note);
+    }
+    let default_name = masters[0].name.clone();
+    let info = FontInfo {
+        family: opts.family.clone().unwrap_or(source.info.family.clone()),
+        style: default_name.clone(),
+        tolerance: BUILD_SHARE * tolerance,
+        ..source.info
+    };
+    let default = Font {
+        info,
+        glyphs: glyphs.next().unwrap_or_default(),
+        kerning: Vec::new(),
+        features: None,
+    };
+    let report = |rows: Vec<GlyphReport>, notes: Vec<String>| Report {
+        rows,
+        tolerance,
+        notes,
+    };
+    let mut reports = vec![(default_name, report(rows.next().unwrap_or_default(), notes))];
+    let mut others = Vec::new();
+    for m in masters.into_iter().skip(1) {
+        reports.push((
+            m.name.clone(),
+            report(rows.next().unwrap_or_default(), Vec::new()),
+        ));
+        others.push(Master {
+            folder: folder_name(&m.name).into(),
+            name: m.name,
+            location: m.location,
+            glyphs: glyphs.next().unwrap_or_default(),
+            kerning: Vec::new(),
+        });
+    }
+    Ok(ImportedFamily {
+        family: Family {
+            default,
+            designspace,
+            masters: others,
+        },
+        reports,
+    })
+}
+
+/// The default location, then each axis end other than the default, named after the
+/// named instance there when there is one (else `Weight 900`).
+fn master_locations(font: &FontRef, ds: &Designspace) -> Vec<MasterAt> {
+    let at = |location: Location| {
+        let settings: Vec<(skrifa::Tag, f32)> = ds
+            .axes
+            .iter()
+            .filter_map(|a| {
+                let tag = skrifa::Tag::new_checked(a.tag.as_bytes()).ok()?;
+                Some((tag, location.get(a) as f32))
+            })
+            .collect();
+        font.axes().location(settings)
+    };
+    let named = |location: &Location| {
+        ds.instances
+            .iter()
+            .find(|i| ds.axes.iter().all(|a| i.location.get(a) == location.get(a)))
+            .map(|i| i.name.clone())
+    };
+    let default = Location::default();
+    let mut out = vec![MasterAt {
+        name: named(&default).unwrap_or_else(|| "Regular".into()),
+        coords: at(default.clone()),
+        location: default,
+    }];
+    for a in &ds.axes {
+        for end in [a.min, a.max] {
+            if end == a.default {
+                continue;
+            }
+            let location = Location([(a.tag.clone(), end)].into_iter().collect());
+            let name = named(&location)
+                .unwrap_or_else(|| format!("{} {}", a.name, crate::source::emit::number(end)));
+            out.push(MasterAt {
+                name,
+                coords: at(location.clone()),
+                location,
+            });
+        }
+    }
+    out
+}
+
+/// A glyph's outline (font units, y up) and advance at `coords`.
+fn outline_at(
+    font: &FontRef,
+    gid: u16,
+    coords: &skrifa::instance::Location,
+) -> Result<(BezPath, f64), String> {
+    let id = skrifa::GlyphId::new(u32::from(gid));
+    let location = LocationRef::from(coords);
+    let mut advance = font
+        .glyph_metrics(Size::unscaled(), location)
+        .advance_width(id)
+        .ok_or("no horizontal advance (damaged hmtx or HVAR table)")?;
+    let mut pen = Pen(BezPath::new());
+    if let Some(glyph) = font.outline_glyphs().get(id) {
+        let adjusted = glyph
+            .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
+            .map_err(|e| format!("cannot read the outline ({e}); the font may be damaged"))?;
+        // Without HVAR, the advance varies by gvar's phantom points, which drawing applies.
+        if font.hvar().is_err() {
+            advance = adjusted.advance_width.unwrap_or(advance);
+        }
+    }
+    if !pen.0.is_finite() {
+        return Err("non-finite coordinates".into());
+    }
+    Ok((pen.0, f64::from(advance)))
+}
+
+/// Refuses a `gvar` table that does not parse, or whose data for a glyph of `source` does not:
+/// skrifa draws the default outline when it cannot read gvar, which would import every
+/// master as the default.
+fn check_gvar(font: &FontRef, source: &font::SourceFont) -> Result<(), String> {
+    if font.table_data(skrifa::Tag::new(b"gvar")).is_none() {
+        return Ok(());
+    }
+    let gvar = font
+        .gvar()
+        .map_err(|e| format!("cannot read the gvar table ({e}); the font may be damaged"))?;
+    for (g, &gid) in source.glyphs.iter().zip(&source.ids) {
+        gvar.glyph_variation_data(skrifa::GlyphId::new(u32::from(gid)))
+            .map_err(|e| {
+                format!(
+                    "cannot read the gvar data of glyph `{}` ({e}); the font may be damaged",
+                    g.name
+                )
+            })?;
+    }
+    Ok(())
+}
+
+/// Refuses an `avar` that maps some axis non-linearly (the design space has no axis map).
+fn check_avar(font: &FontRef) -> Result<(), String> {
+    let Ok(avar) = font.avar() else {
+        return Ok(());
+    };
+    let axes = font.axes();
+    for (i, maps) in avar.axis_segment_maps().iter().enumerate() {
+        let maps = maps.map_err(|e| format!("cannot read the avar table ({e})"))?;
+        if let Some(m) = maps
+            .axis_value_maps()
+            .iter()
+            .find(|m| m.from_coordinate() != m.to_coordinate())
+        {
+            let tag = axes
+                .get(i)
+                .map_or_else(|| format!("#{i}"), |a| a.tag().to_string());
+            return Err(format!(
+                "avar maps axis `{tag}` non-linearly ({} -> {}); xglyph's design space has no \
+                 axis map yet, so this font cannot be imported with its masters",
+                m.from_coordinate().to_f32(),
+                m.to_coordinate().to_f32()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A note when gvar has variation regions that peak inside an axis or on two axes at once,
+/// which the masters at the axis ends do not reproduce.
+fn inner_regions(font: &FontRef) -> Option<String> {
+    let gvar = font.gvar().ok()?;
+    let count = font.maxp().ok()?.num_glyphs();
+    let inner = (0..count).any(|g| {
+        let Ok(Some(data)) = gvar.glyph_variation_data(skrifa::GlyphId::new(u32::from(g))) else {
+            return false;
+        };
+        data.tuples().any(|t| {
+            let peak = t.peak();
+            let on: Vec<f32> = peak.values.iter().map(|v| v.get().to_f32()).collect();
+            on.iter().filter(|&&v| v != 0.0).count() > 1
+                || on.iter().any(|&v| v != 0.0 && v.abs() != 1.0)
+        })
+    });
+    inner.then(|| {
+        "gvar has variations that peak inside an axis or on several axes; the masters at \
+         the axis ends interpolate linearly and do not reproduce them"
+            .to_string()
+    })
+}
+
+/// A skrifa pen into a kurbo path.
+struct Pen(BezPath);
+
+impl OutlinePen for Pen {
+    fn move_to(&mut self, x: f32, y: f32) {
+        self.0.move_to(point(x, y));
+    }
+    fn line_to(&mut self, x: f32, y: f32) {
+        self.0.line_to(point(x, y));
+    }
+    fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
+        self.0.quad_to(point(cx0, cy0), point(x, y));
+    }
+    fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
+        self.0
+            .curve_to(point(cx0, cy0), point(cx1, cy1), point(x, y));
+    }
+    fn close(&mut self) {
+        self.0.close_path();
+    }
+}
+
+fn point(x: f32, y: f32) -> kurbo::Point {
+    kurbo::Point::new(f64::from(x), f64::from(y))
+}
