@@ -230,7 +230,7 @@ pub fn fit_xspline(cut: &Cut, target: f64) -> Option<FittedXSpline> {
 /// checkpoint (blend weights per master, measured against the same blend of the
 /// originals): the cuts have one structure ([`super::contour::cut_at`] at the masters'
 /// joint break points), and every smooth stretch gets the same number of interior points
-/// with the same shapes in every master ([`fit_together`]), each master's positions fitted
+/// with the same shapes in every master (`fit_together`), each master's positions fitted
 /// to its own outline with curve parameters shared by all. So the results have the same
 /// points with sharp points at the same places, and interpolate as X-splines. `None` when
 /// the cuts differ in structure, the contour encloses nothing, or a stretch misses the
