@@ -152,17 +152,7 @@ fn refit_compatible(
     // The default first, as the compatible import takes them.
     let mut order: Vec<usize> = vec![default_index];
     order.extend((0..imported.len()).filter(|&i| i != default_index));
-    let checkpoints: Vec<Checkpoint> = (1..order.len())
-        .map(|k| {
-            let mut weights = vec![0.0; order.len()];
-            weights[0] = 0.5;
-            weights[k] = 0.5;
-            Checkpoint {
-                weights,
-                original: None,
-            }
-        })
-        .collect();
+    let checkpoints = Checkpoint::halfways(order.len());
     let names: Vec<String> = imported[default_index]
         .2
         .outlines

@@ -39,6 +39,24 @@ pub struct Checkpoint {
     pub original: Option<BezPath>,
 }
 
+impl Checkpoint {
+    /// The blend halfway between the default (master 0) and each other master of `count`,
+    /// measured against the same blend of the masters' outlines.
+    pub fn halfways(count: usize) -> Vec<Checkpoint> {
+        (1..count)
+            .map(|k| {
+                let mut weights = vec![0.0; count];
+                weights[0] = 0.5;
+                weights[k] = 0.5;
+                Checkpoint {
+                    weights,
+                    original: None,
+                }
+            })
+            .collect()
+    }
+}
+
 /// Imports one glyph given in every master (the default first): the fitted glyph and its
 /// report row per master. The default's row also counts the checkpoints' errors. `Err`
 /// when the masters' outlines do not have one structure (they do not interpolate).

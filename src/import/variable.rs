@@ -112,17 +112,7 @@ pub fn import_variable_font(
         }
         per_glyph.push(versions);
     }
-    let checkpoints: Vec<Checkpoint> = (1..masters.len())
-        .map(|k| {
-            let mut weights = vec![0.0; masters.len()];
-            weights[0] = 0.5;
-            weights[k] = 0.5;
-            Checkpoint {
-                weights,
-                original: None,
-            }
-        })
-        .collect();
+    let checkpoints = Checkpoint::halfways(masters.len());
     let grid = grid_for(tolerance);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut fitted = per_glyph

@@ -9,12 +9,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use kurbo::BezPath;
 use skrifa::instance::{LocationRef, Size};
-use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::{FontRef, MetadataProvider};
 
 use crate::common::cli::{import, import_fails, xglyph};
+use crate::common::fonts::skrifa_outline;
 use crate::common::paths;
 
 /// The import tolerance: the default, 1/1000 of the 1000-unit em.
@@ -168,7 +167,11 @@ fn the_imported_family_checks_and_matches_the_original_between_the_masters() {
                 mb.advance_width(gb),
                 "U+{c:04X} at wght {wght}"
             );
-            let d = paths::two_sided(&outline(&a, ga, &la), &outline(&b, gb, &lb), 32);
+            let d = paths::two_sided(
+                &skrifa_outline(&a, ga, (&la).into()),
+                &skrifa_outline(&b, gb, (&lb).into()),
+                32,
+            );
             // Import and build stay within T of the original; the rebuilt glyf rounds
             // every point to whole units (half a unit per coordinate), and between the
             // masters skrifa adds each font's interpolated deltas rounded to whole units
@@ -345,43 +348,4 @@ fn fvar(font: &FontRef) -> Fvar {
             .map(|i| (name(i.subfamily_name_id()), i.user_coords().collect()))
             .collect(),
     )
-}
-
-/// A glyph's outline at `location`, font units.
-fn outline(font: &FontRef, gid: skrifa::GlyphId, location: &skrifa::instance::Location) -> BezPath {
-    let mut pen = Pen(BezPath::new());
-    font.outline_glyphs()
-        .get(gid)
-        .unwrap()
-        .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
-        .unwrap();
-    pen.0
-}
-
-/// A skrifa pen into a kurbo path.
-struct Pen(BezPath);
-
-impl OutlinePen for Pen {
-    fn move_to(&mut self, x: f32, y: f32) {
-        self.0.move_to((f64::from(x), f64::from(y)));
-    }
-    fn line_to(&mut self, x: f32, y: f32) {
-        self.0.line_to((f64::from(x), f64::from(y)));
-    }
-    fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
-        self.0.quad_to(
-            (f64::from(cx0), f64::from(cy0)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
-        self.0.curve_to(
-            (f64::from(cx0), f64::from(cy0)),
-            (f64::from(cx1), f64::from(cy1)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn close(&mut self) {
-        self.0.close_path();
-    }
 }

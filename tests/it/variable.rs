@@ -27,7 +27,6 @@ use std::sync::OnceLock;
 use kurbo::{Affine, BezPath, PathEl, Point};
 use serde_json::{json, Value};
 use skrifa::instance::{LocationRef, Size};
-use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::{FontRef, MetadataProvider};
 use ttf_parser::{Face, GlyphId};
 use xglyph::designspace::{Axis, Designspace, Location, NamedInstance};
@@ -37,6 +36,7 @@ use xglyph::model::{FontInfo, KernPair};
 use xglyph::otf::{glyph_order, variable_ttf};
 use xglyph::outline::{OutlinedFont, OutlinedGlyph};
 
+use crate::common::fonts::skrifa_outline;
 use crate::common::paths;
 use crate::common::tools;
 use crate::studio_browser::Browser;
@@ -597,34 +597,6 @@ fn gpos_kerning_varies_with_the_masters() {
     }
 }
 
-/// A skrifa pen into a kurbo path.
-struct Pen(BezPath);
-
-impl OutlinePen for Pen {
-    fn move_to(&mut self, x: f32, y: f32) {
-        self.0.move_to((f64::from(x), f64::from(y)));
-    }
-    fn line_to(&mut self, x: f32, y: f32) {
-        self.0.line_to((f64::from(x), f64::from(y)));
-    }
-    fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
-        self.0.quad_to(
-            (f64::from(cx0), f64::from(cy0)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
-        self.0.curve_to(
-            (f64::from(cx0), f64::from(cy0)),
-            (f64::from(cx1), f64::from(cy1)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-    fn close(&mut self) {
-        self.0.close_path();
-    }
-}
-
 /// skrifa at `wghts`: every glyph's outline (gvar) and advance (HVAR) against the blend;
 /// the worst outline distance and advance difference.
 fn check_skrifa(family: &OutlinedFamily, wghts: &[f64]) -> (f64, f64) {
@@ -649,7 +621,6 @@ fn check_skrifa(family: &OutlinedFamily, wghts: &[f64]) -> (f64, f64) {
         )
     );
     let order = glyph_order(&family.default).unwrap();
-    let outlines = font.outline_glyphs();
     let (mut worst, mut worst_advance) = (0.0f64, 0.0f64);
     for &w in wghts {
         let location = axes.location([("wght", w as f32)]);
@@ -676,16 +647,8 @@ fn check_skrifa(family: &OutlinedFamily, wghts: &[f64]) -> (f64, f64) {
             );
             let da = (advance - expected[i].exact_advance).abs();
             worst_advance = worst_advance.max(da);
-            let mut pen = Pen(BezPath::new());
-            outlines
-                .get(id)
-                .unwrap()
-                .draw(
-                    DrawSettings::unhinted(Size::unscaled(), &location),
-                    &mut pen,
-                )
-                .unwrap();
-            let d = paths::two_sided(&pen.0, &expected[i].path, 48);
+            let outline = skrifa_outline(&font, id, LocationRef::from(&location));
+            let d = paths::two_sided(&outline, &expected[i].path, 48);
             // skrifa, like FreeType, adds the interpolated delta rounded to whole units
             // (`FT_fixedToInt`), so a point can move by another half unit per coordinate
             // beyond the grid rounding of the masters: twice GRID in all.

@@ -2,6 +2,11 @@
 
 use std::path::Path;
 
+use kurbo::BezPath;
+use skrifa::instance::{LocationRef, Size};
+use skrifa::outline::{DrawSettings, OutlinePen};
+use skrifa::{FontRef, GlyphId, MetadataProvider};
+
 use xglyph::model::{Contour, Font, Glyph};
 use xglyph::source::load_font;
 use xglyph::xspline::ControlPoint;
@@ -34,4 +39,43 @@ pub fn square_ideographs(n: u32) -> Font {
         .collect();
     font.kerning.clear();
     font
+}
+
+/// A glyph's outline read back with skrifa at `location` (unhinted, font units).
+pub fn skrifa_outline(font: &FontRef, gid: GlyphId, location: LocationRef) -> BezPath {
+    let mut pen = Pen(BezPath::new());
+    font.outline_glyphs()
+        .get(gid)
+        .expect("the glyph is in the font")
+        .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
+        .expect("skrifa draws the glyph");
+    pen.0
+}
+
+/// A skrifa pen into a kurbo path.
+struct Pen(BezPath);
+
+impl OutlinePen for Pen {
+    fn move_to(&mut self, x: f32, y: f32) {
+        self.0.move_to((f64::from(x), f64::from(y)));
+    }
+    fn line_to(&mut self, x: f32, y: f32) {
+        self.0.line_to((f64::from(x), f64::from(y)));
+    }
+    fn quad_to(&mut self, cx0: f32, cy0: f32, x: f32, y: f32) {
+        self.0.quad_to(
+            (f64::from(cx0), f64::from(cy0)),
+            (f64::from(x), f64::from(y)),
+        );
+    }
+    fn curve_to(&mut self, cx0: f32, cy0: f32, cx1: f32, cy1: f32, x: f32, y: f32) {
+        self.0.curve_to(
+            (f64::from(cx0), f64::from(cy0)),
+            (f64::from(cx1), f64::from(cy1)),
+            (f64::from(x), f64::from(y)),
+        );
+    }
+    fn close(&mut self) {
+        self.0.close_path();
+    }
 }
