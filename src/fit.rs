@@ -65,8 +65,6 @@ const POLISH_ROUNDS: usize = 6;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
 const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
-/// Fewest curve samples per span polished by [`fit_span`] (the compatible fitter's).
-const MIN_POLISH_SAMPLES: usize = 6;
 /// Fewest grid steps per trial span of [`fit_contour`]'s search: polishing costs in
 /// proportion to the samples, and most spans are short enough that this minimum sets their
 /// number (6 cost 3 % more instructions on the corpus, for the same cubic count).
@@ -92,11 +90,9 @@ const PAIRING_NEWTON_DONE: f64 = 1e-5;
 const TRIAL_NEWTON_DONE: f64 = 1e-5;
 /// Rounds of plain least squares before Lawson's minimax re-weighting starts.
 const LAWSON_AFTER: usize = 3;
-/// The polish stops when a better round still leaves the worst sample distance above this
-/// fraction of the best before it (progress has stalled): [`fit_span`]'s polish.
-const STALLED: f64 = 0.97;
-/// [`STALLED`] for [`fit_contour`]'s trials: they stop earlier (on the corpus, 3 % fewer
-/// instructions and 2 more cubics; 0.8 made 14 more cubics).
+/// The polish of [`fit_contour`]'s trials stops when a better round still leaves the worst
+/// sample distance above this fraction of the best before it (progress has stalled; on the
+/// corpus 0.90 against 0.97 saves 3 % of instructions for 2 more cubics; 0.8 made 14 more).
 const TRIAL_STALLED: f64 = 0.90;
 /// The polish gives up on a span whose worst sample distance is still this many goals
 /// after the first Gauss-Newton step (far out of reach: a shorter span is needed).
@@ -427,13 +423,12 @@ impl<'a> StretchFit<'a> {
     }
 
     /// The polished cubic on `[a, b]`, leaving `a` in direction `d0`, sampled on the grid;
-    /// `low` as in [`Stop::trial`]. Give it back with [`StretchFit::recycle`].
+    /// `low` as in [`polish`]. Give it back with [`StretchFit::recycle`].
     fn trial(&mut self, a: f64, b: f64, d0: Vec2, low: f64) -> Trial {
         let mut trial = self.spare.pop().unwrap_or_default();
         self.grid.samples(a, b, &mut trial.samples);
         let (t0, t1) = (self.t0, self.t1);
-        let stop = Stop::trial(low);
-        fit_span_sampled(self.spline, (a, b), &mut trial, d0, t0, t1, self.goal, stop);
+        fit_span_sampled(self.spline, (a, b), &mut trial, d0, t0, t1, self.goal, low);
         trial
     }
 
@@ -831,75 +826,6 @@ pub(crate) fn turns_fast(p0: Point, d0: Vec2, p1: Point, d1: Vec2) -> bool {
     apart(d0, chord) || apart(chord, d1) || apart(d0, d1)
 }
 
-/// Fits one cubic to `[a, b]` of the stretch `[t0, t1]`, leaving `a` in direction `d0`
-/// (carried over from the previous cubic's end); the cubic
-/// and its largest distance to the polish's samples, a lower bound of the error that
-/// [`measure`] establishes.
-///
-/// The span's Hermite cubic is the start; [`polish`] takes its handles towards the
-/// minimax ones. (Measured on the test corpus: a least-squares start on chord-length
-/// parameters needs 5 % more segments; kurbo's area-and-moment `fit_to_cubic` as a second
-/// start saves a few percent of segments at twice the time.)
-pub(crate) fn fit_span(
-    spline: &XSpline,
-    a: f64,
-    b: f64,
-    d0: Vec2,
-    t0: f64,
-    t1: f64,
-    goal: f64,
-) -> (CubicBez, f64) {
-    let samples = Samples::new(
-        spline,
-        a,
-        b,
-        POLISH_SAMPLES_PER_SEGMENT,
-        MIN_POLISH_SAMPLES,
-        false,
-    );
-    let stop = Stop {
-        low: 0.0,
-        stalled: STALLED,
-        ends: true,
-        newton_done: 1e-10,
-    };
-    let mut trial = Trial {
-        samples,
-        ..Trial::default()
-    };
-    fit_span_sampled(spline, (a, b), &mut trial, d0, t0, t1, goal, stop);
-    (trial.cubic, trial.sampled)
-}
-
-/// When [`polish`] stops early, besides its round limit and a hopeless span.
-#[derive(Clone, Copy)]
-struct Stop {
-    /// Worst sample distance below which a trial short of the stretch's end stops (see
-    /// [`LOW_EXIT`]); zero polishes fully.
-    low: f64,
-    /// [`STALLED`] or [`TRIAL_STALLED`].
-    stalled: f64,
-    /// Whether the polish also projects the span's two end samples. They are the cubic's
-    /// own ends (at distance zero, or a rounding of it), so they only cost time; [`fit_span`]
-    /// keeps them so that its cubics stay as they were, to the bit.
-    ends: bool,
-    /// A projection stops once a Newton step moves it less than this (1e-10 for
-    /// [`fit_span`]; [`TRIAL_NEWTON_DONE`] for the trials).
-    newton_done: f64,
-}
-
-impl Stop {
-    /// The stops of [`fit_contour`]'s trials.
-    fn trial(low: f64) -> Stop {
-        Stop {
-            low,
-            stalled: TRIAL_STALLED,
-            ends: false,
-            newton_done: TRIAL_NEWTON_DONE,
-        }
-    }
-}
-
 /// A polished cubic on a span, with what the measure can take from the polish.
 struct Trial {
     cubic: CubicBez,
@@ -929,9 +855,15 @@ impl Default for Trial {
     }
 }
 
-/// [`fit_span`] on `trial`'s samples of `span` (the span's ends first and last), filling
-/// in the rest of `trial`: [`measure_within`] takes the samples as every second one of its
-/// own, with their projections; `stop` says when the polish may stop early.
+/// Fits one cubic to `span` of the stretch `[t0, t1]`, leaving the span's start in
+/// direction `d0`, on `trial`'s samples of it (the span's ends first and last), filling in
+/// the rest of `trial`: the cubic and its largest sample distance, a lower bound of the
+/// error that [`measure`] establishes; [`measure_within`] takes the samples as every second
+/// one of its own, with their projections. The span's Hermite cubic is the start;
+/// [`polish`] takes its handles towards the minimax ones (measured on the test corpus: a
+/// least-squares start on chord-length parameters needs 5 % more segments; kurbo's
+/// area-and-moment `fit_to_cubic` as a second start saves a few percent of segments at
+/// twice the time).
 #[allow(clippy::too_many_arguments)]
 fn fit_span_sampled(
     spline: &XSpline,
@@ -941,7 +873,7 @@ fn fit_span_sampled(
     t0: f64,
     t1: f64,
     goal: f64,
-    stop: Stop,
+    low: f64,
 ) {
     let samples = &trial.samples;
     let last = samples.len() - 1;
@@ -977,7 +909,7 @@ fn fit_span_sampled(
         (alpha, beta),
         (&mut trial.u, &mut trial.w),
         goal,
-        stop,
+        low,
     );
     trial.cubic = cubic;
     trial.sampled = sampled;
@@ -987,9 +919,13 @@ fn fit_span_sampled(
 /// Moves the handle lengths towards the minimax fit of the samples: Gauss-Newton on the
 /// orthogonal distances, with Lawson's re-weighting after the first rounds (which turns the
 /// least-squares optimum into the minimax one). `u` holds the samples' starting cubic
-/// parameters, and the last round's projections on return; `w` is a buffer. Returns the
-/// best cubic seen, its largest sample distance, and whether the last round was that
-/// cubic's.
+/// parameters, and the last round's projections on return; `w` is a buffer. The span's two
+/// end samples are the cubic's own ends (at distance zero, or a rounding of it), so they
+/// are not projected and have no weight. Besides its round limit and a hopeless span, the
+/// polish stops when progress stalls ([`TRIAL_STALLED`]) and, for a trial short of the
+/// stretch's end, once the worst sample distance is below `low` (see [`LOW_EXIT`]; zero
+/// polishes fully). Returns the best cubic seen, its largest sample distance, and whether
+/// the last round was that cubic's.
 #[allow(clippy::too_many_arguments)]
 fn polish(
     samples: &Samples,
@@ -999,22 +935,20 @@ fn polish(
     (alpha, beta): (f64, f64),
     (u, w): (&mut [f64], &mut Vec<f64>),
     goal: f64,
-    stop: Stop,
+    low: f64,
 ) -> (CubicBez, f64, bool) {
     let n = samples.len();
-    // Without the ends, the samples strictly inside the span.
-    let polished = if stop.ends { 0..n } else { 1..n.max(2) - 1 };
+    // The samples strictly inside the span.
+    let polished = 1..n.max(2) - 1;
     // Handles never vanish (a zero handle would take the end's tangent from the other
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
     let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
     w.clear();
     w.resize(n, 1.0 / n as f64);
-    if !stop.ends {
-        // The ends have no weight (in the Lawson rounds theirs would be their distance).
-        w[0] = 0.0;
-        w[n - 1] = 0.0;
-    }
+    // The ends have no weight (in the Lawson rounds theirs would be their distance).
+    w[0] = 0.0;
+    w[n - 1] = 0.0;
     let cubic_of = |alpha: f64, beta: f64| CubicBez::new(p0, p0 + alpha * d0, p3 - beta * d1, p3);
     // (alpha, beta, worst sample distance, Gauss-Newton step) of the best cubic so far.
     let mut best: Option<(f64, f64, f64, f64, f64)> = None;
@@ -1027,7 +961,7 @@ fn polish(
         let mut worst: f64 = 0.0;
         for i in polished.clone() {
             // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, stop.newton_done);
+            let (ui, r) = poly.residual_steps(samples.p[i], u[i], 3, TRIAL_NEWTON_DONE);
             let dist = r.hypot();
             u[i] = ui;
             worst = worst.max(dist);
@@ -1062,12 +996,12 @@ fn polish(
         current = best.is_none_or(|b| worst < b.2);
         if current {
             // Stop when progress stalls, or when the span is clearly out of reach.
-            let stalled = best.is_some_and(|b| worst > stop.stalled * b.2);
+            let stalled = best.is_some_and(|b| worst > TRIAL_STALLED * b.2);
             let hopeless = (round >= 1 && worst > HOPELESS_START * goal)
                 || (round >= LAWSON_AFTER && worst > HOPELESS_MINIMAX * goal);
             best = Some((alpha, beta, worst, step.0, step.1));
             damping = 1.0;
-            if stalled || hopeless || (round >= LOW_ROUND && worst < stop.low) {
+            if stalled || hopeless || (round >= LOW_ROUND && worst < low) {
                 break;
             }
         } else {
@@ -1726,60 +1660,6 @@ mod tests {
             point(0.0, 700.0, 0.0),
         ])
         .unwrap()
-    }
-
-    /// [`fit_span`], which the compatible fitter calls, gives the cubics it gave before
-    /// the trials' polish was made cheaper (session 9), to the bit: golden coordinates and
-    /// sampled errors from `main` at `deed487`.
-    #[test]
-    fn fit_span_keeps_its_cubics() {
-        let spline = bowl();
-        let Some(Stretch::Smooth { start, end }) = stretches(&spline)
-            .into_iter()
-            .find(|s| matches!(s, Stretch::Smooth { .. }))
-        else {
-            panic!("the bowl has a smooth stretch");
-        };
-        // (span, [p1.x, p1.y, p2.x, p2.y, sampled error]).
-        let goldens = [
-            (
-                0.35,
-                [
-                    9.893373664619991,
-                    0.31377742112803675,
-                    73.36463222249377,
-                    2.448022543490066,
-                    0.0022691778322600307,
-                ],
-            ),
-            (
-                0.8,
-                [
-                    25.683470135506845,
-                    0.822497562934465,
-                    257.67813344328397,
-                    9.428236921910205,
-                    1.657381184014457,
-                ],
-            ),
-            (
-                1.6,
-                [
-                    3.0241352919924993,
-                    0.09246655545547593,
-                    277.9678161472585,
-                    -165.3856849907114,
-                    39.81489330978603,
-                ],
-            ),
-        ];
-        let a = start + 0.1;
-        let d0 = direction(&spline, a, start, end);
-        for (h, golden) in goldens {
-            let (cubic, sampled) = fit_span(&spline, a, a + h, d0, start, end, 0.48);
-            let got = [cubic.p1.x, cubic.p1.y, cubic.p2.x, cubic.p2.y, sampled];
-            assert_eq!(got, golden, "span {h}");
-        }
     }
 
     /// On fits of a bowl from a sharp point, of growing length: the measure never reports

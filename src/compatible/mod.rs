@@ -880,21 +880,8 @@ impl<'a> Fitter<'a> {
                     checks = &masters;
                 }
                 Err(_) if h < 1e-9 => {
-                    // Nothing fits: take the best cubics there are. With no neighbour to
-                    // share handles with, that is each master's own, fully polished by the
-                    // static fitter (no early stop); otherwise the joint trial's.
-                    let (t0, t1) = stretch;
-                    let cubics = if ends.before.is_none() && ends.after.is_none() {
-                        self.masters
-                            .iter()
-                            .map(|spline| {
-                                let d0 = fit::direction(spline, a, t0, t1);
-                                fit::fit_span(spline, a, a + h, d0, t0, t1, self.goal).0
-                            })
-                            .collect()
-                    } else {
-                        self.trial(grids, (a, a + h), stretch, ends, 0.0).0
-                    };
+                    // Nothing fits: take the joint trial's cubics and report their error.
+                    let cubics = self.trial(grids, (a, a + h), stretch, ends, 0.0).0;
                     let mut span = self.span(a, a + h, stretch, cubics);
                     self.measure(&mut span, checks.iter().copied());
                     return span;
