@@ -30,6 +30,7 @@ pub mod contour;
 pub mod designspace;
 pub mod fit;
 pub mod font;
+pub mod kerning;
 pub mod masters;
 pub mod report;
 pub mod svg;
@@ -179,18 +180,63 @@ pub fn import_font(
     }
     let tolerance = check_tolerance(opts.tolerance, source.info.units_per_em)?;
     let info = FontInfo {
-        family: opts.family.clone().unwrap_or(source.info.family),
+        family: opts.family.clone().unwrap_or(source.info.family.clone()),
         tolerance: BUILD_SHARE * tolerance,
-        ..source.info
+        ..source.info.clone()
     };
     let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress)?;
-    for c in source.missing {
+    let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
+    imported.font.kerning = kerning.pairs.into_iter().next().unwrap_or_default();
+    imported.report.notes.extend(kerning.note);
+    for &c in &source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
             u32::from(c)
         ));
     }
     Ok(imported)
+}
+
+/// What [`read_font_kerning`] gives: pairs per location and a note on what it left out.
+pub(crate) struct FontKerning {
+    pairs: Vec<Vec<crate::model::KernPair>>,
+    note: Option<String>,
+}
+
+/// The `kern` feature's pairs among the imported glyphs ([`kerning`]) at each of
+/// `locations`; a damaged `GPOS` is an error naming the file.
+pub(crate) fn read_font_kerning(
+    path: &Path,
+    data: &[u8],
+    face: u32,
+    source: &font::SourceFont,
+    locations: &[&[skrifa::raw::types::F2Dot14]],
+) -> Result<FontKerning, ImportError> {
+    let font = skrifa::FontRef::from_index(data, face)
+        .map_err(|e| ImportError::at(path, format!("not a readable font ({e})")))?;
+    let glyphs: Vec<kerning::KernGlyph> = source
+        .ids
+        .iter()
+        .zip(&source.glyphs)
+        .map(|(&id, g)| kerning::KernGlyph {
+            id,
+            name: &g.name,
+            unicodes: &g.unicodes,
+        })
+        .collect();
+    let read = kerning::read_kerning(&font, &glyphs, locations)
+        .map_err(|e| ImportError::at(path, format!("damaged GPOS table: {e}")))?;
+    let note = (read.skipped > 0).then(|| {
+        format!(
+            "{} kerning pair(s) left out: they place glyphs or move the second glyph, which \
+             xglyph kerning (the first glyph's advance) cannot hold",
+            read.skipped
+        )
+    });
+    Ok(FontKerning {
+        pairs: read.pairs,
+        note,
+    })
 }
 
 /// Imports SVG drawings, one glyph per file: `(path, bytes)` in the order given.

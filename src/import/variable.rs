@@ -16,7 +16,7 @@
 //! Limits: a non-linear `avar` is refused (the design space has no axis map yet); variation
 //! regions that peak inside an axis (intermediate masters) or at corners of two axes are
 //! not taken: the masters at the ends interpolate linearly, and such a font is reported
-//! with a note. Kerning (GPOS) is not read, as for static fonts.
+//! with a note. Kerning comes from GPOS at each master's location ([`super::kerning`]).
 
 use std::path::Path;
 
@@ -147,6 +147,11 @@ pub fn import_variable_font(
     if let Some(note) = inner_regions(&font) {
         notes.push(note);
     }
+    let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
+        masters.iter().map(|m| m.coords.coords()).collect();
+    let kerning = super::read_font_kerning(path, data, opts.face, &source, &locations)?;
+    notes.extend(kerning.note);
+    let mut kerning = kerning.pairs.into_iter();
     let default_name = masters[0].name.clone();
     let info = FontInfo {
         family: opts.family.clone().unwrap_or(source.info.family.clone()),
@@ -157,7 +162,7 @@ pub fn import_variable_font(
     let default = Font {
         info,
         glyphs: glyphs.next().unwrap_or_default(),
-        kerning: Vec::new(),
+        kerning: kerning.next().unwrap_or_default(),
         features: None,
     };
     let report = |rows: Vec<GlyphReport>, notes: Vec<String>| Report {
@@ -177,7 +182,7 @@ pub fn import_variable_font(
             name: m.name,
             location: m.location,
             glyphs: glyphs.next().unwrap_or_default(),
-            kerning: Vec::new(),
+            kerning: kerning.next().unwrap_or_default(),
         });
     }
     Ok(ImportedFamily {

@@ -300,3 +300,78 @@ fn smooth_joins_stay_smooth() {
     assert!(joins > 50, "{joins}");
     assert!(worst.0 <= 2.0, "{worst:?}");
 }
+
+/// HarfBuzz's kerning of each pair of `chars`: the first glyph's advance in the shaped pair
+/// minus its advance alone, for the pairs where they differ (ligatures off).
+const HB_PAIRS: &str = r#"
+import json, sys, uharfbuzz as hb
+font = hb.Font(hb.Face(hb.Blob.from_file_path(sys.argv[1])))
+chars = sys.argv[2]
+off = {"liga": False, "clig": False, "dlig": False, "calt": False, "rlig": False}
+def advances(text):
+    buf = hb.Buffer()
+    buf.add_str(text)
+    buf.guess_segment_properties()
+    hb.shape(font, buf, off)
+    return [p.x_advance for p in buf.glyph_positions]
+alone = {c: advances(c)[0] for c in chars}
+out = {}
+for a in chars:
+    for b in chars:
+        got = advances(a + b)
+        assert len(got) == 2, (a, b)
+        if got[0] != alone[a]:
+            out[a + b] = got[0] - alone[a]
+print(json.dumps(out))
+"#;
+
+/// The imported kerning by character pair, for glyphs with one code point each.
+fn kerning_by_chars(imp: &Imported) -> std::collections::BTreeMap<String, f64> {
+    let chars: std::collections::HashMap<&str, char> = imp
+        .font
+        .glyphs
+        .iter()
+        .map(|g| (g.name.as_str(), g.unicodes[0]))
+        .collect();
+    imp.font
+        .kerning
+        .iter()
+        .map(|p| {
+            (
+                format!("{}{}", chars[p.left.as_str()], chars[p.right.as_str()]),
+                p.value,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn kerning_equals_harfbuzz_on_every_pair() {
+    // DejaVu kerns with class pairs (GPOS format 2) in two lookups: Latin text takes both,
+    // other scripts only the second, and a Latin letter beside a Cyrillic one is not kerned
+    // at all (two script runs). The Cyrillic import checks all three.
+    if !crate::common::tools::available(
+        crate::common::tools::python_imports("uharfbuzz"),
+        "uharfbuzz",
+        "pip install uharfbuzz",
+    ) {
+        return;
+    }
+    let cyrillic = "AVToyАГТУоя.";
+    let opts = ImportOptions {
+        glyphs: Some(xglyph::import::font::parse_glyph_list("А,Г,Т,У,о,я,A,V,T,o,y,.").unwrap()),
+        ..ImportOptions::default()
+    };
+    let mixed = import_font(Path::new(DEJAVU), &font_bytes(), &opts).unwrap();
+    let latin: String = ('A'..='Z').chain('a'..='z').chain('0'..='9').collect();
+    for (imp, chars) in [(&imported().0, latin.as_str()), (&mixed, cyrillic)] {
+        let expected: std::collections::BTreeMap<String, f64> =
+            crate::common::tools::python_json(HB_PAIRS, &[&DEJAVU, &chars]);
+        let got = kerning_by_chars(imp);
+        assert!(
+            expected.len() >= 15,
+            "{chars}: HarfBuzz kerns only {expected:?}"
+        );
+        assert_eq!(got, expected, "{chars}");
+    }
+}

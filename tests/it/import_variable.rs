@@ -349,3 +349,37 @@ fn fvar(font: &FontRef) -> Fvar {
             .collect(),
     )
 }
+
+#[test]
+fn each_master_gets_the_kerning_of_its_location() {
+    // The variable TTF's GPOS holds the Regular's pairs plus a variation delta per pair
+    // reaching the Bold's at wght 700; the import reads them back exactly per master.
+    let trip = round_trip();
+    let glyphs = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    for folder in ["", "bold"] {
+        let pairs = |dir: &Path| -> Vec<(String, String, f64)> {
+            let text = std::fs::read_to_string(dir.join(folder).join("kerning.toml")).unwrap();
+            let table: toml::Table = text.parse().unwrap();
+            let mut out: Vec<_> = table["pair"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| {
+                    (
+                        p["left"].as_str().unwrap().to_string(),
+                        p["right"].as_str().unwrap().to_string(),
+                        p["value"]
+                            .as_float()
+                            .or(p["value"].as_integer().map(|v| v as f64))
+                            .unwrap(),
+                    )
+                })
+                .collect();
+            out.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
+            out
+        };
+        let (source, imported) = (pairs(&glyphs), pairs(&trip.imported));
+        assert_eq!(source.len(), 143, "{folder}");
+        assert_eq!(imported, source, "{folder}");
+    }
+}
