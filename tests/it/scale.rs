@@ -410,8 +410,8 @@ fn check_with(threads: usize, dir: &Path) -> (Option<i32>, String) {
         .env("RAYON_NUM_THREADS", threads.to_string())
         .output()
         .expect("xglyph runs");
-    let text = String::from_utf8_lossy(&out.stdout).into_owned()
-        + &String::from_utf8_lossy(&out.stderr);
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
     (out.status.code(), text)
 }
 
