@@ -133,6 +133,31 @@ pub fn load_with(
     tolerance: Option<f64>,
     opts: OutlineOptions<'_>,
 ) -> Result<Loaded, PipelineError> {
+    Ok(read_sources(font_dir, tolerance)?.outline(opts))
+}
+
+/// A font directory loaded and checked, not yet fitted: [`read_sources`].
+#[derive(Debug)]
+pub struct Sources {
+    family: Family,
+    warnings: Vec<Diagnostic>,
+    tolerance: f64,
+}
+
+impl Sources {
+    /// Fits every glyph of the default master ([`outline_font_with`]).
+    pub fn outline(self, opts: OutlineOptions<'_>) -> Loaded {
+        Loaded {
+            font: outline_font_with(&self.family.default, self.tolerance, opts),
+            family: self.family,
+            warnings: self.warnings,
+        }
+    }
+}
+
+/// The first half of [`load_with`]: `font_dir` loaded and checked (the `--tolerance`
+/// value, the sources, `features.fea`), so that a caller can load its caches meanwhile.
+pub fn read_sources(font_dir: &Path, tolerance: Option<f64>) -> Result<Sources, PipelineError> {
     if let Some(t) = tolerance {
         check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
     }
@@ -155,10 +180,10 @@ pub fn load_with(
         });
     }
     let tolerance = tolerance.unwrap_or(family.default.info.tolerance);
-    Ok(Loaded {
-        font: outline_font_with(&family.default, tolerance, opts),
+    Ok(Sources {
         family,
         warnings,
+        tolerance,
     })
 }
 

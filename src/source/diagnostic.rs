@@ -193,6 +193,18 @@ impl Diagnostics {
         }
     }
 
+    /// Adds the diagnostics of `other`, gathered for other files than this one's (the
+    /// per-file limit is not applied again).
+    pub fn absorb(&mut self, other: Diagnostics) {
+        self.kept.extend(other.kept);
+        for (path, n) in other.per_file {
+            *self.per_file.entry(path).or_default() += n;
+        }
+        for (key, n) in other.left_out {
+            *self.left_out.entry(key).or_default() += n;
+        }
+    }
+
     pub fn has_errors(&self) -> bool {
         self.kept.iter().any(|d| d.severity == Severity::Error)
             || self.left_out.keys().any(|(_, s)| *s == Severity::Error)

@@ -374,29 +374,44 @@ fn model_masters(
 /// Reads and loads each glyph file; also whether any failed (unreadable, or with an error
 /// of its own).
 fn load_glyph_files(paths: &[PathBuf], out: &mut Diagnostics) -> (Vec<GlyphFile>, bool) {
-    let mut glyphs = Vec::new();
+    use rayon::prelude::*;
+    // Each file on any core with diagnostics of its own, merged in path order: a file's
+    // diagnostics (and its per-file limit) concern its path alone, so the merged list is
+    // the one a sequential load gathers, whatever the thread count.
+    let loaded: Vec<(Option<GlyphFile>, Diagnostics)> = paths
+        .par_iter()
+        .map(|path| {
+            let mut mine = Diagnostics::default();
+            let file = load_glyph_file(path, &mut mine);
+            (file, mine)
+        })
+        .collect();
+    let mut glyphs = Vec::with_capacity(loaded.len());
     let mut failed = false;
-    for path in paths {
-        let Some(text) = read(path, out) else {
-            failed = true;
-            continue;
-        };
-        let loaded = load_glyph(&mut Ctx::new(path, &text, out));
-        match loaded {
-            Some(loaded) => {
-                failed |= !loaded.complete;
-                glyphs.push(GlyphFile {
-                    glyph: loaded.glyph,
-                    complete: loaded.complete,
-                    spans: loaded.spans,
-                    path: path.clone(),
-                    text,
-                });
+    for (file, diagnostics) in loaded {
+        out.absorb(diagnostics);
+        match file {
+            Some(file) => {
+                failed |= !file.complete;
+                glyphs.push(file);
             }
             None => failed = true,
         }
     }
     (glyphs, failed)
+}
+
+/// One glyph file read and loaded (`None`: unreadable or not a glyph at all).
+fn load_glyph_file(path: &Path, out: &mut Diagnostics) -> Option<GlyphFile> {
+    let text = read(path, out)?;
+    let loaded = load_glyph(&mut Ctx::new(path, &text, out))?;
+    Some(GlyphFile {
+        glyph: loaded.glyph,
+        complete: loaded.complete,
+        spans: loaded.spans,
+        path: path.to_path_buf(),
+        text,
+    })
 }
 
 /// The glyph files of `dir`, sorted: every `*.toml` except `font.toml`, `kerning.toml`

@@ -402,3 +402,59 @@ fn a_build_from_the_cache_writes_the_same_bytes() {
     // The cache never goes beside the sources.
     assert!(!glyphs.join(xglyph::cache::CACHE_FILE).exists());
 }
+
+/// `xglyph check DIR` with `RAYON_NUM_THREADS=threads`: its exit code and stderr.
+fn check_with(threads: usize, dir: &Path) -> (Option<i32>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args(["check".as_ref(), dir.as_os_str()])
+        .env("RAYON_NUM_THREADS", threads.to_string())
+        .output()
+        .expect("xglyph runs");
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code(), text)
+}
+
+#[test]
+fn glyph_files_load_in_parallel_with_the_diagnostics_of_a_sequential_load() {
+    // 60 glyph files, each broken in its own way: an advance that is not a number, a
+    // point with two numbers, or 120 bad points (over the 100 listed per file); and one
+    // good glyph. The diagnostics name files in order, whatever the thread count.
+    let dir = scratch("parallel-load");
+    std::fs::copy(repo("tests/fixtures/mini/font.toml"), dir.join("font.toml")).unwrap();
+    std::fs::copy(
+        repo("tests/fixtures/mini/_notdef.toml"),
+        dir.join("_notdef.toml"),
+    )
+    .unwrap();
+    for k in 0..60 {
+        let text = match k % 3 {
+            0 => format!("name = \"g{k:02}\"\nadvance = \"wide\"\n"),
+            1 => format!(
+                "name = \"g{k:02}\"\nadvance = 500\n\n[[contour]]\npoints = [[0, 0, 0], \
+                 [100, 0], [100, 100, 0], [0, 100, 0]]\n"
+            ),
+            _ => {
+                let bad: Vec<String> = (0..120).map(|i| format!("[{i}, 0]")).collect();
+                format!(
+                    "name = \"g{k:02}\"\nadvance = 500\n\n[[contour]]\npoints = [{}]\n",
+                    bad.join(", ")
+                )
+            }
+        };
+        std::fs::write(dir.join(format!("g{k:02}.toml")), text).unwrap();
+    }
+    let (code, one) = check_with(1, &dir);
+    assert_eq!(code, Some(1), "{one}");
+    let (_, four) = check_with(4, &dir);
+    assert_eq!(one, four);
+    // Every broken file is named, in file order, and the long one's list is cut.
+    let named: Vec<usize> = (0..60)
+        .map(|k| {
+            one.find(&format!("g{k:02}.toml"))
+                .unwrap_or_else(|| panic!("g{k:02}.toml not named:\n{one}"))
+        })
+        .collect();
+    assert!(named.windows(2).all(|w| w[0] < w[1]), "{one}");
+    assert!(one.contains("… and "), "{one}");
+}
