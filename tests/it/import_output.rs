@@ -130,13 +130,14 @@ fn a_full_disk_leaves_nothing_and_the_rerun_works() {
     // The rerun into the same place with fewer glyphs works.
     let stdout = import_ok(&[DEJAVU, "--glyphs", "A-C"], &out);
     assert!(
-        stdout.ends_with(&format!("wrote 4 files to {}\n", out.display())),
+        stdout.ends_with(&format!("wrote 5 files to {}\n", out.display())),
         "{stdout}"
     );
     assert_eq!(listing(&mnt), ["dejavu"]);
+    // DejaVu kerns A-A, A-C and B-C.
     assert_eq!(
         listing(&out),
-        ["A_.toml", "B_.toml", "C_.toml", "font.toml"]
+        ["A_.toml", "B_.toml", "C_.toml", "font.toml", "kerning.toml"]
     );
 }
 
@@ -189,7 +190,8 @@ fn the_same_bytes_on_one_thread_and_on_four() {
                 (name, bytes)
             })
             .collect();
-        assert_eq!(files.len(), 29);
+        // 28 glyphs, font.toml and kerning.toml.
+        assert_eq!(files.len(), 30);
         outputs.push((stdout.replace(out.to_str().unwrap(), "OUT"), files));
     }
     assert!(
