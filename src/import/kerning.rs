@@ -56,12 +56,15 @@ pub fn read_kerning(
         pairs: vec![Vec::new(); locations.len()],
         skipped: 0,
     };
-    let Ok(gpos) = font.gpos() else {
-        return Ok(out);
+    let gpos = match font.gpos() {
+        Ok(gpos) => gpos,
+        Err(ReadError::TableIsMissing(_)) => return Ok(out),
+        Err(e) => return Err(e),
     };
-    let store = match font.gdef().ok().and_then(|g| g.item_var_store()) {
-        Some(store) => Some(store?),
-        None => None,
+    let store = match font.gdef() {
+        Ok(gdef) => gdef.item_var_store().transpose()?,
+        Err(ReadError::TableIsMissing(_)) => None,
+        Err(e) => return Err(e),
     };
     let names: HashMap<u16, &str> = glyphs.iter().map(|g| (g.id, g.name)).collect();
     let scripts: HashMap<u16, Option<Tag>> = glyphs

@@ -375,3 +375,32 @@ fn kerning_equals_harfbuzz_on_every_pair() {
         assert_eq!(got, expected, "{chars}");
     }
 }
+
+#[test]
+fn a_damaged_gpos_is_an_error_naming_the_file() {
+    // DejaVu with its GPOS lookup list offset pointed past the end of the table.
+    let mut data = font_bytes();
+    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
+    let record = (0..tables)
+        .map(|i| 12 + 16 * i)
+        .find(|&r| &data[r..r + 4] == b"GPOS")
+        .expect("DejaVu has GPOS");
+    let at = |k: usize| u32::from_be_bytes(data[k..k + 4].try_into().unwrap()) as usize;
+    let (offset, length) = (at(record + 8), at(record + 12));
+    let lookup_list = offset + 8;
+    data[lookup_list..lookup_list + 2].copy_from_slice(&(length as u16 + 16).to_be_bytes());
+    let dir = temp_dir("damaged-gpos");
+    std::fs::create_dir_all(&dir).unwrap();
+    let font = dir.join("damaged.ttf");
+    std::fs::write(&font, &data).unwrap();
+    let out = dir.join("out");
+    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "A-C"], &out);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: damaged GPOS table: An offset was out of bounds\n",
+            font.display()
+        )
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
