@@ -4,16 +4,17 @@
 //! pairs, and shaping every pair would cost a shaping call per pair.
 //!
 //! What a shaper applies to two neighbours is what comes in: every lookup of the `kern`
-//! feature of the pair's script (its default language system) in lookup order, each lookup's first subtable that
-//! matches the pair, the values of different lookups added. A format-2 (class) subtable
-//! matches every pair whose first glyph it covers, so a later subtable of the same lookup
-//! never sees those pairs. Class pairs are expanded to glyph pairs, as the UFO import
-//! expands groups. In a variable font each value is the default's plus its `GDEF`
-//! variation delta at the master's location.
+//! feature of the pair's script (its default language system) in lookup order, each
+//! lookup's first subtable that matches the pair, the values of different lookups added.
+//! A format-2 (class) subtable matches every pair whose first glyph it covers, so a later
+//! subtable of the same lookup never sees those pairs. Class pairs are expanded to glyph
+//! pairs, as the UFO import expands groups. In a variable font each value is the
+//! default's plus its `GDEF` variation delta at the master's location.
 //!
-//! Limits: only the first glyph's x-advance is read (left-to-right kerning); values that
-//! place glyphs or adjust the second glyph, the legacy `kern` table, feature variations
-//! and hinting device tables are not, and a pair that uses them is counted in a note.
+//! Limits: only the first glyph's x-advance is read (left-to-right kerning); a pair that
+//! places a glyph or moves the second one is left out and counted in a note. Not read: the
+//! legacy `kern` table, feature variations, language systems other than a script's
+//! default, hinting device tables, and the 24-bit glyph id formats.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
