@@ -179,16 +179,17 @@ pub fn import_font(
         ));
     }
     let tolerance = check_tolerance(opts.tolerance, source.info.units_per_em)?;
+    // Read before the glyphs are fitted: a damaged GPOS fails at once.
+    let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
     let info = FontInfo {
-        family: opts.family.clone().unwrap_or(source.info.family.clone()),
+        family: opts.family.clone().unwrap_or(source.info.family),
         tolerance: BUILD_SHARE * tolerance,
-        ..source.info.clone()
+        ..source.info
     };
     let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress)?;
-    let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
     imported.font.kerning = kerning.pairs.into_iter().next().unwrap_or_default();
     imported.report.notes.extend(kerning.note);
-    for &c in &source.missing {
+    for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
             u32::from(c)

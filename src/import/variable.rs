@@ -95,6 +95,10 @@ pub fn import_variable_font(
     let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
     check_gvar(&font, &source).map_err(fail)?;
     let masters = master_locations(&font, &designspace);
+    // Read before the glyphs are fitted: a damaged GPOS fails at once.
+    let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
+        masters.iter().map(|m| m.coords.coords()).collect();
+    let kerning = super::read_font_kerning(path, data, opts.face, &source, &locations)?;
     let style_of = |m: &MasterAt| m.name.clone();
     // Every glyph in every master, read first (a damaged gvar is an error naming the file).
     let mut per_glyph: Vec<Vec<SourceGlyph>> = Vec::with_capacity(source.glyphs.len());
@@ -147,9 +151,6 @@ pub fn import_variable_font(
     if let Some(note) = inner_regions(&font) {
         notes.push(note);
     }
-    let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
-        masters.iter().map(|m| m.coords.coords()).collect();
-    let kerning = super::read_font_kerning(path, data, opts.face, &source, &locations)?;
     notes.extend(kerning.note);
     let mut kerning = kerning.pairs.into_iter();
     let default_name = masters[0].name.clone();
