@@ -62,6 +62,8 @@ pub struct OutputSet {
     /// What the last commit left in the files (by output path), trusted while the files'
     /// metadata match.
     earlier: HashMap<PathBuf, FileStamp>,
+    /// Outputs that stay as they are in OUT, not written ([`OutputSet::keeping`]).
+    kept: Vec<PathBuf>,
 }
 
 /// What a file held when a commit last wrote (or kept) it: its metadata (length, inode,
@@ -92,6 +94,14 @@ impl FileStamp {
             std::time::UNIX_EPOCH + std::time::Duration::new(meta[4], u32::try_from(meta[5]).ok()?);
         let age = std::time::SystemTime::now().duration_since(changed).ok()?;
         (age >= SETTLED).then_some(FileStamp { meta, sha256 })
+    }
+
+    /// Whether the file at `path` (not following a link) still has this stamp's metadata.
+    pub fn matches(&self, path: &Path) -> bool {
+        fs::symlink_metadata(path)
+            .ok()
+            .and_then(|meta| stamp_meta(&meta))
+            == Some(self.meta)
     }
 }
 
@@ -230,6 +240,15 @@ impl OutputSet {
         self
     }
 
+    /// Declares outputs that are already in place and stay as they are (the caller knows
+    /// their files hold their bytes: [`crate::reuse::Reuse::kept_or_make`]). They are not
+    /// written; they count for the duplicate check, and their folders are cleaned of stale
+    /// temporary files like those of written outputs.
+    pub fn keeping(mut self, kept: Vec<PathBuf>) -> Self {
+        self.kept = kept;
+        self
+    }
+
     /// Writes every output, or none (see the module docs). Stale temporary files of a
     /// killed earlier commit in the output folders are removed first.
     pub fn commit(self) -> Result<(), WriteError> {
@@ -255,7 +274,7 @@ impl OutputSet {
         } else {
             Vec::new()
         };
-        let result = tx.run(&self.files, &hashes, &self.earlier);
+        let result = tx.run(&self.files, &hashes, &self.earlier, &self.kept);
         match result {
             Ok(()) => {
                 tx.finish();
@@ -306,10 +325,11 @@ impl Transaction {
         files: &[(PathBuf, Vec<u8>)],
         hashes: &[[u8; 32]],
         earlier: &HashMap<PathBuf, FileStamp>,
+        kept: &[PathBuf],
     ) -> Result<(), WriteError> {
         let mut seen = std::collections::HashSet::new();
-        for (path, _) in files {
-            if !seen.insert(path.clone()) {
+        for path in files.iter().map(|(path, _)| path).chain(kept) {
+            if !seen.insert(path.as_path()) {
                 return Err(error(path, WriteErrorKind::Duplicate));
             }
         }
@@ -336,6 +356,11 @@ impl Transaction {
             check_interrupt(path)?;
             if changed {
                 self.stage(path, bytes)?;
+            }
+        }
+        for dir in kept.iter().map(|path| parent(path)) {
+            if cleaned.insert(dir.to_path_buf()) {
+                remove_stale(dir, files);
             }
         }
         if self.staged.is_empty() {

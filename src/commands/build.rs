@@ -159,17 +159,18 @@ fn with_status_line<T>(status: impl Fn() -> Option<String> + Sync, work: impl Fn
 }
 
 /// The summary printed after a build.
-pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]) -> String {
+pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[&Path]) -> String {
     // Three significant digits of the tolerance's order, at least three decimals.
     let digits = (2.0 - summary.tolerance.log10().floor()).clamp(3.0, 12.0) as usize;
     let worst = match &summary.worst {
         Some((name, error)) => format!("{error:.digits$} font units (glyph `{name}`)"),
         None => "none".into(),
     };
+    // In the order the outputs were made (`files` lists the ones left in OUT last).
     let top: Vec<String> = files
         .iter()
-        .filter(|(p, _)| p.parent() == Some(Path::new("")))
-        .map(|(p, _)| p.display().to_string())
+        .filter(|p| p.parent() == Some(Path::new("")))
+        .map(|p| p.display().to_string())
         .collect();
     // Sheet pages as one item: `sheet-1.png … sheet-41.png (41 pages)`.
     let pages = top.iter().filter(|n| n.starts_with("sheet-")).count();
@@ -185,10 +186,10 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
     } else {
         top
     };
-    let in_svg = files.iter().filter(|(p, _)| p.starts_with("svg")).count();
+    let in_svg = files.iter().filter(|p| p.starts_with("svg")).count();
     // UFO folders as one item each: `XglyphSans-Regular.ufo/ (158 files)`.
     let mut ufos: Vec<(String, usize)> = Vec::new();
-    for (p, _) in files {
+    for p in files {
         if let Some(first) = p.components().next() {
             let first = first.as_os_str().to_string_lossy();
             if first.ends_with(".ufo") && p.parent() != Some(Path::new("")) {
@@ -344,8 +345,14 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         rayon::join(
             || {
                 rayon::join(
-                    || pipeline::outputs_with(&loaded.font, &opts, &reuse),
-                    || pipeline::instance_outputs_with(&loaded, &opts, cache.as_ref()),
+                    || {
+                        // A font with masters writes the UFOs of its compatible fit instead.
+                        let ufo = !loaded.family.is_variable();
+                        pipeline::static_outputs_with(&loaded.font, &opts, &reuse, ufo)
+                    },
+                    || {
+                        pipeline::instance_outputs_reusing(&loaded, &opts, cache.as_ref(), &reuse)
+                    },
                 )
             },
             || pipeline::variable_outputs_with(&loaded, cache.as_ref(), &reuse),
@@ -359,7 +366,14 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     }
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
-    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
+    // The outputs left in OUT unmade count as written.
+    let kept = reuse.kept_paths();
+    let paths: Vec<&Path> = files
+        .iter()
+        .map(|(p, _)| p.as_path())
+        .chain(kept.iter().map(|p| p.as_path()))
+        .collect();
+    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &paths);
     show_phase(&format!("writing {} files", files.len()), || {
         pipeline::write_output_files_with(&args.font.out, files, &reuse)
     })?;
@@ -390,6 +404,12 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         outln!(
             "took {} outputs unchanged from the last build (sheet pages, proof, WOFF2)",
             reuse.reused()
+        );
+    }
+    if !kept.is_empty() {
+        outln!(
+            "left {} glyph files (SVG, UFO) of unchanged glyphs as the last build wrote them",
+            kept.len()
         );
     }
     // The outputs are written: a cache that cannot be written only costs the next build time.
