@@ -26,7 +26,7 @@ use crate::render::{
     ProofOptions, RenderError, SheetOptions,
 };
 use crate::reuse::{font_key, KeyBuilder, Reuse};
-use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
+use crate::source::{check_tolerance_flag, load_family_with, Diagnostic, Severity, SourceMemo};
 use crate::names::file_stems;
 use crate::svg::{glyph_svg, output_stem, svg_font, svg_glyph_key};
 use crate::write::{OutputSet, WriteError};
@@ -160,11 +160,21 @@ impl Sources {
 /// The first half of [`load_with`]: `font_dir` loaded and checked (the `--tolerance`
 /// value, the sources, `features.fea`), so that a caller can load its caches meanwhile.
 pub fn read_sources(font_dir: &Path, tolerance: Option<f64>) -> Result<Sources, PipelineError> {
+    read_sources_with(font_dir, tolerance, &SourceMemo::off())
+}
+
+/// [`read_sources`], taking the glyph files that did not change since the last build from
+/// `memo` ([`SourceMemo`]).
+pub fn read_sources_with(
+    font_dir: &Path,
+    tolerance: Option<f64>,
+    memo: &SourceMemo,
+) -> Result<Sources, PipelineError> {
     if let Some(t) = tolerance {
         check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
     }
     let (family, warnings) =
-        load_family(font_dir).map_err(|diagnostics| PipelineError::Sources {
+        load_family_with(font_dir, memo).map_err(|diagnostics| PipelineError::Sources {
             dir: font_dir.to_path_buf(),
             diagnostics,
         })?;

@@ -65,6 +65,19 @@ const FORMAT_VERSION: u32 = 2;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Key([u8; 32]);
 
+impl Key {
+    /// The hash's bytes.
+    pub fn to_bytes(self) -> [u8; 32] {
+        self.0
+    }
+}
+
+/// Whether the running program's identity is known (its executable could be read): keys
+/// made without it would not tell two programs apart, so nothing is reused then.
+pub fn program_is_known() -> bool {
+    program_identity().is_some()
+}
+
 /// Builds a [`Key`]: every input goes in with its length or its kind, so that two
 /// different input lists never hash the same bytes.
 #[derive(Clone)]

@@ -20,7 +20,7 @@ use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Sum
 use crate::render::ProofOptions;
 use crate::reuse::{Reuse, REUSE_FILE};
 use crate::source::emit;
-use crate::source::Diagnostic;
+use crate::source::{Diagnostic, SourceMemo, MEMO_FILE};
 use crate::terminal::{err, errln, out, outln};
 
 #[derive(Debug, clap::Args)]
@@ -299,10 +299,19 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
     let _ = crate::write::exit_on_interrupt();
     let cache_path = args.font.out.join(CACHE_FILE);
+    let memo_path = args.font.out.join(MEMO_FILE);
+    // The glyph files as the last build loaded them, before the sources.
+    let (memo, memo_ignored) = SourceMemo::load(&memo_path);
+    if let Some(reason) = memo_ignored {
+        errln!(
+            "note: ignoring {}: {reason}; every glyph file is read anew",
+            memo_path.display()
+        );
+    }
     // The sources, the fit cache and the output record are read on any core at once (a
     // CJK font's are 20,000 files, 100 MB and 4 MB); the messages keep their order.
     let (sources, ((cache, outcome), (reuse, ignored))) = rayon::join(
-        || pipeline::read_sources(&args.font.font_dir, args.font.tolerance),
+        || pipeline::read_sources_with(&args.font.font_dir, args.font.tolerance, &memo),
         || {
             rayon::join(
                 || FitCache::load(&cache_path),
@@ -417,6 +426,13 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         errln!(
             "warning: cannot write {}: {}",
             args.font.out.join(REUSE_FILE).display(),
+            crate::write::reason(&e)
+        );
+    }
+    if let Err(e) = memo.save(&memo_path) {
+        errln!(
+            "warning: cannot write {}: {}",
+            memo_path.display(),
             crate::write::reason(&e)
         );
     }
