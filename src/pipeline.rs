@@ -18,6 +18,7 @@ use crate::family::{outline_family_with, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
 use crate::layout::Layout;
 use crate::model::Family;
+use crate::names::file_stems;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::remove_overlaps_font_with;
@@ -27,7 +28,6 @@ use crate::render::{
 };
 use crate::reuse::{font_key, KeyBuilder, Reuse};
 use crate::source::{check_tolerance_flag, load_family_with, Diagnostic, Severity, SourceMemo};
-use crate::names::file_stems;
 use crate::svg::{glyph_svg, output_stem, svg_font, svg_glyph_key};
 use crate::write::{OutputSet, WriteError};
 

@@ -366,9 +366,22 @@ impl Reuse {
     /// Writes this build's records into OUT (atomically); call it once every output is
     /// written. Nothing without an output folder.
     pub fn save(&self) -> io::Result<()> {
-        let Some(out) = &self.out else {
+        let (Some(out), Some(body)) = (&self.out, self.bytes_to_save()?) else {
             return Ok(());
         };
+        let path = out.join(REUSE_FILE);
+        if fs::read(&path).is_ok_and(|old| old == body) {
+            return Ok(());
+        }
+        crate::write::write_atomic(&path, &body)
+    }
+
+    /// The bytes [`Reuse::save`] writes into OUT's [`REUSE_FILE`] (`None` without an output
+    /// folder).
+    pub fn bytes_to_save(&self) -> io::Result<Option<Vec<u8>>> {
+        if self.out.is_none() {
+            return Ok(None);
+        }
         let now = self
             .now
             .lock()
@@ -416,11 +429,7 @@ impl Reuse {
             body.extend_from_slice(&stamp.sha256);
         }
         Header::seal(&mut body);
-        let path = out.join(REUSE_FILE);
-        if fs::read(&path).is_ok_and(|old| old == body) {
-            return Ok(());
-        }
-        crate::write::write_atomic(&path, &body)
+        Ok(Some(body))
     }
 }
 

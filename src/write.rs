@@ -14,7 +14,10 @@
 //!    whose length, inode, modification and change times are those recorded, and whose
 //!    recorded SHA-256 is that of the new bytes, holds them already. Anything else is
 //!    compared byte for byte. A file changed in the last 50 ms gets no stamp (the file
-//!    system's clock is coarse: see [`FileStamp`]).
+//!    system's clock is coarse: see [`FileStamp`]). Outputs whose bytes the caller did not
+//!    make, because it knows from their stamps that OUT holds them already, are declared
+//!    with [`OutputSet::keeping`]: they are left alone and only count for the duplicate
+//!    check and the cleaning of their folders.
 //! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
 //!    system; a link at the final name is replaced, never followed). A file it replaces is
 //!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file

@@ -21,6 +21,7 @@ use std::fs;
 use std::io;
 use std::ops::Range;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use super::glyph::GlyphSpans;
@@ -54,6 +55,7 @@ pub struct SourceMemo {
     bytes: Vec<u8>,
     earlier: HashMap<[u8; 32], Slot>,
     made: Mutex<Vec<([u8; 32], Vec<u8>)>>,
+    taken: AtomicUsize,
 }
 
 impl std::fmt::Debug for SourceMemo {
@@ -102,7 +104,16 @@ impl SourceMemo {
 
     /// What the last build loaded from the file of `key`, if it did.
     pub(super) fn take(&self, key: &[u8; 32]) -> Option<(Glyph, GlyphSpans)> {
-        self.earlier.get(key)?.glyph.lock().ok()?.take()
+        let taken = self.earlier.get(key)?.glyph.lock().ok()?.take();
+        if taken.is_some() {
+            self.taken.fetch_add(1, Ordering::Relaxed);
+        }
+        taken
+    }
+
+    /// How many glyph files came from the memo.
+    pub fn taken(&self) -> usize {
+        self.taken.load(Ordering::Relaxed)
     }
 
     /// Keeps what the loader made of the file of `key` (complete, no diagnostic).
@@ -110,7 +121,10 @@ impl SourceMemo {
         if !self.on {
             return;
         }
-        let mut body = Vec::new();
+        // Sized once: 32 bytes a point (three reals and an offset), a little for the rest.
+        let points: usize = glyph.contours.iter().map(|c| c.points().len()).sum();
+        let parts = glyph.unicodes.len() + glyph.components.len() + glyph.anchors.len();
+        let mut body = Vec::with_capacity(128 + glyph.name.len() + 32 * (points + parts));
         put_entry(&mut body, glyph, spans);
         if let Ok(mut made) = self.made.lock() {
             made.push((key, body));
@@ -120,13 +134,19 @@ impl SourceMemo {
     /// Writes the entries this build used or made to `path` (atomically), unless they are
     /// those of the file it loaded.
     pub fn save(&self, path: &Path) -> io::Result<()> {
-        if !self.on {
-            return Ok(());
+        match self.bytes_to_save() {
+            Some(bytes) => crate::write::write_atomic(path, &bytes),
+            None => Ok(()),
         }
-        let made = self
-            .made
-            .lock()
-            .map_err(|_| io::Error::other("a loader thread panicked"))?;
+    }
+
+    /// The bytes [`SourceMemo::save`] writes; `None` when there is nothing to write (the
+    /// memo is off, or this build used every entry of the file and made none).
+    pub fn bytes_to_save(&self) -> Option<Vec<u8>> {
+        if !self.on {
+            return None;
+        }
+        let made = self.made.lock().ok()?;
         let mut entries: Vec<([u8; 32], &[u8])> = made.iter().map(|(k, b)| (*k, &b[..])).collect();
         let mut all_used = true;
         for (key, slot) in &self.earlier {
@@ -137,7 +157,7 @@ impl SourceMemo {
             all_used &= used;
         }
         if made.is_empty() && all_used {
-            return Ok(());
+            return None;
         }
         entries.sort_by_key(|(key, _)| *key);
         let mut out = HEADER.start();
@@ -148,7 +168,7 @@ impl SourceMemo {
             out.extend_from_slice(body);
         }
         Header::seal(&mut out);
-        crate::write::write_atomic(path, &out)
+        Some(out)
     }
 }
 

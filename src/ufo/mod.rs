@@ -207,8 +207,7 @@ pub fn output_files_reusing(
     fill_font(&mut ufo, font)?;
     // The empty glyphs' files are dropped: the `.glif`s are those made above.
     let is_glif = |path: &Path| {
-        path.parent() == Some(layer_dir.as_path())
-            && path.extension().is_some_and(|e| e == "glif")
+        path.parent() == Some(layer_dir.as_path()) && path.extension().is_some_and(|e| e == "glif")
     };
     let mut files: Vec<(PathBuf, Vec<u8>)> = files(&ufo)?
         .into_iter()
