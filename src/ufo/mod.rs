@@ -162,6 +162,9 @@ pub fn output_files(font: &OutlinedFont) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoE
     output_files_reusing(font, &Reuse::off())
 }
 
+/// One file of a UFO: its path and bytes.
+type UfoFile = (PathBuf, Vec<u8>);
+
 /// [`output_files`], leaving out each `.glif` that OUT holds already as the last build made
 /// it from the same glyph ([`Reuse::kept_or_make`]). The `.glif`s are encoded on every core
 /// (norad, as it would write them); the other files are norad's, of the font with empty
@@ -182,7 +185,7 @@ pub fn output_files_reusing(
     let layer_dir = layer.path().to_path_buf();
     let owns = own_contours(font);
     // In font order, so that the first glyph in error is the one reported.
-    let glifs: Vec<Result<Option<(PathBuf, Vec<u8>)>, UfoError>> = font
+    let glifs: Vec<Result<Option<UfoFile>, UfoError>> = font
         .glyphs
         .par_iter()
         .zip(owns)
