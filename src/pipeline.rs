@@ -572,9 +572,12 @@ pub fn static_outputs_with(
         || -> Result<_, PipelineError> {
             let (svg, ufo) = rayon::join(
                 || svg_outputs_reusing(font, reuse),
-                || match ufo {
-                    true => crate::ufo::output_files_reusing(font, reuse),
-                    false => Ok(Vec::new()),
+                || {
+                    if ufo {
+                        crate::ufo::output_files_reusing(font, reuse)
+                    } else {
+                        Ok(Vec::new())
+                    }
                 },
             );
             Ok((svg, ufo?))

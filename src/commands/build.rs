@@ -166,7 +166,7 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[&Path]) -> 
         Some((name, error)) => format!("{error:.digits$} font units (glyph `{name}`)"),
         None => "none".into(),
     };
-    // In the order the outputs were made (`files` lists the ones left in OUT last).
+    // `files`: the outputs written, then those left in OUT (never at the top level).
     let top: Vec<String> = files
         .iter()
         .filter(|p| p.parent() == Some(Path::new("")))
