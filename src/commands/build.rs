@@ -329,7 +329,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             cache_path.display()
         );
     }
-    let loaded = outline_sources(sources, Some(&cache))?;
+    let mut loaded = outline_sources(sources, Some(&cache))?;
     if let Some(reason) = ignored {
         errln!(
             "note: ignoring {}: {reason}; every output is made anew",
@@ -346,11 +346,13 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     };
     // A font without masters fits nothing more: its cache is encoded now and its maps
     // dropped (hundreds of MB for a CJK font) before the outputs are made; the file is
-    // still written after them, so a failed build leaves OUT alone.
+    // still written after them, so a failed build leaves OUT alone. Its sources' glyphs are
+    // dropped too (70 MB for a CJK font): the outputs read the outlined font only.
     let (cache, mut to_save) = if loaded.family.is_variable() {
         (Some(cache), None)
     } else {
         let stats = (cache.hits(), cache.misses());
+        loaded.family.default.glyphs = Vec::new();
         (None, Some((cache.bytes_to_save(&cache_path), stats)))
     };
     // The three groups of outputs on every core (rayon); errors in this order.
