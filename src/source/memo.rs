@@ -98,7 +98,7 @@ impl SourceMemo {
     /// The key of the glyph file `path` holding `text`.
     pub(super) fn key(path: &Path, text: &str) -> [u8; 32] {
         let mut k = KeyBuilder::new("glyph source");
-        k.str(&path.to_string_lossy()).str(text);
+        k.bytes(path.as_os_str().as_encoded_bytes()).str(text);
         k.finish().to_bytes()
     }
 
