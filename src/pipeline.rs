@@ -6,6 +6,7 @@
 //! (the command line prints them; a server would send them).
 
 use std::borrow::Cow;
+use std::convert::Infallible;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -17,6 +18,7 @@ use crate::family::{outline_family_with, FamilyError, FamilySummary};
 use crate::instance::InstanceError;
 use crate::layout::Layout;
 use crate::model::Family;
+use crate::names::file_stems;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::remove_overlaps_font_with;
@@ -25,8 +27,8 @@ use crate::render::{
     ProofOptions, RenderError, SheetOptions,
 };
 use crate::reuse::{font_key, KeyBuilder, Reuse};
-use crate::source::{check_tolerance_flag, load_family, Diagnostic, Severity};
-use crate::svg::{glyph_set, output_stem, svg_font};
+use crate::source::{check_tolerance_flag, load_family_with, Diagnostic, Severity, SourceMemo};
+use crate::svg::{glyph_svg, output_stem, svg_font, svg_glyph_key};
 use crate::write::{OutputSet, WriteError};
 
 /// A font directory loaded and outlined, and the warnings of its sources.
@@ -158,11 +160,21 @@ impl Sources {
 /// The first half of [`load_with`]: `font_dir` loaded and checked (the `--tolerance`
 /// value, the sources, `features.fea`), so that a caller can load its caches meanwhile.
 pub fn read_sources(font_dir: &Path, tolerance: Option<f64>) -> Result<Sources, PipelineError> {
+    read_sources_with(font_dir, tolerance, &SourceMemo::off())
+}
+
+/// [`read_sources`], taking the glyph files that did not change since the last build from
+/// `memo` ([`SourceMemo`]).
+pub fn read_sources_with(
+    font_dir: &Path,
+    tolerance: Option<f64>,
+    memo: &SourceMemo,
+) -> Result<Sources, PipelineError> {
     if let Some(t) = tolerance {
         check_tolerance_flag(t).map_err(PipelineError::Tolerance)?;
     }
     let (family, warnings) =
-        load_family(font_dir).map_err(|diagnostics| PipelineError::Sources {
+        load_family_with(font_dir, memo).map_err(|diagnostics| PipelineError::Sources {
             dir: font_dir.to_path_buf(),
             diagnostics,
         })?;
@@ -282,6 +294,17 @@ pub fn instance_outputs_with(
     opts: &BuildOptions,
     cache: Option<&FitCache>,
 ) -> Result<Vec<OutputFile>, PipelineError> {
+    instance_outputs_reusing(loaded, opts, cache, &Reuse::off())
+}
+
+/// [`instance_outputs_with`], taking the instances' unions from `reuse`, and
+/// `proof-instances.png` from OUT when no instance changed since the last build.
+pub fn instance_outputs_reusing(
+    loaded: &Loaded,
+    opts: &BuildOptions,
+    cache: Option<&FitCache>,
+    reuse: &Reuse,
+) -> Result<Vec<OutputFile>, PipelineError> {
     if !loaded.family.is_variable() || loaded.family.designspace.instances.is_empty() {
         return Ok(Vec::new());
     }
@@ -313,7 +336,7 @@ pub fn instance_outputs_with(
     // Each instance's fonts in parallel, in order; its TTF also shapes its proof block.
     let built: Vec<Result<InstanceFonts, PipelineError>> = written
         .par_iter()
-        .map(|(stem, font)| instance_fonts(stem, font, opts))
+        .map(|(stem, font)| instance_fonts(stem, font, opts, reuse))
         .collect();
     let built = built.into_iter().collect::<Result<Vec<_>, _>>()?;
     let mut files = Vec::new();
@@ -321,6 +344,8 @@ pub fn instance_outputs_with(
         files.extend(b.files.iter().cloned());
     }
     let mut layouts = Vec::with_capacity(instances.len());
+    // What the proof depends on: each instance as drawn (its TTF and glyphs).
+    let mut drawn = Vec::new();
     for (name, font) in &instances {
         let stem = output_stem(&font.info);
         let ttf = match built.iter().find(|b| b.stem == stem) {
@@ -328,6 +353,9 @@ pub fn instance_outputs_with(
             // The instance at the default location: the default master's TTF is its own.
             None => otf::ttf(font)?,
         };
+        if reuse.is_on() {
+            drawn.push(font_key(font, &ttf));
+        }
         layouts.push((
             name,
             Layout::with_ttf(font, ttf).map_err(RenderError::from)?,
@@ -353,8 +381,21 @@ pub fn instance_outputs_with(
             (format!("{name} ({})", at.join(", ")), layout)
         })
         .collect();
-    let proof = render_instances_proof_with(&labelled, &instances_proof_options(&opts.proof))?;
-    files.push((PathBuf::from("proof-instances.png"), encode_png(&proof)?));
+    let proof_opts = instances_proof_options(&opts.proof);
+    let draw = || encode_png(&render_instances_proof_with(&labelled, &proof_opts)?);
+    let name = Path::new("proof-instances.png");
+    let proof = if reuse.is_on() {
+        let mut key = KeyBuilder::new("instances proof");
+        key.str(&format!("{proof_opts:?}"))
+            .u64(labelled.len() as u64);
+        for ((label, _), drawn) in labelled.iter().zip(&drawn) {
+            key.str(label).key(drawn);
+        }
+        reuse.get_or_make(name, key.finish(), draw)?
+    } else {
+        draw()?
+    };
+    files.push((name.to_path_buf(), proof));
     Ok(files)
 }
 
@@ -369,8 +410,9 @@ fn instance_fonts(
     stem: &str,
     font: &OutlinedFont,
     opts: &BuildOptions,
+    reuse: &Reuse,
 ) -> Result<InstanceFonts, PipelineError> {
-    let ot = for_opentype(font, opts, &Reuse::off());
+    let ot = for_opentype(font, opts, reuse);
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
         || otf::ttf(ot),
@@ -453,7 +495,7 @@ pub fn variable_outputs_with(
             let woff2 = woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse)?;
             Ok((ttf, woff2))
         },
-        || crate::ufo::designspace::output_files(&family, &loaded.family),
+        || crate::ufo::designspace::output_files_reusing(&family, &loaded.family, reuse),
     );
     let (ttf, woff2) = fonts?;
     let mut files = vec![
@@ -504,16 +546,40 @@ pub fn outputs(font: &OutlinedFont, opts: &BuildOptions) -> Result<Vec<OutputFil
 
 /// [`outputs`], taking from OUT the sheet pages, proof and WOFF2 whose inputs did not
 /// change since the last build ([`Reuse`]); the same bytes as [`outputs`].
+///
+/// An SVG glyph file or `.glif` whose glyph did not change is not made at all when OUT
+/// holds it as the last build wrote it ([`Reuse::kept_or_make`]): it is missing from the
+/// list, and [`Reuse::kept_paths`] names it.
 pub fn outputs_with(
     font: &OutlinedFont,
     opts: &BuildOptions,
     reuse: &Reuse,
 ) -> Result<Vec<OutputFile>, PipelineError> {
+    static_outputs_with(font, opts, reuse, true)
+}
+
+/// [`outputs_with`], without the UFO unless `ufo` (a font with masters writes the UFOs of
+/// [`variable_outputs_with`] instead).
+pub fn static_outputs_with(
+    font: &OutlinedFont,
+    opts: &BuildOptions,
+    reuse: &Reuse,
+    ufo: bool,
+) -> Result<Vec<OutputFile>, PipelineError> {
     let stem = output_stem(&font.info);
     let (binary, text) = rayon::join(
         || opentype_and_images(font, opts, &stem, reuse),
         || -> Result<_, PipelineError> {
-            let (svg, ufo) = rayon::join(|| svg_outputs(font), || crate::ufo::output_files(font));
+            let (svg, ufo) = rayon::join(
+                || svg_outputs_reusing(font, reuse),
+                || {
+                    if ufo {
+                        crate::ufo::output_files_reusing(font, reuse)
+                    } else {
+                        Ok(Vec::new())
+                    }
+                },
+            );
             Ok((svg, ufo?))
         },
     );
@@ -630,16 +696,35 @@ fn for_opentype<'a>(
 
 /// The SVG font and the SVG glyph set (`svg/<glyph>.svg`).
 pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
+    svg_outputs_reusing(font, &Reuse::off())
+}
+
+/// [`svg_outputs`], leaving out each glyph's SVG that OUT holds already as the last build
+/// made it from the same glyph ([`Reuse::kept_or_make`]). The glyph files are made on
+/// every core.
+pub fn svg_outputs_reusing(font: &OutlinedFont, reuse: &Reuse) -> Vec<OutputFile> {
+    let (font_svg, glyphs) = rayon::join(
+        || svg_font(font).into_bytes(),
+        || {
+            let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));
+            font.glyphs
+                .par_iter()
+                .zip(stems)
+                .filter_map(|(g, stem)| {
+                    let path = Path::new("svg").join(format!("{stem}.svg"));
+                    let key = svg_glyph_key(&font.info, g);
+                    let make = || Ok::<_, Infallible>(glyph_svg(&font.info, g).into_bytes());
+                    let Ok(bytes) = reuse.kept_or_make(&path, key, make);
+                    bytes.map(|bytes| (path, bytes))
+                })
+                .collect::<Vec<_>>()
+        },
+    );
     let mut files = vec![(
         PathBuf::from(format!("{}.svg", output_stem(&font.info))),
-        svg_font(font).into_bytes(),
+        font_svg,
     )];
-    for g in glyph_set(font) {
-        files.push((
-            Path::new("svg").join(format!("{}.svg", g.stem)),
-            g.svg.into_bytes(),
-        ));
-    }
+    files.extend(glyphs);
     files
 }
 
@@ -667,7 +752,9 @@ pub fn write_output_files_with(
         set.add(out.join(path), bytes);
     }
     let result = if reuse.is_on() {
+        let kept = reuse.kept_paths().iter().map(|p| out.join(p)).collect();
         set.trusting(reuse.file_stamps())
+            .keeping(kept)
             .commit_stamped()
             .map(|stamps| reuse.files_written(stamps))
     } else {

@@ -26,6 +26,12 @@
 //! CJK build to find those that did not change ([`crate::write`]): a file whose metadata
 //! changed is read and compared as before.
 //!
+//! Outputs of one file per glyph (the SVG glyph set, the UFO's `.glif`s) go further
+//! ([`Reuse::kept_or_make`]): when the record says the file in OUT holds the bytes made under
+//! the same key, and the file still has the [`FileStamp`] recorded for it (metadata only,
+//! not read), the bytes are not made at all and the file is left as it is. A CJK rebuild
+//! after one edit makes two such files instead of 42,000.
+//!
 //! Limit: a key is as complete as the code that builds it; an output depends only on what
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
@@ -58,6 +64,19 @@ const FORMAT_VERSION: u32 = 2;
 /// What an output's bytes are made from, hashed (SHA-256).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Key([u8; 32]);
+
+impl Key {
+    /// The hash's bytes.
+    pub fn to_bytes(self) -> [u8; 32] {
+        self.0
+    }
+}
+
+/// Whether the running program's identity is known (its executable could be read): keys
+/// made without it would not tell two programs apart, so nothing is reused then.
+pub fn program_is_known() -> bool {
+    program_identity().is_some()
+}
 
 /// Builds a [`Key`]: every input goes in with its length or its kind, so that two
 /// different input lists never hash the same bytes.
@@ -162,6 +181,8 @@ pub struct Reuse {
     earlier_files: HashMap<PathBuf, FileStamp>,
     /// As this build's commit left them.
     now_files: Mutex<BTreeMap<PathBuf, FileStamp>>,
+    /// Outputs left in OUT unmade ([`Reuse::kept_or_make`]), by path relative to `out`.
+    kept: Mutex<Vec<PathBuf>>,
 }
 
 impl Reuse {
@@ -224,6 +245,55 @@ impl Reuse {
         };
         self.record(path, record);
         Ok(bytes)
+    }
+
+    /// The bytes of the output `path` (relative to OUT), or `None` when OUT's file holds them
+    /// already: the last build made it under the same `key`, and the file still has the
+    /// stamp its commit recorded (length, inode, times; not read), with the recorded hash.
+    /// Then nothing is made, the output is not to be written, and its record and stamp are
+    /// carried into this build's ([`Reuse::kept_paths`] lists it). Otherwise `make()`.
+    pub fn kept_or_make<E>(
+        &self,
+        path: &Path,
+        key: Key,
+        make: impl FnOnce() -> Result<Vec<u8>, E>,
+    ) -> Result<Option<Vec<u8>>, E> {
+        let Some(out) = &self.out else {
+            return make().map(Some);
+        };
+        let earlier = self.earlier.get(path).filter(|r| r.key == key);
+        if let Some(earlier) = earlier {
+            let stamp = self
+                .earlier_files
+                .get(path)
+                .filter(|s| s.sha256 == earlier.bytes);
+            if let Some(stamp) = stamp.filter(|s| s.matches(&out.join(path))) {
+                self.record(path, *earlier);
+                if let Ok(mut files) = self.now_files.lock() {
+                    files.insert(path.to_path_buf(), *stamp);
+                }
+                if let Ok(mut kept) = self.kept.lock() {
+                    kept.push(path.to_path_buf());
+                }
+                return Ok(None);
+            }
+        }
+        let bytes = make()?;
+        self.record(
+            path,
+            Record {
+                key,
+                bytes: digest(&bytes),
+            },
+        );
+        Ok(Some(bytes))
+    }
+
+    /// The outputs [`Reuse::kept_or_make`] left in OUT, sorted.
+    pub fn kept_paths(&self) -> Vec<PathBuf> {
+        let mut kept = self.kept.lock().map(|k| k.clone()).unwrap_or_default();
+        kept.sort();
+        kept
     }
 
     /// The outline `make()` computes from `input` under `key` (which must cover `input`
@@ -296,9 +366,22 @@ impl Reuse {
     /// Writes this build's records into OUT (atomically); call it once every output is
     /// written. Nothing without an output folder.
     pub fn save(&self) -> io::Result<()> {
-        let Some(out) = &self.out else {
+        let (Some(out), Some(body)) = (&self.out, self.bytes_to_save()?) else {
             return Ok(());
         };
+        let path = out.join(REUSE_FILE);
+        if fs::read(&path).is_ok_and(|old| old == body) {
+            return Ok(());
+        }
+        crate::write::write_atomic(&path, &body)
+    }
+
+    /// The bytes [`Reuse::save`] writes into OUT's [`REUSE_FILE`] (`None` without an output
+    /// folder).
+    pub fn bytes_to_save(&self) -> io::Result<Option<Vec<u8>>> {
+        if self.out.is_none() {
+            return Ok(None);
+        }
         let now = self
             .now
             .lock()
@@ -346,11 +429,7 @@ impl Reuse {
             body.extend_from_slice(&stamp.sha256);
         }
         Header::seal(&mut body);
-        let path = out.join(REUSE_FILE);
-        if fs::read(&path).is_ok_and(|old| old == body) {
-            return Ok(());
-        }
-        crate::write::write_atomic(&path, &body)
+        Ok(Some(body))
     }
 }
 

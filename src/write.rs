@@ -14,7 +14,10 @@
 //!    whose length, inode, modification and change times are those recorded, and whose
 //!    recorded SHA-256 is that of the new bytes, holds them already. Anything else is
 //!    compared byte for byte. A file changed in the last 50 ms gets no stamp (the file
-//!    system's clock is coarse: see [`FileStamp`]).
+//!    system's clock is coarse: see [`FileStamp`]). Outputs whose bytes the caller did not
+//!    make, because it knows from their stamps that OUT holds them already, are declared
+//!    with [`OutputSet::keeping`]: they are left alone and only count for the duplicate
+//!    check and the cleaning of their folders.
 //! 2. **Commit.** Each staged file is renamed over its final name (atomic on one file
 //!    system; a link at the final name is replaced, never followed). A file it replaces is
 //!    kept first under a backup name (`.xglyph-PID-RANDOM.old`, a hard link where the file
@@ -62,6 +65,8 @@ pub struct OutputSet {
     /// What the last commit left in the files (by output path), trusted while the files'
     /// metadata match.
     earlier: HashMap<PathBuf, FileStamp>,
+    /// Outputs that stay as they are in OUT, not written ([`OutputSet::keeping`]).
+    kept: Vec<PathBuf>,
 }
 
 /// What a file held when a commit last wrote (or kept) it: its metadata (length, inode,
@@ -92,6 +97,14 @@ impl FileStamp {
             std::time::UNIX_EPOCH + std::time::Duration::new(meta[4], u32::try_from(meta[5]).ok()?);
         let age = std::time::SystemTime::now().duration_since(changed).ok()?;
         (age >= SETTLED).then_some(FileStamp { meta, sha256 })
+    }
+
+    /// Whether the file at `path` (not following a link) still has this stamp's metadata.
+    pub fn matches(&self, path: &Path) -> bool {
+        fs::symlink_metadata(path)
+            .ok()
+            .and_then(|meta| stamp_meta(&meta))
+            == Some(self.meta)
     }
 }
 
@@ -230,6 +243,15 @@ impl OutputSet {
         self
     }
 
+    /// Declares outputs that are already in place and stay as they are (the caller knows
+    /// their files hold their bytes: [`crate::reuse::Reuse::kept_or_make`]). They are not
+    /// written; they count for the duplicate check, and their folders are cleaned of stale
+    /// temporary files like those of written outputs.
+    pub fn keeping(mut self, kept: Vec<PathBuf>) -> Self {
+        self.kept = kept;
+        self
+    }
+
     /// Writes every output, or none (see the module docs). Stale temporary files of a
     /// killed earlier commit in the output folders are removed first.
     pub fn commit(self) -> Result<(), WriteError> {
@@ -255,7 +277,7 @@ impl OutputSet {
         } else {
             Vec::new()
         };
-        let result = tx.run(&self.files, &hashes, &self.earlier);
+        let result = tx.run(&self.files, &hashes, &self.earlier, &self.kept);
         match result {
             Ok(()) => {
                 tx.finish();
@@ -306,10 +328,11 @@ impl Transaction {
         files: &[(PathBuf, Vec<u8>)],
         hashes: &[[u8; 32]],
         earlier: &HashMap<PathBuf, FileStamp>,
+        kept: &[PathBuf],
     ) -> Result<(), WriteError> {
         let mut seen = std::collections::HashSet::new();
-        for (path, _) in files {
-            if !seen.insert(path.clone()) {
+        for path in files.iter().map(|(path, _)| path).chain(kept) {
+            if !seen.insert(path.as_path()) {
                 return Err(error(path, WriteErrorKind::Duplicate));
             }
         }
@@ -336,6 +359,11 @@ impl Transaction {
             check_interrupt(path)?;
             if changed {
                 self.stage(path, bytes)?;
+            }
+        }
+        for dir in kept.iter().map(|path| parent(path)) {
+            if cleaned.insert(dir.to_path_buf()) {
+                remove_stale(dir, files);
             }
         }
         if self.staged.is_empty() {

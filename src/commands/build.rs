@@ -20,7 +20,7 @@ use crate::pipeline::{self, BuildOptions, Loaded, OutputFile, PipelineError, Sum
 use crate::render::ProofOptions;
 use crate::reuse::{Reuse, REUSE_FILE};
 use crate::source::emit;
-use crate::source::Diagnostic;
+use crate::source::{Diagnostic, SourceMemo, MEMO_FILE};
 use crate::terminal::{err, errln, out, outln};
 
 #[derive(Debug, clap::Args)]
@@ -159,17 +159,18 @@ fn with_status_line<T>(status: impl Fn() -> Option<String> + Sync, work: impl Fn
 }
 
 /// The summary printed after a build.
-pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]) -> String {
+pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[&Path]) -> String {
     // Three significant digits of the tolerance's order, at least three decimals.
     let digits = (2.0 - summary.tolerance.log10().floor()).clamp(3.0, 12.0) as usize;
     let worst = match &summary.worst {
         Some((name, error)) => format!("{error:.digits$} font units (glyph `{name}`)"),
         None => "none".into(),
     };
+    // `files`: the outputs written, then those left in OUT (never at the top level).
     let top: Vec<String> = files
         .iter()
-        .filter(|(p, _)| p.parent() == Some(Path::new("")))
-        .map(|(p, _)| p.display().to_string())
+        .filter(|p| p.parent() == Some(Path::new("")))
+        .map(|p| p.display().to_string())
         .collect();
     // Sheet pages as one item: `sheet-1.png … sheet-41.png (41 pages)`.
     let pages = top.iter().filter(|n| n.starts_with("sheet-")).count();
@@ -185,10 +186,10 @@ pub fn summary(summary: &Summary, family: &str, out: &Path, files: &[OutputFile]
     } else {
         top
     };
-    let in_svg = files.iter().filter(|(p, _)| p.starts_with("svg")).count();
+    let in_svg = files.iter().filter(|p| p.starts_with("svg")).count();
     // UFO folders as one item each: `XglyphSans-Regular.ufo/ (158 files)`.
     let mut ufos: Vec<(String, usize)> = Vec::new();
-    for (p, _) in files {
+    for p in files {
         if let Some(first) = p.components().next() {
             let first = first.as_os_str().to_string_lossy();
             if first.ends_with(".ufo") && p.parent() != Some(Path::new("")) {
@@ -298,10 +299,17 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
     let _ = crate::write::exit_on_interrupt();
     let cache_path = args.font.out.join(CACHE_FILE);
-    // The sources, the fit cache and the output record are read on any core at once (a
-    // CJK font's are 20,000 files, 100 MB and 4 MB); the messages keep their order.
-    let (sources, ((cache, outcome), (reuse, ignored))) = rayon::join(
-        || pipeline::read_sources(&args.font.font_dir, args.font.tolerance),
+    let memo_path = args.font.out.join(MEMO_FILE);
+    // The sources (after the memo of them), the fit cache and the output record are read on
+    // any core at once (a CJK font's are 20,000 files and 60 MB, 100 MB and 20 MB); the
+    // messages keep their order.
+    let (((memo, memo_ignored), sources), ((cache, outcome), (reuse, ignored))) = rayon::join(
+        || {
+            let memo = SourceMemo::load(&memo_path);
+            let sources =
+                pipeline::read_sources_with(&args.font.font_dir, args.font.tolerance, &memo.0);
+            (memo, sources)
+        },
         || {
             rayon::join(
                 || FitCache::load(&cache_path),
@@ -309,13 +317,19 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             )
         },
     );
+    if let Some(reason) = memo_ignored {
+        errln!(
+            "note: ignoring {}: {reason}; every glyph file is read anew",
+            memo_path.display()
+        );
+    }
     if let LoadOutcome::Ignored(reason) = &outcome {
         errln!(
             "note: ignoring the fit cache {}: {reason}; every contour is refitted",
             cache_path.display()
         );
     }
-    let loaded = outline_sources(sources, Some(&cache))?;
+    let mut loaded = outline_sources(sources, Some(&cache))?;
     if let Some(reason) = ignored {
         errln!(
             "note: ignoring {}: {reason}; every output is made anew",
@@ -332,11 +346,13 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     };
     // A font without masters fits nothing more: its cache is encoded now and its maps
     // dropped (hundreds of MB for a CJK font) before the outputs are made; the file is
-    // still written after them, so a failed build leaves OUT alone.
+    // still written after them, so a failed build leaves OUT alone. Its sources' glyphs are
+    // dropped too (70 MB for a CJK font): the outputs read the outlined font only.
     let (cache, mut to_save) = if loaded.family.is_variable() {
         (Some(cache), None)
     } else {
         let stats = (cache.hits(), cache.misses());
+        loaded.family.default.glyphs = Vec::new();
         (None, Some((cache.bytes_to_save(&cache_path), stats)))
     };
     // The three groups of outputs on every core (rayon); errors in this order.
@@ -344,8 +360,12 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         rayon::join(
             || {
                 rayon::join(
-                    || pipeline::outputs_with(&loaded.font, &opts, &reuse),
-                    || pipeline::instance_outputs_with(&loaded, &opts, cache.as_ref()),
+                    || {
+                        // A font with masters writes the UFOs of its compatible fit instead.
+                        let ufo = !loaded.family.is_variable();
+                        pipeline::static_outputs_with(&loaded.font, &opts, &reuse, ufo)
+                    },
+                    || pipeline::instance_outputs_reusing(&loaded, &opts, cache.as_ref(), &reuse),
                 )
             },
             || pipeline::variable_outputs_with(&loaded, cache.as_ref(), &reuse),
@@ -359,7 +379,14 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     }
     let info = &loaded.font.info;
     let family = format!("{} {}", info.family, info.style);
-    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &files);
+    // The outputs left in OUT unmade count as written.
+    let kept = reuse.kept_paths();
+    let paths: Vec<&Path> = files
+        .iter()
+        .map(|(p, _)| p.as_path())
+        .chain(kept.iter().map(|p| p.as_path()))
+        .collect();
+    let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &paths);
     show_phase(&format!("writing {} files", files.len()), || {
         pipeline::write_output_files_with(&args.font.out, files, &reuse)
     })?;
@@ -392,25 +419,34 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             reuse.reused()
         );
     }
-    // The outputs are written: a cache that cannot be written only costs the next build time.
-    if let Err(e) = reuse.save() {
-        errln!(
+    if !kept.is_empty() {
+        outln!(
+            "left {} glyph files (SVG, UFO) of unchanged glyphs as the last build wrote them",
+            kept.len()
+        );
+    }
+    // The outputs are written. The records for the next build go in one transaction (one
+    // flush to disk); a record that cannot be written only costs the next build time.
+    let mut records = crate::write::OutputSet::new();
+    match reuse.bytes_to_save() {
+        Ok(Some(bytes)) => records.add(args.font.out.join(REUSE_FILE), bytes),
+        Ok(None) => {}
+        Err(e) => errln!(
             "warning: cannot write {}: {}",
             args.font.out.join(REUSE_FILE).display(),
             crate::write::reason(&e)
-        );
+        ),
     }
-    let saved = cache_bytes.map_or(Ok(()), |bytes| {
-        let mut set = crate::write::OutputSet::new();
-        set.add(&cache_path, bytes);
-        set.commit().map_err(std::io::Error::other)
-    });
-    if let Err(e) = saved {
-        errln!(
-            "warning: cannot write the fit cache {}: {}",
-            cache_path.display(),
-            crate::write::reason(&e)
-        );
+    if let Some(bytes) = memo.bytes_to_save() {
+        records.add(&memo_path, bytes);
+    }
+    if let Some(bytes) = cache_bytes {
+        records.add(&cache_path, bytes);
+    }
+    if !records.is_empty() {
+        if let Err(e) = records.commit() {
+            errln!("warning: {e}");
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

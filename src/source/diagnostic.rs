@@ -205,6 +205,11 @@ impl Diagnostics {
         }
     }
 
+    /// Whether nothing was reported.
+    pub fn is_empty(&self) -> bool {
+        self.kept.is_empty() && self.left_out.is_empty()
+    }
+
     pub fn has_errors(&self) -> bool {
         self.kept.iter().any(|d| d.severity == Severity::Error)
             || self.left_out.keys().any(|(_, s)| *s == Severity::Error)

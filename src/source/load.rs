@@ -19,6 +19,7 @@ use super::glyph::{load_glyph, GlyphSpans};
 use super::info::load_info;
 use super::kerning::load_kerning;
 use super::limits;
+use super::memo::SourceMemo;
 use crate::designspace::Designspace;
 use crate::model::{glyph_order, Family, FeatureFile, Font, FontInfo, Glyph, Master};
 
@@ -79,7 +80,16 @@ impl LoadedFont {
 /// Load a font directory with its masters ([`load_sources`]): the family and its warnings,
 /// or every diagnostic when there are errors.
 pub fn load_family(dir: &Path) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
-    load_sources(dir).map(|l| (l.family(), l.warnings))
+    load_family_with(dir, &SourceMemo::off())
+}
+
+/// [`load_family`], taking each glyph file that did not change since the last build from
+/// `memo` instead of parsing and checking it again ([`SourceMemo`]).
+pub fn load_family_with(
+    dir: &Path,
+    memo: &SourceMemo,
+) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
+    load_sources_with(dir, memo).map(|l| (l.family(), l.warnings))
 }
 
 /// Load a font directory: `font.toml`, optional `kerning.toml`, and one glyph per other
@@ -105,6 +115,11 @@ pub(super) struct GlyphFile {
 /// `kerning.toml`), and by position within a file; at most
 /// [`super::diagnostic::MAX_PER_FILE`] per file, then one "… and N more" line.
 pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
+    load_sources_with(dir, &SourceMemo::off())
+}
+
+/// [`load_sources`] with glyph files from `memo`.
+fn load_sources_with(dir: &Path, memo: &SourceMemo) -> Result<LoadedFont, Vec<Diagnostic>> {
     let mut out = Diagnostics::default();
     let font_path = dir.join("font.toml");
     let kern_path = dir.join("kerning.toml");
@@ -147,7 +162,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
             "no glyph files: add one `<glyph>.toml` per glyph next to `font.toml`",
         ));
     }
-    let (mut glyphs, mut glyph_failed) = load_glyph_files(&glyph_paths, &mut out);
+    let (mut glyphs, mut glyph_failed) = load_glyph_files(&glyph_paths, memo, &mut out);
 
     check_unique(&glyphs, &mut out);
     let graph = ComponentGraph::new(&glyphs);
@@ -214,7 +229,7 @@ pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
         };
         master_order.push(mdir.clone());
         master_order.extend(mcandidates);
-        let (mut mglyphs, failed) = load_glyph_files(&paths, &mut out);
+        let (mut mglyphs, failed) = load_glyph_files(&paths, memo, &mut out);
         glyph_failed |= failed;
         check_unique(&mglyphs, &mut out);
         // Each master places its components by its own anchors (compared with the
@@ -373,7 +388,11 @@ fn model_masters(
 
 /// Reads and loads each glyph file; also whether any failed (unreadable, or with an error
 /// of its own).
-fn load_glyph_files(paths: &[PathBuf], out: &mut Diagnostics) -> (Vec<GlyphFile>, bool) {
+fn load_glyph_files(
+    paths: &[PathBuf],
+    memo: &SourceMemo,
+    out: &mut Diagnostics,
+) -> (Vec<GlyphFile>, bool) {
     use rayon::prelude::*;
     // Each file on any core with diagnostics of its own, merged in path order: a file's
     // diagnostics (and its per-file limit) concern its path alone, so the merged list is
@@ -382,7 +401,7 @@ fn load_glyph_files(paths: &[PathBuf], out: &mut Diagnostics) -> (Vec<GlyphFile>
         .par_iter()
         .map(|path| {
             let mut mine = Diagnostics::default();
-            let file = load_glyph_file(path, &mut mine);
+            let file = load_glyph_file(path, memo, &mut mine);
             (file, mine)
         })
         .collect();
@@ -402,9 +421,27 @@ fn load_glyph_files(paths: &[PathBuf], out: &mut Diagnostics) -> (Vec<GlyphFile>
 }
 
 /// One glyph file read and loaded (`None`: unreadable or not a glyph at all).
-fn load_glyph_file(path: &Path, out: &mut Diagnostics) -> Option<GlyphFile> {
+/// A file `memo` holds as it is now is taken from it (it loaded complete and without any
+/// diagnostic); a file that loads so is kept in it.
+fn load_glyph_file(path: &Path, memo: &SourceMemo, out: &mut Diagnostics) -> Option<GlyphFile> {
     let text = read(path, out)?;
-    let loaded = load_glyph(&mut Ctx::new(path, &text, out))?;
+    let key = SourceMemo::key(path, &text);
+    if let Some((glyph, spans)) = memo.take(&key) {
+        return Some(GlyphFile {
+            glyph,
+            complete: true,
+            spans,
+            path: path.to_path_buf(),
+            text,
+        });
+    }
+    let mut own = Diagnostics::default();
+    let loaded = load_glyph(&mut Ctx::new(path, &text, &mut own));
+    if let Some(loaded) = loaded.as_ref().filter(|l| l.complete && own.is_empty()) {
+        memo.keep(key, &loaded.glyph, &loaded.spans);
+    }
+    out.absorb(own);
+    let loaded = loaded?;
     Some(GlyphFile {
         glyph: loaded.glyph,
         complete: loaded.complete,

@@ -24,6 +24,7 @@ mod info;
 mod kerning;
 pub mod limits;
 mod load;
+mod memo;
 mod value;
 
 pub use anchors::{is_combining, place_in_font, COMBINING_BLOCKS};
@@ -33,4 +34,7 @@ pub use geometry::{no_area, NoArea, FAR_EMS, FLAT_RELATIVE};
 pub use glyph::{load_glyph_text, offsets_written};
 pub use info::{check_tolerance_flag, load_info_text, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 pub use kerning::load_kerning_text;
-pub use load::{load_family, load_font, load_sources, LoadedFont, SourceFile, SourceKind};
+pub use load::{
+    load_family, load_family_with, load_font, load_sources, LoadedFont, SourceFile, SourceKind,
+};
+pub use memo::{SourceMemo, MEMO_FILE};

@@ -13,6 +13,7 @@ use super::xml::{escape, num};
 use crate::model::FontInfo;
 use crate::names::file_stems;
 use crate::outline::{OutlinedFont, OutlinedGlyph};
+use crate::reuse::{Key, KeyBuilder};
 
 /// One file of the glyph set: its stem (`crate::names` rule) and its text.
 #[derive(Clone, Debug, PartialEq)]
@@ -59,6 +60,19 @@ pub fn glyph_svg(info: &FontInfo, glyph: &OutlinedGlyph) -> String {
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// What [`glyph_svg`] reads, as a [`Key`]: the em's metrics, the glyph's name, advance and
+/// path.
+pub fn svg_glyph_key(info: &FontInfo, glyph: &OutlinedGlyph) -> Key {
+    KeyBuilder::new("svg glyph")
+        .f64(info.ascender)
+        .f64(info.descender)
+        .u64(u64::from(info.units_per_em))
+        .str(&glyph.name)
+        .f64(glyph.advance)
+        .path(&glyph.path)
+        .finish()
 }
 
 /// The whole glyph set, in the font's glyph order.

@@ -10,7 +10,7 @@ pub mod path_data;
 pub mod xml;
 
 pub use font::svg_font;
-pub use glyph_set::{glyph_set, glyph_svg, GlyphSvg};
+pub use glyph_set::{glyph_set, glyph_svg, svg_glyph_key, GlyphSvg};
 
 use crate::model::FontInfo;
 

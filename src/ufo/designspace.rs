@@ -28,6 +28,7 @@ use crate::designspace::{Designspace, Location};
 use crate::family::OutlinedFamily;
 use crate::model::{Family, FontInfo, Glyph};
 use crate::outline::OutlinedFont;
+use crate::reuse::Reuse;
 use crate::svg::output_stem;
 
 /// The designspace's file name: `<Family>.designspace`, the family part of the static
@@ -150,6 +151,16 @@ pub fn output_files(
     family: &OutlinedFamily,
     model: &Family,
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    output_files_reusing(family, model, &Reuse::off())
+}
+
+/// [`output_files`], leaving out each `.glif` that OUT holds already as the last build made
+/// it ([`super::output_files_reusing`]).
+pub fn output_files_reusing(
+    family: &OutlinedFamily,
+    model: &Family,
+    reuse: &Reuse,
+) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
     let fonts: Vec<OutlinedFont> = std::iter::once(family.default.clone())
         .chain((0..family.masters.len()).map(|m| master_font(family, model, m)))
         .collect();
@@ -159,10 +170,8 @@ pub fn output_files(
         return Err(UfoError::MasterName(dir.clone()));
     }
     let mut out = Vec::new();
-    for (font, dir) in fonts.iter().zip(&dirs) {
-        for (path, bytes) in super::files(&super::export(font)?)? {
-            out.push((PathBuf::from(dir).join(path), bytes));
-        }
+    for font in &fonts {
+        out.extend(super::output_files_reusing(font, reuse)?);
     }
     let xml = document(family, &dirs)
         .serialize_to_string()

@@ -12,6 +12,7 @@ use norad::{AffineTransform, ContourPoint, PointType};
 use super::lib::XSPLINE_KEY;
 use super::{name, UfoError};
 use crate::outline::OutlinedGlyph;
+use crate::reuse::{Key, KeyBuilder};
 
 /// Coordinates are rounded to this many parts of a font unit.
 const GRID: f64 = 1000.0;
@@ -55,6 +56,34 @@ pub fn glyph(g: &OutlinedGlyph, own: usize) -> Result<norad::Glyph, UfoError> {
             .insert(XSPLINE_KEY.into(), super::lib::xspline_value(&splines));
     }
     Ok(ufo)
+}
+
+/// What [`glyph`] reads of `g` (whose first `own` contours are its own), as a [`Key`]:
+/// name, advance, code points, outline, components, anchors and the own X-splines.
+pub fn key(g: &OutlinedGlyph, own: usize) -> Key {
+    let mut k = KeyBuilder::new("glif");
+    k.str(&g.name).f64(g.advance).u64(g.unicodes.len() as u64);
+    for &c in &g.unicodes {
+        k.u64(u64::from(c));
+    }
+    k.path(&g.path).u64(g.components.len() as u64);
+    for c in &g.components {
+        k.str(&c.base).f64(c.offset.0).f64(c.offset.1);
+    }
+    k.u64(g.anchors.len() as u64);
+    for a in &g.anchors {
+        k.str(&a.name).f64(a.position.0).f64(a.position.1);
+    }
+    let own = &g.contours[..own.min(g.contours.len())];
+    k.u64(own.len() as u64);
+    for c in own {
+        let points = c.spline.points();
+        k.u64(points.len() as u64);
+        for p in points {
+            k.f64(p.pos.x).f64(p.pos.y).f64(p.s);
+        }
+    }
+    k.finish()
 }
 
 /// The closed subpaths of `path` (MoveTo … ClosePath each).

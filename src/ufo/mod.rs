@@ -44,6 +44,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::outline::OutlinedFont;
+use crate::reuse::Reuse;
 use crate::svg::output_stem;
 
 /// Why a font could not be exported as UFO.
@@ -107,24 +108,39 @@ pub fn ufo_dir_name(font: &OutlinedFont) -> String {
 pub fn export(font: &OutlinedFont) -> Result<norad::Font, UfoError> {
     check_file_names(font)?;
     let mut ufo = norad::Font::new();
-    ufo.font_info = info::font_info(&font.info);
-    ufo.lib = info::font_lib(font);
+    let layer = ufo.default_layer_mut();
+    for (g, own) in font.glyphs.iter().zip(own_contours(font)) {
+        layer.insert_glyph(glyph::glyph(g, own)?);
+    }
+    fill_font(&mut ufo, font)?;
+    Ok(ufo)
+}
+
+/// How many of each glyph's contours are its own: they come first, then every
+/// component's (recursively placed).
+fn own_contours(font: &OutlinedFont) -> Vec<usize> {
     let contours: HashMap<&str, usize> = font
         .glyphs
         .iter()
         .map(|g| (g.name.as_str(), g.contours.len()))
         .collect();
-    let layer = ufo.default_layer_mut();
-    for g in &font.glyphs {
-        // The glyph's own contours come first, then every component's (recursively placed).
-        let placed: usize = g
-            .components
-            .iter()
-            .map(|c| contours.get(c.base.as_str()).copied().unwrap_or(0))
-            .sum();
-        let own = g.contours.len().saturating_sub(placed);
-        layer.insert_glyph(glyph::glyph(g, own)?);
-    }
+    font.glyphs
+        .iter()
+        .map(|g| {
+            let placed: usize = g
+                .components
+                .iter()
+                .map(|c| contours.get(c.base.as_str()).copied().unwrap_or(0))
+                .sum();
+            g.contours.len().saturating_sub(placed)
+        })
+        .collect()
+}
+
+/// The font-wide parts of the UFO: fontinfo, font lib, features and kerning.
+fn fill_font(ufo: &mut norad::Font, font: &OutlinedFont) -> Result<(), UfoError> {
+    ufo.font_info = info::font_info(&font.info);
+    ufo.lib = info::font_lib(font);
     // The font's own features.fea, as written: fontmake and fontc add kern and mark from
     // the kerning and anchors, as xglyph does.
     if let Some(features) = &font.features {
@@ -137,14 +153,72 @@ pub fn export(font: &OutlinedFont) -> Result<norad::Font, UfoError> {
             .or_default()
             .insert(right, k.value + 0.0);
     }
-    Ok(ufo)
+    Ok(())
 }
 
 /// Every file of the UFO in memory, paths relative to the build's output folder
 /// (`<Family>-<Style>.ufo/metainfo.plist`, …), sorted by path: what `build` writes.
 pub fn output_files(font: &OutlinedFont) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    output_files_reusing(font, &Reuse::off())
+}
+
+/// One file of a UFO: its path and bytes.
+type UfoFile = (PathBuf, Vec<u8>);
+
+/// [`output_files`], leaving out each `.glif` that OUT holds already as the last build made
+/// it from the same glyph ([`Reuse::kept_or_make`]). The `.glif`s are encoded on every core
+/// (norad, as it would write them); the other files are norad's, of the font with empty
+/// glyphs of the same names (so `contents.plist` and the file names are norad's too).
+pub fn output_files_reusing(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
+    use rayon::prelude::*;
+    check_file_names(font)?;
     let dir = PathBuf::from(ufo_dir_name(font));
-    Ok(files(&export(font)?)?
+    let mut ufo = norad::Font::new();
+    let layer = ufo.default_layer_mut();
+    for g in &font.glyphs {
+        layer.insert_glyph(norad::Glyph::new(&g.name));
+    }
+    let layer = ufo.default_layer();
+    let layer_dir = layer.path().to_path_buf();
+    let owns = own_contours(font);
+    // In font order, so that the first glyph in error is the one reported.
+    let glifs: Vec<Result<Option<UfoFile>, UfoError>> = font
+        .glyphs
+        .par_iter()
+        .zip(owns)
+        .map(|(g, own)| {
+            let file = layer.get_path(&g.name).ok_or_else(|| {
+                UfoError::Write(format!("no file name for the glyph `{}`", g.name))
+            })?;
+            let path = layer_dir.join(file);
+            let make = || {
+                glyph::glyph(g, own)?
+                    .encode_xml()
+                    .map_err(|e| UfoError::Write(error_chain(&e)))
+            };
+            let bytes = reuse.kept_or_make(&dir.join(&path), glyph::key(g, own), make)?;
+            Ok(bytes.map(|bytes| (path, bytes)))
+        })
+        .collect();
+    let mut glif_files = Vec::with_capacity(glifs.len());
+    for glif in glifs {
+        glif_files.extend(glif?);
+    }
+    fill_font(&mut ufo, font)?;
+    // The empty glyphs' files are dropped: the `.glif`s are those made above.
+    let is_glif = |path: &Path| {
+        path.parent() == Some(layer_dir.as_path()) && path.extension().is_some_and(|e| e == "glif")
+    };
+    let mut files: Vec<(PathBuf, Vec<u8>)> = files(&ufo)?
+        .into_iter()
+        .filter(|(path, _)| !is_glif(path))
+        .collect();
+    files.extend(glif_files);
+    files.sort();
+    Ok(files
         .into_iter()
         .map(|(path, bytes)| (dir.join(path), bytes))
         .collect())

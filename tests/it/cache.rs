@@ -392,6 +392,7 @@ fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
                 stack.push(path);
             } else if path.file_name().unwrap() != ".xglyph-cache"
                 && path.file_name().unwrap() != xglyph::reuse::REUSE_FILE
+                && path.file_name().unwrap() != xglyph::source::MEMO_FILE
             {
                 let rel = path
                     .strip_prefix(dir)
@@ -481,4 +482,91 @@ fn load_ignored(path: &std::path::Path, bytes: &[u8], what: &str, reason: &str) 
         _ => panic!("{what}: {outcome:?}"),
     }
     cache
+}
+
+/// The glyph files of `tests/fixtures/mini` and an empty glyph (a warning), copied.
+fn memo_fixture(name: &str) -> PathBuf {
+    let dir = temp_dir(name).join("src");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mini = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/mini");
+    for entry in std::fs::read_dir(mini).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(dir.join("blank.toml"), "name = \"blank\"\nadvance = 0\n").unwrap();
+    dir
+}
+
+/// Loads `dir` through the memo file `path` (saving it after) and without any memo: both
+/// give the same family and diagnostics. Returns how many glyph files the memo gave.
+fn load_through_memo(dir: &Path, path: &Path) -> usize {
+    use xglyph::source::{load_family, load_family_with, SourceMemo};
+    let (memo, ignored) = SourceMemo::load(path);
+    assert_eq!(ignored, None);
+    let through = load_family_with(dir, &memo);
+    assert_eq!(through, load_family(dir));
+    memo.save(path).unwrap();
+    memo.taken()
+}
+
+#[test]
+fn the_source_memo_gives_what_the_loader_gives_and_only_for_unchanged_clean_files() {
+    use xglyph::source::{load_family, load_family_with, SourceMemo};
+    let dir = memo_fixture("memo");
+    let path = dir.with_file_name(xglyph::source::MEMO_FILE);
+    assert_eq!(load_through_memo(&dir, &path), 0);
+    // The 8 glyph files of `mini` come from the memo; `blank.toml` has a warning, so it is
+    // read again (and the warning is there each time: the families and diagnostics match).
+    assert_eq!(load_through_memo(&dir, &path), 8);
+    let (_, warnings) = load_family(&dir).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+
+    // `o` edited: read again, the rest from the memo.
+    let o = dir.join("o.toml");
+    let text = std::fs::read_to_string(&o).unwrap();
+    let moved = text.replacen("[520, 250, -1]", "[525, 250, -1]", 1);
+    assert_ne!(moved, text);
+    std::fs::write(&o, &moved).unwrap();
+    assert_eq!(load_through_memo(&dir, &path), 7);
+    let (family, _) = load_family(&dir).unwrap();
+    let o_glyph = family
+        .default
+        .glyphs
+        .iter()
+        .find(|g| g.name == "o")
+        .unwrap();
+    assert_eq!(o_glyph.contours[0].points()[0].pos.x, 525.0);
+
+    // `o` broken: the error is reported as without the memo, though `o` was in it.
+    std::fs::write(&o, moved.replacen("[525, 250, -1]", "[525, 250, 7]", 1)).unwrap();
+    let (memo, _) = SourceMemo::load(&path);
+    let failed = load_family_with(&dir, &memo).unwrap_err();
+    assert_eq!(Err(failed.clone()), load_family(&dir));
+    assert!(failed.iter().any(|d| d.path == o), "{failed:?}");
+    std::fs::write(&o, &moved).unwrap();
+
+    // A damaged, truncated or malformed memo is ignored with the reason; loading is
+    // unchanged.
+    let bytes = std::fs::read(&path).unwrap();
+    let mut flipped = bytes.clone();
+    flipped[bytes.len() / 2] ^= 0x01;
+    // A byte added after the last entry, with a checksum that matches: refused all the same.
+    let mut resealed = bytes[..bytes.len() - 4].to_vec();
+    resealed.push(0);
+    let crc = crc32fast::hash(&resealed);
+    resealed.extend_from_slice(&crc.to_le_bytes());
+    for (damaged, why) in [
+        (
+            flipped,
+            "its checksum does not match (the file is damaged or truncated)",
+        ),
+        (bytes[..3].to_vec(), "the file is truncated"),
+        (resealed, "bytes follow the last entry"),
+    ] {
+        std::fs::write(&path, &damaged).unwrap();
+        let (memo, ignored) = SourceMemo::load(&path);
+        assert_eq!(ignored.as_deref(), Some(why));
+        assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
+        assert_eq!(memo.taken(), 0);
+    }
 }

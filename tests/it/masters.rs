@@ -41,7 +41,10 @@ fn hashes(dir: &Path, prefix: &str, out: &mut BTreeMap<String, String>) {
         let rel = format!("{prefix}/{name}");
         if path.is_dir() {
             hashes(&path, &rel, out);
-        } else if name != ".xglyph-cache" && name != xglyph::reuse::REUSE_FILE {
+        } else if name != ".xglyph-cache"
+            && name != xglyph::reuse::REUSE_FILE
+            && name != xglyph::source::MEMO_FILE
+        {
             let digest = Sha256::digest(fs::read(&path).unwrap());
             let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
             out.insert(rel, hex);

@@ -132,7 +132,8 @@ fn a_changed_output_or_a_damaged_record_is_not_trusted() {
     assert_eq!(reuse.reused(), 3);
 }
 
-/// Every file under `dir` but the two records, by relative path, with its bytes.
+/// Every file under `dir` but the records of a build (fit cache, outputs, source memo), by
+/// relative path, with its bytes.
 fn output_files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut out = BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -142,7 +143,10 @@ fn output_files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
             let name = path.file_name().unwrap().to_string_lossy().into_owned();
             if path.is_dir() {
                 stack.push(path);
-            } else if name != REUSE_FILE && name != xglyph::cache::CACHE_FILE {
+            } else if name != REUSE_FILE
+                && name != xglyph::cache::CACHE_FILE
+                && name != xglyph::source::MEMO_FILE
+            {
                 let rel = path
                     .strip_prefix(dir)
                     .unwrap()
@@ -190,10 +194,11 @@ fn a_rebuild_takes_unchanged_outputs_and_writes_the_bytes_of_a_fresh_build() {
     let out = tmp.join("out");
     let stdout = build(&src, &out);
     assert!(!stdout.contains("took"), "{stdout}");
-    // Again: the sheet, the proof, the static and the variable WOFF2 from OUT.
+    // Again: the sheet, the proof, the instances' proof, the static and the variable WOFF2
+    // from OUT.
     let stdout = build(&src, &out);
     assert!(
-        stdout.contains("took 4 outputs unchanged from the last build"),
+        stdout.contains("took 5 outputs unchanged from the last build"),
         "{stdout}"
     );
     let fresh_out = tmp.join("fresh");
@@ -207,7 +212,7 @@ fn a_rebuild_takes_unchanged_outputs_and_writes_the_bytes_of_a_fresh_build() {
         .unwrap();
     std::fs::write(out.join(&woff2), b"wOF2 but not really").unwrap();
     let stdout = build(&src, &out);
-    assert!(stdout.contains("took 3 outputs unchanged"), "{stdout}");
+    assert!(stdout.contains("took 4 outputs unchanged"), "{stdout}");
     assert_eq!(output_files(&out), output_files(&fresh_out));
 
     // One glyph edited: its outline changes every output that draws the whole font.
@@ -295,4 +300,99 @@ fn unions_from_the_record_are_those_made_anew() {
     assert_eq!(subpaths(&fresh.glyphs[1].path), 2);
     let record = std::fs::read(dir.join(REUSE_FILE)).unwrap();
     assert!(record.len() > 200, "{} bytes", record.len());
+}
+
+/// The number in the build's `left N glyph files` line (0 without one).
+fn left(stdout: &str) -> usize {
+    stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("left ")?.split(' ').next()?.parse().ok())
+        .unwrap_or(0)
+}
+
+#[test]
+fn glyph_files_of_unchanged_glyphs_are_not_made_and_the_outputs_are_a_fresh_builds() {
+    let tmp = scratch("kept");
+    let src = tmp.join("src");
+    copy_dir(&repo("tests/fixtures/mini"), &src);
+    let out = tmp.join("out");
+    let settle = || std::thread::sleep(std::time::Duration::from_millis(100));
+    // Files just written get no stamp; the second build stamps them, the third trusts them:
+    // the 8 glyph SVGs and 8 `.glif`s are left in OUT without being made.
+    assert_eq!(left(&build(&src, &out)), 0);
+    settle();
+    build(&src, &out);
+    settle();
+    let stdout = build(&src, &out);
+    assert_eq!(left(&stdout), 16, "{stdout}");
+    assert!(stdout.contains("wrote 29 files"), "{stdout}");
+    let fresh = |name: &str| {
+        let dir = tmp.join(name);
+        build(&src, &dir);
+        output_files(&dir)
+    };
+    let before = fresh("fresh1");
+    same(&output_files(&out), &before);
+
+    // `o` edited: its files and those of `oacute` (an `o` with an accent) are made anew.
+    let glyph = src.join("o.toml");
+    let text = std::fs::read_to_string(&glyph).unwrap();
+    let edited = text.replacen("[520, 250, -1]", "[525, 250, -1]", 1);
+    assert_ne!(edited, text, "{text}");
+    std::fs::write(&glyph, edited).unwrap();
+    settle();
+    let stdout = build(&src, &out);
+    assert_eq!(left(&stdout), 12, "{stdout}");
+    let expected = fresh("fresh2");
+    let changed: Vec<&String> = expected
+        .iter()
+        .filter(|(name, bytes)| before.get(*name) != Some(bytes))
+        .map(|(name, _)| name)
+        .collect();
+    for name in [
+        "svg/o.svg",
+        "svg/oacute.svg",
+        "MiniTest-Regular.ufo/glyphs/o.glif",
+    ] {
+        assert!(changed.contains(&&name.to_string()), "{changed:?}");
+    }
+    same(&output_files(&out), &expected);
+
+    // A glyph SVG and a `.glif` replaced in OUT by bytes of the same length: their stamps no
+    // longer match, so they are made and rewritten.
+    settle();
+    build(&src, &out);
+    let names: Vec<String> = ["svg/A_.svg", "MiniTest-Regular.ufo/glyphs/V_.glif"]
+        .map(String::from)
+        .to_vec();
+    for name in &names {
+        let mut bytes = expected[name].clone();
+        let mid = bytes.len() / 2;
+        bytes[mid] ^= 0x20;
+        std::fs::write(out.join(name), &bytes).unwrap();
+    }
+    settle();
+    let stdout = build(&src, &out);
+    assert_eq!(left(&stdout), 14, "{stdout}");
+    same(&output_files(&out), &expected);
+
+    // A damaged record: ignored, every file made, the same bytes.
+    let record = out.join(REUSE_FILE);
+    let mut bytes = std::fs::read(&record).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x01;
+    std::fs::write(&record, bytes).unwrap();
+    let stdout = build(&src, &out);
+    assert_eq!(left(&stdout), 0, "{stdout}");
+    same(&output_files(&out), &expected);
+}
+
+/// Asserts that two folders' files are the same, naming those that differ.
+fn same(got: &BTreeMap<String, Vec<u8>>, want: &BTreeMap<String, Vec<u8>>) {
+    let names: std::collections::BTreeSet<&String> = got.keys().chain(want.keys()).collect();
+    let differ: Vec<&&String> = names
+        .iter()
+        .filter(|n| got.get(**n) != want.get(**n))
+        .collect();
+    assert!(differ.is_empty(), "these files differ: {differ:?}");
 }

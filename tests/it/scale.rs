@@ -240,6 +240,7 @@ fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
                 walk(root, &path, out);
             } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE))
                 && path.file_name() != Some(std::ffi::OsStr::new(xglyph::reuse::REUSE_FILE))
+                && path.file_name() != Some(std::ffi::OsStr::new(xglyph::source::MEMO_FILE))
             {
                 let rel = path
                     .strip_prefix(root)

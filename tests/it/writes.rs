@@ -52,13 +52,17 @@ fn reference(dir: &Path) -> Vec<(String, Vec<u8>)> {
 }
 
 /// [`tree`] with the output record's bytes left out (it stamps each output file with its
-/// inode and times, which differ between folders): only that it exists is compared.
+/// inode and times, which differ between folders), and the source memo's: only that they
+/// exist is compared.
 fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     tree(dir)
         .into_iter()
         .map(|(name, bytes)| {
             if name == xglyph::reuse::REUSE_FILE {
                 (name, b"(the output record)".to_vec())
+            } else if name == xglyph::source::MEMO_FILE {
+                // Keyed by the sources' paths, which differ between the builds compared.
+                (name, b"(the source memo)".to_vec())
             } else {
                 (name, bytes)
             }
@@ -365,7 +369,11 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
     let second = inodes(&out);
     // The result is what a build into an empty folder writes (the fit cache aside: it
     // keeps the old fit of `A` too).
-    let not_cache = |n: &String| n != xglyph::cache::CACHE_FILE && n != xglyph::reuse::REUSE_FILE;
+    let not_cache = |n: &String| {
+        n != xglyph::cache::CACHE_FILE
+            && n != xglyph::reuse::REUSE_FILE
+            && n != xglyph::source::MEMO_FILE
+    };
     reference(&dir);
     let fresh: Vec<_> = inodes(&dir.join("reference"))
         .into_iter()

@@ -1,0 +1,375 @@
+//! Glyph files as the last build loaded them, so that a rebuild neither parses nor checks
+//! again a glyph file that did not change: a CJK font's 20,902 files cost a quarter of an
+//! edited build's CPU time in TOML parsing and the area checks of every contour.
+//!
+//! Each entry is keyed by a SHA-256 of the program's identity, the file's path and its
+//! text ([`crate::reuse::KeyBuilder`]), and holds what [`super::glyph::load_glyph`] made of
+//! it: the glyph and where its parts were written. Only files that loaded complete and
+//! without any diagnostic are kept, so a memo hit gives what the loader would, and there is
+//! no message to replay. The checks across files (names, components, anchors, limits) still
+//! run on every build.
+//!
+//! The file ([`MEMO_FILE`] in OUT) is not trusted: it is read whole and checked before any
+//! entry is used (magic, version, CRC-32, every count against the bytes that remain, every
+//! number finite, every contour a valid X-spline, no duplicate key, no trailing byte), or
+//! ignored. It holds exactly the entries the last build used or made, sorted by key, and is
+//! not rewritten when a build used every entry and made none. Outputs are the same with and
+//! without it. Limit: as with the fit cache, a forged file with a valid checksum is trusted.
+
+use std::collections::HashMap;
+use std::fs;
+use std::io;
+use std::ops::Range;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use super::glyph::GlyphSpans;
+use crate::model::{Anchor, Component, Contour, Glyph};
+use crate::record::{Header, Reader};
+use crate::reuse::KeyBuilder;
+use crate::xspline::ControlPoint;
+
+/// Name of the memo file in the output folder.
+pub const MEMO_FILE: &str = ".xglyph-sources";
+
+const HEADER: Header = Header {
+    magic: b"XGLYPHSM",
+    version: 1,
+    not_ours: "it is not an xglyph source memo",
+};
+
+/// An entry of the last build's file.
+struct Slot {
+    /// Its bytes in [`SourceMemo::bytes`] (kept as they are for the next file).
+    range: Range<usize>,
+    /// The decoded glyph until this build takes it (then `None`: used).
+    glyph: Mutex<Option<(Glyph, GlyphSpans)>>,
+}
+
+/// The glyph files the last build loaded, and those this build loads.
+#[derive(Default)]
+pub struct SourceMemo {
+    /// Off: nothing looked up, nothing kept.
+    on: bool,
+    bytes: Vec<u8>,
+    earlier: HashMap<[u8; 32], Slot>,
+    made: Mutex<Vec<([u8; 32], Vec<u8>)>>,
+    taken: AtomicUsize,
+}
+
+impl std::fmt::Debug for SourceMemo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "SourceMemo({} entries)", self.earlier.len())
+    }
+}
+
+impl SourceMemo {
+    /// No memo: every file is parsed.
+    pub fn off() -> Self {
+        SourceMemo::default()
+    }
+
+    /// The memo at `path`, and why it was ignored if it was (a missing file is no reason).
+    pub fn load(path: &Path) -> (Self, Option<String>) {
+        if !crate::reuse::program_is_known() {
+            let why = "the program's own file cannot be read";
+            return (SourceMemo::off(), Some(why.into()));
+        }
+        let mut memo = SourceMemo {
+            on: true,
+            ..SourceMemo::default()
+        };
+        let bytes = match fs::read(path) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return (memo, None),
+            Err(e) => return (memo, Some(crate::write::reason(&e))),
+        };
+        match decode(&bytes) {
+            Ok(earlier) => {
+                memo.earlier = earlier;
+                memo.bytes = bytes;
+                (memo, None)
+            }
+            Err(why) => (memo, Some(why.to_string())),
+        }
+    }
+
+    /// The key of the glyph file `path` holding `text`.
+    pub(super) fn key(path: &Path, text: &str) -> [u8; 32] {
+        let mut k = KeyBuilder::new("glyph source");
+        k.bytes(path.as_os_str().as_encoded_bytes()).str(text);
+        k.finish().to_bytes()
+    }
+
+    /// What the last build loaded from the file of `key`, if it did.
+    pub(super) fn take(&self, key: &[u8; 32]) -> Option<(Glyph, GlyphSpans)> {
+        let taken = self.earlier.get(key)?.glyph.lock().ok()?.take();
+        if taken.is_some() {
+            self.taken.fetch_add(1, Ordering::Relaxed);
+        }
+        taken
+    }
+
+    /// How many glyph files came from the memo.
+    pub fn taken(&self) -> usize {
+        self.taken.load(Ordering::Relaxed)
+    }
+
+    /// Keeps what the loader made of the file of `key` (complete, no diagnostic).
+    pub(super) fn keep(&self, key: [u8; 32], glyph: &Glyph, spans: &GlyphSpans) {
+        if !self.on {
+            return;
+        }
+        // Sized once: 32 bytes a point (three reals and an offset), a little for the rest.
+        let points: usize = glyph.contours.iter().map(|c| c.points().len()).sum();
+        let parts = glyph.unicodes.len() + glyph.components.len() + glyph.anchors.len();
+        let mut body = Vec::with_capacity(128 + glyph.name.len() + 32 * (points + parts));
+        put_entry(&mut body, glyph, spans);
+        if let Ok(mut made) = self.made.lock() {
+            made.push((key, body));
+        }
+    }
+
+    /// Writes the entries this build used or made to `path` (atomically), unless they are
+    /// those of the file it loaded.
+    pub fn save(&self, path: &Path) -> io::Result<()> {
+        match self.bytes_to_save() {
+            Some(bytes) => crate::write::write_atomic(path, &bytes),
+            None => Ok(()),
+        }
+    }
+
+    /// The bytes [`SourceMemo::save`] writes; `None` when there is nothing to write (the
+    /// memo is off, or this build used every entry of the file and made none).
+    pub fn bytes_to_save(&self) -> Option<Vec<u8>> {
+        if !self.on {
+            return None;
+        }
+        let made = self.made.lock().ok()?;
+        let mut entries: Vec<([u8; 32], &[u8])> = made.iter().map(|(k, b)| (*k, &b[..])).collect();
+        let mut all_used = true;
+        for (key, slot) in &self.earlier {
+            let used = slot.glyph.lock().map(|g| g.is_none()).unwrap_or(false);
+            if used {
+                entries.push((*key, &self.bytes[slot.range.clone()]));
+            }
+            all_used &= used;
+        }
+        if made.is_empty() && all_used {
+            return None;
+        }
+        entries.sort_by_key(|(key, _)| *key);
+        let mut out = HEADER.start();
+        out.extend_from_slice(&(entries.len() as u32).to_le_bytes());
+        for (key, body) in entries {
+            out.extend_from_slice(&key);
+            out.extend_from_slice(&(body.len() as u32).to_le_bytes());
+            out.extend_from_slice(body);
+        }
+        Header::seal(&mut out);
+        Some(out)
+    }
+}
+
+/// Every entry of a memo file, decoded and checked, or what is wrong with it.
+fn decode(bytes: &[u8]) -> Result<HashMap<[u8; 32], Slot>, &'static str> {
+    let mut r = HEADER.open(bytes)?;
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 36)?;
+    let mut earlier = HashMap::with_capacity(count);
+    for _ in 0..count {
+        let key = r.array()?;
+        let len = r.u32()? as usize;
+        let body = r.take(len)?;
+        // Where the body lies in `bytes` (it is a part of it).
+        let start = body.as_ptr() as usize - bytes.as_ptr() as usize;
+        let mut e = Reader::new(body);
+        let glyph = read_entry(&mut e)?;
+        if !e.is_empty() {
+            return Err("an entry has bytes after its end");
+        }
+        let slot = Slot {
+            range: start..start + len,
+            glyph: Mutex::new(Some(glyph)),
+        };
+        if earlier.insert(key, slot).is_some() {
+            return Err("a file is recorded twice");
+        }
+    }
+    if !r.is_empty() {
+        return Err("bytes follow the last entry");
+    }
+    Ok(earlier)
+}
+
+fn put_u32(out: &mut Vec<u8>, v: usize) {
+    out.extend_from_slice(&(v as u32).to_le_bytes());
+}
+
+fn put_f64(out: &mut Vec<u8>, v: f64) {
+    out.extend_from_slice(&v.to_bits().to_le_bytes());
+}
+
+fn put_str(out: &mut Vec<u8>, s: &str) {
+    put_u32(out, s.len());
+    out.extend_from_slice(s.as_bytes());
+}
+
+fn put_offsets(out: &mut Vec<u8>, offsets: &[usize]) {
+    put_u32(out, offsets.len());
+    for &o in offsets {
+        out.extend_from_slice(&(o as u64).to_le_bytes());
+    }
+}
+
+fn put_entry(out: &mut Vec<u8>, g: &Glyph, spans: &GlyphSpans) {
+    put_str(out, &g.name);
+    put_u32(out, g.unicodes.len());
+    for &c in &g.unicodes {
+        put_u32(out, c as usize);
+    }
+    put_f64(out, g.advance);
+    put_u32(out, g.contours.len());
+    for c in &g.contours {
+        put_u32(out, c.points().len());
+        for p in c.points() {
+            put_f64(out, p.pos.x);
+            put_f64(out, p.pos.y);
+            put_f64(out, p.s);
+        }
+    }
+    put_u32(out, g.components.len());
+    for c in &g.components {
+        put_str(out, &c.base);
+        put_f64(out, c.offset.0);
+        put_f64(out, c.offset.1);
+    }
+    put_u32(out, g.anchors.len());
+    for a in &g.anchors {
+        put_str(out, &a.name);
+        put_f64(out, a.position.0);
+        put_f64(out, a.position.1);
+    }
+    put_offsets(out, &[spans.start, spans.name]);
+    put_offsets(out, &spans.unicodes);
+    put_offsets(out, &spans.bases);
+    put_u32(out, spans.offsets.len());
+    for o in &spans.offsets {
+        match o {
+            Some(o) => {
+                out.push(1);
+                out.extend_from_slice(&(*o as u64).to_le_bytes());
+            }
+            None => out.push(0),
+        }
+    }
+    put_offsets(out, &spans.anchors);
+    put_u32(out, spans.points.len());
+    for p in &spans.points {
+        put_offsets(out, p);
+    }
+}
+
+fn read_str(r: &mut Reader<'_>) -> Result<String, &'static str> {
+    let len = r.u32()? as usize;
+    let bytes = r.take(len)?;
+    String::from_utf8(bytes.to_vec()).map_err(|_| "a name is not UTF-8")
+}
+
+/// A count of items of at least `min_size` bytes each.
+fn read_count(r: &mut Reader<'_>, min_size: usize) -> Result<usize, &'static str> {
+    let n = r.u32()?;
+    r.count(u64::from(n), min_size)
+}
+
+fn read_offsets(r: &mut Reader<'_>) -> Result<Vec<usize>, &'static str> {
+    let n = read_count(r, 8)?;
+    (0..n)
+        .map(|_| usize::try_from(r.u64()?).map_err(|_| "an offset is too large"))
+        .collect()
+}
+
+fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
+    let name = read_str(r)?;
+    let n = read_count(r, 4)?;
+    let unicodes = (0..n)
+        .map(|_| char::from_u32(r.u32()?).ok_or("a code point is not a character"))
+        .collect::<Result<Vec<char>, _>>()?;
+    let advance = r.f64()?;
+    let n = read_count(r, 4)?;
+    let mut contours = Vec::with_capacity(n);
+    for _ in 0..n {
+        let points = read_count(r, 24)?;
+        let points = (0..points)
+            .map(|_| Ok(ControlPoint::new(r.f64()?, r.f64()?, r.f64()?)))
+            .collect::<Result<Vec<_>, &'static str>>()?;
+        contours.push(Contour::new(points).map_err(|_| "a contour is not a valid X-spline")?);
+    }
+    let n = read_count(r, 20)?;
+    let mut components = Vec::with_capacity(n);
+    for _ in 0..n {
+        let base = read_str(r)?;
+        let offset = (r.f64()?, r.f64()?);
+        components.push(Component { base, offset });
+    }
+    let n = read_count(r, 20)?;
+    let mut anchors = Vec::with_capacity(n);
+    for _ in 0..n {
+        let name = read_str(r)?;
+        let position = (r.f64()?, r.f64()?);
+        anchors.push(Anchor { name, position });
+    }
+    let head = read_offsets(r)?;
+    let [start, name_at] = head[..] else {
+        return Err("an entry's spans are malformed");
+    };
+    let span_unicodes = read_offsets(r)?;
+    let bases = read_offsets(r)?;
+    let n = read_count(r, 1)?;
+    let mut offsets = Vec::with_capacity(n);
+    for _ in 0..n {
+        offsets.push(match r.u8()? {
+            0 => None,
+            1 => Some(usize::try_from(r.u64()?).map_err(|_| "an offset is too large")?),
+            _ => return Err("an entry's spans are malformed"),
+        });
+    }
+    let span_anchors = read_offsets(r)?;
+    let n = read_count(r, 4)?;
+    let points = (0..n)
+        .map(|_| read_offsets(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let glyph = Glyph {
+        name,
+        unicodes,
+        advance,
+        contours,
+        components,
+        anchors,
+    };
+    let spans = GlyphSpans {
+        start,
+        name: name_at,
+        unicodes: span_unicodes,
+        bases,
+        offsets,
+        anchors: span_anchors,
+        points,
+    };
+    // The spans go with the glyph's parts, one each.
+    let counts_match = spans.unicodes.len() == glyph.unicodes.len()
+        && spans.bases.len() == glyph.components.len()
+        && spans.offsets.len() == glyph.components.len()
+        && spans.anchors.len() == glyph.anchors.len()
+        && spans.points.len() == glyph.contours.len()
+        && spans
+            .points
+            .iter()
+            .zip(&glyph.contours)
+            .all(|(s, c)| s.len() == c.points().len());
+    if !counts_match {
+        return Err("an entry's spans do not match its glyph");
+    }
+    Ok((glyph, spans))
+}
