@@ -1231,6 +1231,9 @@ fn unit(v: Vec2) -> Vec2 {
 // `MIN_SAMPLES`, `MAX_REFINE`, `MAX_TURN`).
 /// Most halvings of a gap polynomial when its control points bound it above the goal.
 const GAP_HALVINGS: usize = 2;
+/// With the middle's samples, one bound for the whole axis is taken where it is below this
+/// fraction of the goal (room for [`Fitter::gap`]); else the two halves are bounded.
+const WHOLE_AXIS: f64 = 0.9;
 /// Newton steps when moving a blended pairing to a blended cubic's nearest points.
 const REPROJECT_STEPS: usize = 2;
 /// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
@@ -1500,12 +1503,12 @@ impl JointSamples {
                     let centre = (u[i], u[i + 1]);
                     let low = [ends(0), centre];
                     let high = [centre, ends(1)];
-                    let first = if once <= goal {
+                    let first = if once <= WHOLE_AXIS * goal {
                         once
                     } else {
                         interval_net_bound(curve, cubics, (0.0, 0.5), low, goal, PAIR_SPLITS)
                     };
-                    if first > goal || once <= goal {
+                    if first > goal || once <= WHOLE_AXIS * goal {
                         first
                     } else {
                         let second =
