@@ -1693,13 +1693,14 @@ fn interval_net_bound(
     // The midpoint's pairing at each end of the range: the nearest parameter of the cubic
     // there (a master's own, else the blend).
     let mid = |e: usize, lambda: f64| {
-        let point = left.at(lambda)[3].to_point();
         let (a, b) = ends[e];
         let guess = 0.5 * (a + b);
         if lambda == 0.0 || lambda == 1.0 {
-            let cubic = cubics[lambda as usize];
-            fit::project_onto(cubic, point, guess, PROJECT_STEPS)
+            let j = lambda as usize;
+            let point = left.pieces[j][3].to_point();
+            fit::project_onto(cubics[j], point, guess, PROJECT_STEPS)
         } else {
+            let point = left.at(lambda)[3].to_point();
             let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]);
             fit::project_onto(&cubic, point, guess, PROJECT_STEPS)
         }
