@@ -1667,7 +1667,12 @@ fn interval_net_bound(
         let lambda = l0 + mu * (l1 - l0);
         let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
         let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
-        let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]);
+        // At a master the blend is its cubic (the same values, without the sums).
+        let cubic = match lambda {
+            0.0 => *cubics[0],
+            1.0 => *cubics[1],
+            _ => blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]),
+        };
         let run = cubic.subsegment(u0..u1);
         let paired = [run.p0, run.p1, run.p2, run.p3];
         let at = curve.at(lambda);
@@ -1676,8 +1681,9 @@ fn interval_net_bound(
         }
     }
     let net = values.map(|row| {
-        let mut out = [Vec2::ZERO; 5];
-        for (o, weights) in out.iter_mut().zip(&LAMBDA_BERNSTEIN) {
+        // The end coefficients are the end values (rows 0 and 4 of the inverse are unit).
+        let mut out = [row[0], Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, row[4]];
+        for (o, weights) in out[1..4].iter_mut().zip(&LAMBDA_BERNSTEIN[1..4]) {
             *o = row
                 .iter()
                 .zip(weights)
