@@ -25,7 +25,10 @@
 //! between them. Otherwise that bound plus how far each position's curve strays from the
 //! blend of the masters' curves (a table per contour and position, `Fitter::gap_table`)
 //! covers the position, and where that misses the goal the position gets a bound from its
-//! own samples. Only where a
+//! own samples. With two masters the blend is quadratic in the position instead, through
+//! the masters' curves and their centroid's (sampled with the span): exact at those three
+//! and far closer than the linear blend elsewhere, so one bound covers the search's probes
+//! and the gap tables add little at the others. Only where a
 //! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
 //! a span the measure (an estimate, which can over-estimate where its projections stall)
 //! might have turned away, so outputs can differ slightly from measuring everywhere: on the
@@ -83,6 +86,10 @@ const REFIT_GUESS: f64 = 0.6;
 const GRID_UNIT: f64 = 1.0;
 /// Grid steps per X-spline segment of [`Fitter::gap_table`].
 const GAP_GRID_PER_SEGMENT: usize = 10;
+/// The same, from the curve quadratic in the position ([`Fitter::middle`]): what it leaves
+/// is small and smooth (on the bundled glyphs with the synthetic bold, at most 0.05 of the
+/// goal), so a coarser grid serves.
+const GAP_GRID_MIDDLE: usize = 4;
 /// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
 /// of the masters' curves.
 const GAP_SAMPLES_PER_SEGMENT: usize = 8;
@@ -397,8 +404,14 @@ struct Fitter<'a> {
     /// masters' curves at the same parameter, per interval of a grid on the contour
     /// ([`Fitter::gap_table`]), computed when first needed.
     gap_tables: Vec<OnceCell<Vec<f64>>>,
-    /// The masters' points and derivatives on that grid, per master.
+    /// The masters' points and derivatives on that grid, per master, then (when
+    /// `middle` is set) the middle probe's.
     master_grid: OnceCell<Vec<Vec<(Point, Vec2)>>>,
+    /// Two masters whose `s` differs, and their centroid a probe of its own: its index.
+    /// Then the curve is taken as quadratic in the position, through the masters and the
+    /// middle ([`JointSamples::segment_bound`]), and each probe's gap is measured from
+    /// that interpolant ([`Fitter::gap_table`]).
+    middle: Option<usize>,
 }
 
 impl<'a> Fitter<'a> {
@@ -448,6 +461,7 @@ impl<'a> Fitter<'a> {
                 .all(|(p, q)| p.s == q.s)
         });
         let gap_tables = probes.iter().map(|_| OnceCell::new()).collect();
+        let middle = (count == 2 && !same_shape && searched == 3).then_some(2);
         Fitter {
             masters,
             probes,
@@ -458,6 +472,7 @@ impl<'a> Fitter<'a> {
             same_shape,
             gap_tables,
             master_grid: OnceCell::new(),
+            middle,
         }
     }
 
@@ -542,19 +557,21 @@ impl<'a> Fitter<'a> {
         for k in probes {
             let probe = &self.probes[k];
             let goal = self.goal;
+            let middle = self.middle.map(|m| &self.probes[m].spline);
             let samples = span.samples.get_or_insert_with(|| {
-                JointSamples::new(self.masters, (span.a, span.b), &span.cubics, goal)
+                JointSamples::new(self.masters, middle, (span.a, span.b), &span.cubics, goal)
             });
             // The bound for every position between the masters at once: exact for the
             // blend of the masters' curves, which is the blended curve when `s` is the
-            // same; otherwise the blended curve's distance from that blend is added.
+            // same; otherwise for the curve interpolated in the position (linearly, or
+            // through the middle too), and the blended curve's distance from that is added.
             let hull = *span
                 .hull
                 .get_or_insert_with(|| samples.hull_bound(&span.cubics, self.goal));
             let convex = probe.weights.iter().all(|w| *w >= 0.0);
             let gap = if !convex || hull > goal {
                 f64::INFINITY
-            } else if self.same_shape || k < self.masters.len() {
+            } else if self.same_shape || k < self.masters.len() || Some(k) == self.middle {
                 0.0
             } else {
                 self.gap(k, span.a, span.b)
@@ -563,8 +580,14 @@ impl<'a> Fitter<'a> {
                 hull + gap
             } else {
                 // At a master its own samples are the probe's (bit for bit): no evaluation.
-                let linear = self.same_shape || k < self.masters.len();
-                let bound = samples.bound(&span.cubics, probe, linear, goal);
+                let from = if self.same_shape || k < self.masters.len() {
+                    Source::Blend
+                } else if Some(k) == self.middle {
+                    Source::Middle
+                } else {
+                    Source::Own
+                };
+                let bound = samples.bound(&span.cubics, probe, from, goal);
                 if bound <= goal {
                     bound
                 } else {
@@ -584,12 +607,14 @@ impl<'a> Fitter<'a> {
 
     /// An upper bound of `|X_k(T) - Σ w_j X_j(T)|` over `T` in `[a, b]`: the curve of probe
     /// `k` against the blend of the masters' curves at its weights `w`, at the same
-    /// parameter (so also of the Fréchet distance between the two). With the bound of the
+    /// parameter (so also of the Fréchet distance between the two); with
+    /// [`Fitter::middle`], against the curve quadratic in the position through the masters'
+    /// and the middle's curves instead ([`quadratic_weights`]). With the bound of the
     /// masters' blend from the blended cubic ([`JointSamples::hull_bound`]), it bounds the
     /// probe's error without sampling the probe's curve for every span.
     fn gap(&self, k: usize, a: f64, b: f64) -> f64 {
         let table = self.gap_tables[k].get_or_init(|| self.gap_table(k));
-        let per = GAP_GRID_PER_SEGMENT as f64;
+        let per = self.gap_steps() as f64;
         let len = table.len();
         let first = (a * per).floor();
         let last = (b * per).ceil() as i64 - 1;
@@ -602,27 +627,42 @@ impl<'a> Fitter<'a> {
         worst
     }
 
-    /// [`Fitter::gap`] per interval of a grid of [`GAP_GRID_PER_SEGMENT`] steps per
+    /// Steps per X-spline segment of [`Fitter::gap_table`].
+    fn gap_steps(&self) -> usize {
+        match self.middle {
+            Some(_) => GAP_GRID_MIDDLE,
+            None => GAP_GRID_PER_SEGMENT,
+        }
+    }
+
+    /// [`Fitter::gap`] per interval of a grid of [`Fitter::gap_steps`] steps per
     /// X-spline segment: the difference of the two curves is taken as its cubic Hermite
     /// interpolant between grid points (as every bound here takes the curves), and its
     /// Bézier control points bound it on the interval (convex hull). Both ends of an
     /// interval are evaluated in its own segment.
     fn gap_table(&self, k: usize) -> Vec<f64> {
-        let steps = GAP_GRID_PER_SEGMENT;
-        let masters = self.master_grid.get_or_init(|| {
+        let steps = self.gap_steps();
+        let grids = self.master_grid.get_or_init(|| {
+            let middle = self.middle.map(|m| &self.probes[m].spline);
             self.masters
                 .iter()
+                .copied()
+                .chain(middle)
                 .map(|m| segment_grid(m, steps))
                 .collect()
         });
         let probe = &self.probes[k];
+        let coefficients = match self.middle {
+            Some(_) => quadratic_weights(probe.weights[1]).to_vec(),
+            None => probe.weights.clone(),
+        };
         let own = segment_grid(&probe.spline, steps);
         let diff: Vec<(Vec2, Vec2)> = own
             .iter()
             .enumerate()
             .map(|(i, (p, d))| {
                 let (mut p, mut d) = (p.to_vec2(), *d);
-                for (w, grid) in probe.weights.iter().zip(masters) {
+                for (w, grid) in coefficients.iter().zip(grids) {
                     p -= *w * grid[i].0.to_vec2();
                     d -= *w * grid[i].1;
                 }
@@ -1191,6 +1231,9 @@ fn unit(v: Vec2) -> Vec2 {
 // `MIN_SAMPLES`, `MAX_REFINE`, `MAX_TURN`).
 /// Most halvings of a gap polynomial when its control points bound it above the goal.
 const GAP_HALVINGS: usize = 2;
+/// With the middle's samples, one bound for the whole axis is taken where it is below this
+/// fraction of the goal (room for [`Fitter::gap`]); else the two halves are bounded.
+const WHOLE_AXIS: f64 = 0.9;
 /// Newton steps when moving a blended pairing to a blended cubic's nearest points.
 const REPROJECT_STEPS: usize = 2;
 /// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
@@ -1227,8 +1270,11 @@ const PROJECT_STEPS: usize = 4;
 ///
 /// So [`JointSamples::hull_bound`], computed from the masters alone, bounds the error at
 /// every position between them, not only the sampled ones. Where `s` differs the blend is
-/// not affine in the weights; [`JointSamples::bound`] then takes the blended contour's own
-/// samples at one position (same bound, one position).
+/// not affine in the weights. With two masters and the middle's samples the bound is then
+/// that of the curve taken as quadratic in the position through the masters' and the
+/// middle's curves (exact at those three; [`Fitter::gap`] adds how far another position's
+/// curve lies from it). [`JointSamples::bound`] takes the blended contour's own samples at
+/// one position (same bound, one position) where that misses the goal.
 ///
 /// Limits: as in [`fit`], the bound is proven against the samples' Hermite interpolants,
 /// whose own error (O(h^4) at 20 samples per segment, refined where a curve turns fast) is
@@ -1244,6 +1290,9 @@ struct JointSamples {
     p: Vec<Vec<Point>>,
     d: Vec<Vec<Vec2>>,
     u: Vec<Vec<f64>>,
+    /// The middle position's curve point and derivative at each sample, when the fit has
+    /// one ([`Fitter::middle`]).
+    middle: Option<(Vec<Point>, Vec<Vec2>, Vec<f64>)>,
 }
 
 impl JointSamples {
@@ -1251,6 +1300,7 @@ impl JointSamples {
     /// projects each master's samples onto its cubic.
     fn new(
         masters: &[&XSpline],
+        middle: Option<&XSpline>,
         (a, b): (f64, f64),
         cubics: &[CubicBez],
         goal: f64,
@@ -1262,6 +1312,7 @@ impl JointSamples {
             p: vec![Vec::with_capacity(n + 1); count],
             d: vec![Vec::with_capacity(n + 1); count],
             u: vec![Vec::with_capacity(n + 1); count],
+            middle: None,
         };
         let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
         let mut row =
@@ -1309,6 +1360,24 @@ impl JointSamples {
                 out.u[j].push(u);
                 guess = u;
             }
+        }
+        // The middle at the masters' samples (it does not refine them), paired with the
+        // masters' cubics blended there, from the masters' pairings blended.
+        if let (Some(spline), [c0, c1]) = (middle, cubics) {
+            let mut run = Run::new(spline);
+            let (p, d): (Vec<Point>, Vec<Vec2>) = out.t.iter().map(|&t| run.eval_deriv(t)).unzip();
+            let cubic = blend_cubic(&[*c0, *c1], &[0.5, 0.5]);
+            let u = (0..=last)
+                .map(|i| {
+                    let guess = 0.5 * (out.u[0][i] + out.u[1][i]);
+                    if i == 0 || i == last {
+                        guess
+                    } else {
+                        fit::project_onto(&cubic, p[i], guess, REPROJECT_STEPS)
+                    }
+                })
+                .collect();
+            out.middle = Some((p, d, u));
         }
         out
     }
@@ -1414,7 +1483,40 @@ impl JointSamples {
                 self.hermite(i, points, derivs)
             });
             let ends = |j: usize| (self.u[j][i], self.u[j][i + 1]);
-            let bound = interval_net_bound(pieces, cubics, [ends(0), ends(1)], goal, PAIR_SPLITS);
+            let bound = match &self.middle {
+                None => {
+                    let curve = Curve {
+                        pieces,
+                        middle: None,
+                    };
+                    let ends = [ends(0), ends(1)];
+                    interval_net_bound(curve, cubics, (0.0, 1.0), ends, goal, PAIR_SPLITS)
+                }
+                Some((p, d, u)) => {
+                    // The whole axis paired linearly between the masters' projections;
+                    // where that misses the goal, two halves of the axis, each paired
+                    // linearly between its ends' projections (the middle's own at λ = 1/2).
+                    let middle = Some(self.hermite(i, [p[i], p[i + 1]], [d[i], d[i + 1]]));
+                    let curve = Curve { pieces, middle };
+                    let whole = [ends(0), ends(1)];
+                    let once = interval_net_bound(curve, cubics, (0.0, 1.0), whole, goal, 0);
+                    let centre = (u[i], u[i + 1]);
+                    let low = [ends(0), centre];
+                    let high = [centre, ends(1)];
+                    let first = if once <= WHOLE_AXIS * goal {
+                        once
+                    } else {
+                        interval_net_bound(curve, cubics, (0.0, 0.5), low, goal, PAIR_SPLITS)
+                    };
+                    if first > goal || once <= WHOLE_AXIS * goal {
+                        first
+                    } else {
+                        let second =
+                            interval_net_bound(curve, cubics, (0.5, 1.0), high, goal, PAIR_SPLITS);
+                        first.max(second)
+                    }
+                }
+            };
             worst = worst.max(bound);
             if worst > goal {
                 break;
@@ -1424,11 +1526,11 @@ impl JointSamples {
     }
 
     /// The same bound at one position (`probe`), with the pairing blended by its weights.
-    /// `linear`: every master has the same `s`, so the probe's curve samples are the blend
-    /// of the masters'; otherwise they are taken from its own X-spline (then the blended
-    /// cubic's ends, on the blend of the masters' curves, may lie off it: the bound counts
-    /// that gap too). Above `goal` it stops as [`JointSamples::hull_bound`] does.
-    fn bound(&self, cubics: &[CubicBez], probe: &Probe, linear: bool, goal: f64) -> f64 {
+    /// `from`: where the probe's curve samples come from ([`Source`]); from its own X-spline
+    /// (or the middle's samples), the blended cubic's ends, on the blend of the masters'
+    /// curves, may lie off it: the bound counts that gap too. Above `goal` it stops as
+    /// [`JointSamples::hull_bound`] does.
+    fn bound(&self, cubics: &[CubicBez], probe: &Probe, from: Source, goal: f64) -> f64 {
         let w = &probe.weights;
         let n = self.t.len();
         let u: Vec<f64> = (0..n)
@@ -1445,16 +1547,18 @@ impl JointSamples {
             .collect();
         let mut run = Run::new(&probe.spline);
         let sample = |i: usize| -> (Point, Vec2) {
-            if linear {
-                let mut p = Vec2::ZERO;
-                let mut d = Vec2::ZERO;
-                for (j, wj) in w.iter().enumerate() {
-                    p += *wj * self.p[j][i].to_vec2();
-                    d += *wj * self.d[j][i];
+            match (from, &self.middle) {
+                (Source::Blend, _) => {
+                    let mut p = Vec2::ZERO;
+                    let mut d = Vec2::ZERO;
+                    for (j, wj) in w.iter().enumerate() {
+                        p += *wj * self.p[j][i].to_vec2();
+                        d += *wj * self.d[j][i];
+                    }
+                    (p.to_point(), d)
                 }
-                (p.to_point(), d)
-            } else {
-                run.eval_deriv(self.t[i])
+                (Source::Middle, Some((p, d, _))) => (p[i], d[i]),
+                _ => run.eval_deriv(self.t[i]),
             }
         };
         let cubic = blend_cubic(cubics, w);
@@ -1484,6 +1588,18 @@ impl JointSamples {
         }
         worst
     }
+}
+
+/// Where [`JointSamples::bound`] takes a position's curve samples from.
+#[derive(Clone, Copy)]
+enum Source {
+    /// The blend of the masters' samples: every master has the same `s` (or the position
+    /// is a master).
+    Blend,
+    /// The middle position's samples, taken with the masters' ([`Fitter::middle`]).
+    Middle,
+    /// The position's own X-spline, evaluated at every sample.
+    Own,
 }
 
 /// Bounds the gaps between the curve pieces `pieces` (one per cubic, Bézier control
@@ -1537,30 +1653,37 @@ fn paired_bound(
 /// blended with the position. Over `goal`, the interval is halved and its midpoint paired
 /// with each master's nearest cubic parameter, at most `splits` times (as [`paired_bound`]).
 fn interval_net_bound(
-    pieces: [[Vec2; 4]; 2],
+    curve: Curve,
     cubics: [&CubicBez; 2],
+    (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
     goal: f64,
     splits: usize,
 ) -> f64 {
-    // The gap's control points in `s` at λ = 0, 1/4, ..., 1.
+    // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)).
     let mut values = [[Vec2::ZERO; 5]; 4];
     for m in 0..5 {
-        let lambda = m as f64 / 4.0;
-        let w = [1.0 - lambda, lambda];
-        let u0 = w[0] * ends[0].0 + w[1] * ends[1].0;
-        let u1 = w[0] * ends[0].1 + w[1] * ends[1].1;
-        let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &w);
+        let mu = m as f64 / 4.0;
+        let lambda = l0 + mu * (l1 - l0);
+        let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
+        let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
+        // At a master the blend is its cubic (the same values, without the sums).
+        let cubic = match lambda {
+            0.0 => *cubics[0],
+            1.0 => *cubics[1],
+            _ => blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]),
+        };
         let run = cubic.subsegment(u0..u1);
         let paired = [run.p0, run.p1, run.p2, run.p3];
+        let at = curve.at(lambda);
         for (k, row) in values.iter_mut().enumerate() {
-            let curve = w[0] * pieces[0][k] + w[1] * pieces[1][k];
-            row[m] = curve - paired[k].to_vec2();
+            row[m] = at[k] - paired[k].to_vec2();
         }
     }
     let net = values.map(|row| {
-        let mut out = [Vec2::ZERO; 5];
-        for (o, weights) in out.iter_mut().zip(&LAMBDA_BERNSTEIN) {
+        // The end coefficients are the end values (rows 0 and 4 of the inverse are unit).
+        let mut out = [row[0], Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, row[4]];
+        for (o, weights) in out[1..4].iter_mut().zip(&LAMBDA_BERNSTEIN[1..4]) {
             *o = row
                 .iter()
                 .zip(weights)
@@ -1572,16 +1695,27 @@ fn interval_net_bound(
     if bound <= goal || splits == 0 {
         return bound;
     }
-    let (left0, right0) = halve(&pieces[0]);
-    let (left1, right1) = halve(&pieces[1]);
-    let mid = |j: usize, half: &[Vec2; 4]| {
-        let (a, b) = ends[j];
-        fit::project_onto(cubics[j], half[3].to_point(), 0.5 * (a + b), PROJECT_STEPS)
+    let (left, right) = curve.halve();
+    // The midpoint's pairing at each end of the range: the nearest parameter of the cubic
+    // there (a master's own, else the blend).
+    let mid = |e: usize, lambda: f64| {
+        let (a, b) = ends[e];
+        let guess = 0.5 * (a + b);
+        if lambda == 0.0 || lambda == 1.0 {
+            let j = lambda as usize;
+            let point = left.pieces[j][3].to_point();
+            fit::project_onto(cubics[j], point, guess, PROJECT_STEPS)
+        } else {
+            let point = left.at(lambda)[3].to_point();
+            let cubic = blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]);
+            fit::project_onto(&cubic, point, guess, PROJECT_STEPS)
+        }
     };
-    let (m0, m1) = (mid(0, &left0), mid(1, &left1));
+    let (m0, m1) = (mid(0, l0), mid(1, l1));
     let left = interval_net_bound(
-        [left0, left1],
+        left,
         cubics,
+        (l0, l1),
         [(ends[0].0, m0), (ends[1].0, m1)],
         goal,
         splits - 1,
@@ -1590,13 +1724,54 @@ fn interval_net_bound(
         return left;
     }
     let right = interval_net_bound(
-        [right0, right1],
+        right,
         cubics,
+        (l0, l1),
         [(m0, ends[0].1), (m1, ends[1].1)],
         goal,
         splits - 1,
     );
     left.max(right)
+}
+
+/// One interval of the curve at every position between two masters, as Hermite pieces
+/// (Bézier control points): linear in the position through the masters' pieces, or, with
+/// the middle position's piece, quadratic through the three.
+#[derive(Clone, Copy)]
+struct Curve {
+    pieces: [[Vec2; 4]; 2],
+    middle: Option<[Vec2; 4]>,
+}
+
+impl Curve {
+    /// Both halves (de Casteljau in `s`, every piece).
+    fn halve(&self) -> (Curve, Curve) {
+        let (left0, right0) = halve(&self.pieces[0]);
+        let (left1, right1) = halve(&self.pieces[1]);
+        let halves = self.middle.as_ref().map(halve);
+        (
+            Curve {
+                pieces: [left0, left1],
+                middle: halves.map(|h| h.0),
+            },
+            Curve {
+                pieces: [right0, right1],
+                middle: halves.map(|h| h.1),
+            },
+        )
+    }
+
+    /// The piece at position `λ` (weights `(1 - λ, λ)`).
+    fn at(&self, lambda: f64) -> [Vec2; 4] {
+        let [a, b] = &self.pieces;
+        match &self.middle {
+            None => std::array::from_fn(|k| (1.0 - lambda) * a[k] + lambda * b[k]),
+            Some(m) => {
+                let [wa, wb, wm] = quadratic_weights(lambda);
+                std::array::from_fn(|k| wa * a[k] + wb * b[k] + wm * m[k])
+            }
+        }
+    }
 }
 
 /// Bernstein coefficients (degree 4) from values at `λ = 0, 1/4, 1/2, 3/4, 1`: the inverse
@@ -1728,6 +1903,16 @@ fn segment_grid(spline: &XSpline, steps: usize) -> Vec<(Point, Vec2)> {
         out.extend((0..=steps).map(|i| segment.eval_deriv(i as f64 / steps as f64)));
     }
     out
+}
+
+/// The Lagrange weights of the masters and their middle (in that order) at position `λ`
+/// of two masters: the quadratic in `λ` through them.
+fn quadratic_weights(lambda: f64) -> [f64; 3] {
+    [
+        (1.0 - lambda) * (1.0 - 2.0 * lambda),
+        lambda * (2.0 * lambda - 1.0),
+        4.0 * lambda * (1.0 - lambda),
+    ]
 }
 
 /// De Casteljau at one half.

@@ -317,16 +317,26 @@ pub(super) fn fit_joint(parts: &[Part], goal: f64, low: f64) -> (Vec<CubicBez>, 
             let [(ka, sa), (kb, sb)] = unknowns.slots[j];
             let (da, db) = (part.start.direction, part.end.direction);
             let count = part.samples.p.len();
-            for i in 1..count - 1 {
-                let k = offset + i;
-                let (u, r) = poly.nearest(part.samples.p[i].to_vec2(), params[k]);
-                params[k] = u;
+            let inner = offset + 1..offset + count - 1;
+            // This master's terms, added in the same order as into the system itself.
+            let (mut ra, mut rb) = (rhs[ka], rhs[kb]);
+            let [mut naa, mut nab, mut nba, mut nbb] = [
+                normal[ka * n + ka],
+                normal[ka * n + kb],
+                normal[kb * n + ka],
+                normal[kb * n + kb],
+            ];
+            let samples = part.samples.p[1..count - 1].iter();
+            let state = params[inner.clone()].iter_mut().zip(&mut weights[inner]);
+            for (p, (param, weight)) in samples.zip(state) {
+                let (u, r) = poly.nearest(p.to_vec2(), *param);
+                *param = u;
                 let dist = r.hypot();
                 worst = worst.max(dist);
                 if round >= LAWSON_FROM {
-                    weights[k] *= dist;
+                    *weight *= dist;
                 }
-                sum += weights[k];
+                sum += *weight;
                 if dist <= 0.0 {
                     continue;
                 }
@@ -335,14 +345,19 @@ pub(super) fn fit_joint(parts: &[Part], goal: f64, low: f64) -> (Vec<CubicBez>, 
                 let v = 1.0 - u;
                 let ja = 3.0 * v * v * u * away.dot(da) * sa;
                 let jb = -3.0 * v * u * u * away.dot(db) * sb;
-                let w = weights[k];
-                rhs[ka] += w * ja * dist;
-                rhs[kb] += w * jb * dist;
-                normal[ka * n + ka] += w * ja * ja;
-                normal[ka * n + kb] += w * ja * jb;
-                normal[kb * n + ka] += w * jb * ja;
-                normal[kb * n + kb] += w * jb * jb;
+                let w = *weight;
+                ra += w * ja * dist;
+                rb += w * jb * dist;
+                naa += w * ja * ja;
+                nab += w * ja * jb;
+                nba += w * jb * ja;
+                nbb += w * jb * jb;
             }
+            (rhs[ka], rhs[kb]) = (ra, rb);
+            normal[ka * n + ka] = naa;
+            normal[ka * n + kb] = nab;
+            normal[kb * n + ka] = nba;
+            normal[kb * n + kb] = nbb;
             offset += count;
         }
         if round >= LAWSON_FROM && sum > 0.0 {
