@@ -317,7 +317,11 @@ mod tests {
             assert_eq!(swept(&path, eps, |w| w != 0), path, "{}", glyph.name);
             let mut doubled = path.clone();
             doubled.extend(kurbo::Affine::translate((7.0, 7.0)) * path.clone());
-            assert!(!disjoint::is_disjoint(&doubled, eps), "{} doubled", glyph.name);
+            assert!(
+                !disjoint::is_disjoint(&doubled, eps),
+                "{} doubled",
+                glyph.name
+            );
             checked += 1;
         }
         assert!(checked > 100, "{checked} glyphs");

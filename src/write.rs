@@ -350,6 +350,7 @@ impl Transaction {
             })
             .collect();
         let mut cleaned = std::collections::HashSet::new();
+        let mut to_stage = Vec::new();
         for ((path, bytes), changed) in files.iter().zip(changed) {
             let dir = parent(path);
             self.create_dirs(dir)?;
@@ -358,8 +359,21 @@ impl Transaction {
             }
             check_interrupt(path)?;
             if changed {
-                self.stage(path, bytes)?;
+                to_stage.push((path, bytes));
             }
+        }
+        // Staged on every core (a CJK build creates 42,000 files); the first error in the
+        // outputs' order is reported, and every staged file, kept or dropped, is removed on
+        // an error.
+        let staged: Vec<Result<(TempPath, PathBuf), WriteError>> = to_stage
+            .par_iter()
+            .map(|(path, bytes)| {
+                check_interrupt(path)?;
+                stage(path, bytes)
+            })
+            .collect();
+        for staged in staged {
+            self.staged.push(staged?);
         }
         for dir in kept.iter().map(|path| parent(path)) {
             if cleaned.insert(dir.to_path_buf()) {
@@ -429,51 +443,6 @@ impl Transaction {
         Ok(())
     }
 
-    /// Writes `bytes` to a new temporary file next to `path`.
-    fn stage(&mut self, path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
-        let io_err = |e| error(path, WriteErrorKind::Io(e));
-        let existing = match fs::symlink_metadata(path) {
-            Ok(meta) if meta.is_dir() => {
-                return Err(error(path, WriteErrorKind::FolderInTheWay));
-            }
-            Ok(meta) => Some(meta),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => None,
-            Err(e) => return Err(io_err(e)),
-        };
-        let prefix = format!("{PREFIX}{}-", std::process::id());
-        let mut options = fs::OpenOptions::new();
-        // Exclusive: fails on any existing name, a link included, which is never followed.
-        options.write(true).create_new(true);
-        #[cfg(unix)]
-        {
-            // A new file's mode as `File::create` gives it, 0o666 less the umask
-            // (tempfile's own default is 0o600).
-            use std::os::unix::fs::OpenOptionsExt;
-            options.mode(0o666);
-        }
-        // `make_in` retries on a name clash and, unlike `tempfile_in`, returns the file
-        // system's error as it is (no temporary path in the message).
-        let mut temp = Builder::new()
-            .prefix(&prefix)
-            .suffix(TMP)
-            .rand_bytes(RANDOM_LEN)
-            .make_in(parent(path), |name| options.open(name))
-            .map_err(io_err)?;
-        // A replaced regular file keeps its permissions (a link gets a new file's).
-        if let Some(meta) = existing.filter(|m| m.is_file()) {
-            temp.as_file()
-                .set_permissions(meta.permissions())
-                .map_err(io_err)?;
-        }
-        temp.as_file_mut().write_all(bytes).map_err(io_err)?;
-        // Linux flushes the whole file system once instead (`sync_staged`).
-        #[cfg(not(target_os = "linux"))]
-        temp.as_file().sync_all().map_err(io_err)?;
-        self.staged
-            .push((temp.into_temp_path(), path.to_path_buf()));
-        Ok(())
-    }
-
     /// Backs up what is at `path`, then renames the staged file over it.
     fn rename_into_place(&mut self, temp: TempPath, path: PathBuf) -> Result<(), WriteError> {
         let backup = match fs::symlink_metadata(&path) {
@@ -524,6 +493,49 @@ impl Transaction {
             }
         }
     }
+}
+
+/// Writes `bytes` to a new temporary file next to `path`.
+fn stage(path: &Path, bytes: &[u8]) -> Result<(TempPath, PathBuf), WriteError> {
+    let io_err = |e| error(path, WriteErrorKind::Io(e));
+    let existing = match fs::symlink_metadata(path) {
+        Ok(meta) if meta.is_dir() => {
+            return Err(error(path, WriteErrorKind::FolderInTheWay));
+        }
+        Ok(meta) => Some(meta),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(io_err(e)),
+    };
+    let prefix = format!("{PREFIX}{}-", std::process::id());
+    let mut options = fs::OpenOptions::new();
+    // Exclusive: fails on any existing name, a link included, which is never followed.
+    options.write(true).create_new(true);
+    #[cfg(unix)]
+    {
+        // A new file's mode as `File::create` gives it, 0o666 less the umask
+        // (tempfile's own default is 0o600).
+        use std::os::unix::fs::OpenOptionsExt;
+        options.mode(0o666);
+    }
+    // `make_in` retries on a name clash and, unlike `tempfile_in`, returns the file
+    // system's error as it is (no temporary path in the message).
+    let mut temp = Builder::new()
+        .prefix(&prefix)
+        .suffix(TMP)
+        .rand_bytes(RANDOM_LEN)
+        .make_in(parent(path), |name| options.open(name))
+        .map_err(io_err)?;
+    // A replaced regular file keeps its permissions (a link gets a new file's).
+    if let Some(meta) = existing.filter(|m| m.is_file()) {
+        temp.as_file()
+            .set_permissions(meta.permissions())
+            .map_err(io_err)?;
+    }
+    temp.as_file_mut().write_all(bytes).map_err(io_err)?;
+    // Linux flushes the whole file system once instead (`sync_staged`).
+    #[cfg(not(target_os = "linux"))]
+    temp.as_file().sync_all().map_err(io_err)?;
+    Ok((temp.into_temp_path(), path.to_path_buf()))
 }
 
 /// Set by the Ctrl-C handler of [`exit_on_interrupt`].

@@ -25,8 +25,8 @@
 //! sweep might have dropped it.
 
 use kurbo::{
-    BezPath, CubicBez, Line, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathEl, Point,
-    Rect, Shape, Vec2,
+    BezPath, CubicBez, Line, ParamCurve, ParamCurveExtrema, ParamCurveNearest, PathEl, Point, Rect,
+    Shape, Vec2,
 };
 
 /// Box tests allowed per glyph for pairs of pieces that come close, before giving up.
@@ -78,7 +78,10 @@ impl<'a> Pieces<'a> {
             let PathEl::MoveTo(first) = els[start] else {
                 return None;
             };
-            let end = start + els[start..].iter().position(|el| *el == PathEl::ClosePath)?;
+            let end = start
+                + els[start..]
+                    .iter()
+                    .position(|el| *el == PathEl::ClosePath)?;
             let from = pieces.len();
             let mut last = first;
             for el in &els[start + 1..end] {
@@ -353,7 +356,10 @@ mod tests {
 
     #[test]
     fn kurbo_area_and_winding_agree() {
-        for path in [rect(0.0, 0.0, 1.0, 1.0), rect(0.0, 0.0, 1.0, 1.0).reverse_subpaths()] {
+        for path in [
+            rect(0.0, 0.0, 1.0, 1.0),
+            rect(0.0, 0.0, 1.0, 1.0).reverse_subpaths(),
+        ] {
             assert_eq!(path.winding(Point::new(0.5, 0.5)), turn(path.area()));
         }
     }
@@ -378,7 +384,10 @@ mod tests {
         nested.extend(rect(2.0, 2.0, 8.0, 8.0));
         assert!(!is_disjoint(&nested, 1e-3));
         // A lone clockwise contour: winding -1.
-        assert!(!is_disjoint(&rect(0.0, 0.0, 1.0, 1.0).reverse_subpaths(), 1e-3));
+        assert!(!is_disjoint(
+            &rect(0.0, 0.0, 1.0, 1.0).reverse_subpaths(),
+            1e-3
+        ));
         // Two squares 0.0005 apart, with eps 0.001: too close to prove.
         let mut close = rect(0.0, 0.0, 1.0, 1.0);
         close.extend(rect(1.0005, 0.0, 2.0, 1.0));
