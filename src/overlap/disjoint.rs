@@ -323,7 +323,7 @@ fn meet_only_at_end(first: &CubicBez, second: &CubicBez, gap: f64) -> bool {
         let mut range = (f64::INFINITY, f64::NEG_INFINITY);
         for v in directions.into_iter().filter(|v| *v != Vec2::ZERO) {
             let angle = diagonal.cross(v).atan2(diagonal.dot(v));
-            if !(angle.abs() <= 1.4) {
+            if angle.is_nan() || angle.abs() > 1.4 {
                 return None;
             }
             range = (range.0.min(angle), range.1.max(angle));
