@@ -29,7 +29,7 @@ pub const LARGE_SFNT: usize = 1 << 20;
 pub const HUGE_SFNT: usize = 4 << 20;
 
 /// The number of slices Brotli compresses on threads of their own above [`LARGE_SFNT`].
-pub const SLICES: usize = 4;
+pub const SLICES: usize = 2;
 
 /// The WOFF2 file holding the font `sfnt` (a TTF or OTF file).
 pub fn woff2(sfnt: &[u8]) -> Result<Vec<u8>, OtfError> {
@@ -43,7 +43,11 @@ pub fn woff2(sfnt: &[u8]) -> Result<Vec<u8>, OtfError> {
         transform_glyf_loca: false,
         threads: NonZeroUsize::new(if sfnt.len() > LARGE_SFNT { SLICES } else { 1 }),
     };
-    encode_with_options(sfnt, options).map_err(|e| OtfError::Table(format!("WOFF2: {e}")))
+    let mut woff2 =
+        encode_with_options(sfnt, options).map_err(|e| OtfError::Table(format!("WOFF2: {e}")))?;
+    // The sliced encoder writes into a buffer as long as the font: held until the commit.
+    woff2.shrink_to_fit();
+    Ok(woff2)
 }
 
 #[cfg(test)]
