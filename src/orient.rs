@@ -21,18 +21,41 @@
 
 use kurbo::{BezPath, ParamCurve, PathEl, Point, Rect, Shape};
 
+/// Version of what [`reversals`] returns: bump it whenever orientation changes (the fit
+/// cache stores each glyph's reversals under it).
+pub const ORIENT_VERSION: u32 = 1;
+
 /// Orients closed contours (one subpath each) and joins them into one path.
 pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
-    let depths = nesting_depths(&contours);
+    let reversed = reversals(&contours);
+    join_reversed(&contours, &reversed)
+}
+
+/// Which contours [`orient_contours`] reverses: those whose direction disagrees with their
+/// nesting depth (even depth counter-clockwise, odd clockwise).
+pub fn reversals(contours: &[BezPath]) -> Vec<bool> {
+    let depths = nesting_depths(contours);
+    contours
+        .iter()
+        .zip(depths)
+        .map(|(contour, depth)| {
+            // kurbo's area is positive for counter-clockwise contours in y-up coordinates.
+            let ccw = contour.area() > 0.0;
+            let want_ccw = depth % 2 == 0;
+            ccw != want_ccw
+        })
+        .collect()
+}
+
+/// The contours joined into one path, each flagged in `reversed` turned around (a contour
+/// without a flag is kept as it is).
+pub fn join_reversed(contours: &[BezPath], reversed: &[bool]) -> BezPath {
     let mut out = BezPath::new();
-    for (contour, depth) in contours.iter().zip(depths) {
-        // kurbo's area is positive for counter-clockwise contours in y-up coordinates.
-        let ccw = contour.area() > 0.0;
-        let want_ccw = depth % 2 == 0;
-        if ccw == want_ccw {
-            out.extend(contour.iter());
-        } else {
+    for (k, contour) in contours.iter().enumerate() {
+        if reversed.get(k).copied().unwrap_or(false) {
             out.extend(contour.reverse_subpaths().iter());
+        } else {
+            out.extend(contour.iter());
         }
     }
     out

@@ -14,8 +14,8 @@
 //! [`outline_font`] fits the glyphs in parallel (rayon, one task per glyph); the result does
 //! not depend on the thread count, since each glyph is fitted on its own and the glyphs are
 //! collected in order. [`outline_font_with`] can also take fits from a [`FitCache`] (a
-//! rebuild refits only the contours that changed) and count finished glyphs for a progress
-//! display.
+//! rebuild refits only the contours that changed, and orients only the glyphs that changed)
+//! and count finished glyphs for a progress display.
 //!
 //! Each glyph is outlined on its own by [`outline_glyph`], a pure function of the model, the
 //! glyph and the tolerance: glyphs can be fitted in any order or in parallel, cached, or
@@ -238,7 +238,10 @@ fn outline_glyph_with<'a>(
         .collect();
     let max_error = fits.iter().map(|f| f.1).fold(0.0, f64::max);
     let fitted = fits.into_iter().map(|f| f.0).collect();
-    let path = orient_contours(fitted);
+    let path = match cache {
+        Some(cache) => cache.orient_placed(&contours, tolerance, fitted),
+        None => orient_contours(fitted),
+    };
     let segments = path
         .elements()
         .iter()

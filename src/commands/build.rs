@@ -353,7 +353,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     } else {
         let stats = (cache.hits(), cache.misses());
         loaded.family.default.glyphs = Vec::new();
-        (None, Some((cache.bytes_to_save(&cache_path), stats)))
+        (None, Some((cache.files_to_save(&cache_path), stats)))
     };
     // The three groups of outputs on every core (rayon); errors in this order.
     let ((files, instance_files), variable) = show_phase("rendering the outputs", || {
@@ -402,11 +402,11 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     }
     if let Some(cache) = &cache {
         to_save = Some((
-            cache.bytes_to_save(&cache_path),
+            cache.files_to_save(&cache_path),
             (cache.hits(), cache.misses()),
         ));
     }
-    let (cache_bytes, (hits, misses)) = to_save.unwrap_or((None, (0, 0)));
+    let (cache_files, (hits, misses)) = to_save.unwrap_or((Vec::new(), (0, 0)));
     if hits > 0 {
         outln!(
             "refitted {misses} contours; {hits} fits from the cache {}",
@@ -437,11 +437,11 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             crate::write::reason(&e)
         ),
     }
-    if let Some(bytes) = memo.bytes_to_save() {
-        records.add(&memo_path, bytes);
+    for (path, bytes) in memo.files_to_save(&memo_path) {
+        records.add(path, bytes);
     }
-    if let Some(bytes) = cache_bytes {
-        records.add(&cache_path, bytes);
+    for (path, bytes) in cache_files {
+        records.add(path, bytes);
     }
     if !records.is_empty() {
         if let Err(e) = records.commit() {

@@ -7,6 +7,9 @@
 //! charstring. `FontMatrix` is written only when units per em is not 1000.
 //! Hand-written: write-fonts 0.55 has no CFF encoder and no maintained crate provides one.
 
+use std::collections::HashMap;
+use std::sync::OnceLock;
+
 use read_fonts::ps::Sid;
 
 /// Number of standard strings (SIDs 0..=390) in the CFF specification, Appendix A.
@@ -140,28 +143,45 @@ fn push_op(op: u16, out: &mut Vec<u8>) {
     }
 }
 
-/// String IDs: standard strings by number, the rest in the String INDEX.
+/// String IDs: standard strings by number, the rest in the String INDEX. Both are looked
+/// up in maps: a CJK font's charset names 20,000 glyphs, and a linear search per name was
+/// quadratic.
 #[derive(Default)]
 struct Strings {
     custom: Vec<String>,
+    /// Custom string -> index in `custom`.
+    index: HashMap<String, usize>,
 }
 
 impl Strings {
     fn sid(&mut self, s: &str) -> i32 {
-        if let Some(sid) =
-            (0..STANDARD_STRING_COUNT).find(|&i| Sid::new(i).resolve_standard() == Ok(s.as_bytes()))
-        {
+        if let Some(&sid) = standard_sids().get(s.as_bytes()) {
             return i32::from(sid);
         }
-        let index = match self.custom.iter().position(|c| c == s) {
-            Some(i) => i,
+        let index = match self.index.get(s) {
+            Some(&i) => i,
             None => {
                 self.custom.push(s.to_owned());
+                self.index.insert(s.to_owned(), self.custom.len() - 1);
                 self.custom.len() - 1
             }
         };
         i32::from(STANDARD_STRING_COUNT) + index as i32
     }
+}
+
+/// The standard strings and their SIDs (the first SID of a string, were one repeated).
+fn standard_sids() -> &'static HashMap<&'static [u8], u16> {
+    static MAP: OnceLock<HashMap<&'static [u8], u16>> = OnceLock::new();
+    MAP.get_or_init(|| {
+        let mut map = HashMap::new();
+        for i in 0..STANDARD_STRING_COUNT {
+            if let Ok(bytes) = Sid::new(i).resolve_standard() {
+                map.entry(bytes).or_insert(i);
+            }
+        }
+        map
+    })
 }
 
 /// The Top DICT with the given offsets (charset, CharStrings, Private size and offset).

@@ -5,6 +5,7 @@
 //! after rounding are dropped; a contour that collapses entirely is dropped.
 
 use kurbo::{BezPath, PathEl, Point};
+use rayon::prelude::*;
 
 use super::{OtGlyph, OtfError};
 
@@ -111,10 +112,11 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
 
 /// Every glyph's outline on the grid, in glyph order (cubic, for CFF).
 pub fn round_glyph_paths(glyphs: &[OtGlyph]) -> Result<Vec<BezPath>, OtfError> {
-    glyphs
-        .iter()
+    let each: Vec<Result<BezPath, OtfError>> = glyphs
+        .par_iter()
         .map(|g| round_path(&g.path, &g.model_name))
-        .collect()
+        .collect();
+    each.into_iter().collect()
 }
 
 #[cfg(test)]

@@ -52,6 +52,7 @@ mod woff2;
 use std::collections::BTreeMap;
 
 use kurbo::BezPath;
+use rayon::prelude::*;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
 
@@ -136,11 +137,11 @@ impl GlyphSet {
         if count > usize::from(u16::MAX) {
             return Err(OtfError::TooManyGlyphs(count));
         }
-        let mut glyphs = notdef
-            .iter()
-            .chain(&font.glyphs)
-            .map(OtGlyph::new)
-            .collect::<Result<Vec<_>, _>>()?;
+        let all: Vec<&OutlinedGlyph> = notdef.iter().chain(&font.glyphs).collect();
+        // On every core; the first error in glyph order.
+        let each: Vec<Result<OtGlyph, OtfError>> =
+            all.par_iter().map(|g| OtGlyph::new(g)).collect();
+        let mut glyphs = each.into_iter().collect::<Result<Vec<_>, _>>()?;
         let names = glyph_names::ps_names(&glyphs);
         for (glyph, name) in glyphs.iter_mut().zip(names) {
             glyph.ps_name = name;

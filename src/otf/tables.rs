@@ -13,6 +13,7 @@
 //! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
 use kurbo::{BezPath, Shape};
+use rayon::prelude::*;
 use write_fonts::tables::name::NameRecord;
 use write_fonts::types::{NameId, Tag};
 use write_fonts::{BuilderError, FontBuilder};
@@ -97,7 +98,7 @@ fn glyph_boxes(outlines: &Outlines) -> Vec<Option<GridBox>> {
             .map(|g| g.bbox().map(|b| (b.x_min, b.y_min, b.x_max, b.y_max)))
             .collect(),
         Outlines::Cff(paths) => paths
-            .iter()
+            .par_iter()
             .map(|p| {
                 if p.elements().is_empty() {
                     return None;
@@ -125,7 +126,7 @@ fn cff(
 ) -> Vec<u8> {
     let names: Vec<&str> = set.glyphs.iter().map(|g| g.ps_name.as_str()).collect();
     let charstrings: Vec<Vec<u8>> = paths
-        .iter()
+        .par_iter()
         .zip(&set.glyphs)
         .map(|(p, g)| charstring(p, i32::from(g.advance)))
         .collect();

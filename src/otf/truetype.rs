@@ -1,5 +1,6 @@
 //! TrueType glyphs: quadratic contours on the integer grid, then `glyf`/`loca`.
 
+use rayon::prelude::*;
 use read_fonts::tables::glyf::CurvePoint;
 use write_fonts::tables::glyf::{Bbox, Contour, GlyfLocaBuilder, Glyph, SimpleGlyph};
 
@@ -28,10 +29,12 @@ impl TtGlyph {
     }
 }
 
-/// Every glyph as TrueType, quadratics within `accuracy` before grid rounding.
+/// Every glyph as TrueType, quadratics within `accuracy` before grid rounding; on every
+/// core (rayon), the first error in glyph order reported, so the result does not depend on
+/// the thread count.
 pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfError> {
-    glyphs
-        .iter()
+    let each: Vec<Result<TtGlyph, OtfError>> = glyphs
+        .par_iter()
         .map(|g| {
             let mut contours = Vec::new();
             for contour in truetype_contours(&g.path, accuracy) {
@@ -84,7 +87,8 @@ pub fn glyphs(glyphs: &[OtGlyph], accuracy: f64) -> Result<Vec<TtGlyph>, OtfErro
             glyph.recompute_bounding_box();
             Ok(TtGlyph { glyph: Some(glyph) })
         })
-        .collect()
+        .collect();
+    each.into_iter().collect()
 }
 
 /// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).

@@ -12,15 +12,20 @@
 //! The file ([`MEMO_FILE`] in OUT) is not trusted: it is read whole and checked before any
 //! entry is used (magic, version, CRC-32, every count against the bytes that remain, every
 //! number finite, every contour a valid X-spline, no duplicate key, no trailing byte), or
-//! ignored. It holds exactly the entries the last build used or made, sorted by key, and is
-//! not rewritten when a build used every entry and made none. Outputs are the same with and
-//! without it. Limit: as with the fit cache, a forged file with a valid checksum is trusted.
+//! ignored. It holds the entries the last build that wrote it whole used or made, sorted by
+//! key, and is not rewritten when a build used every entry and made none. A build that
+//! parsed few files writes only a delta file beside it ([`DELTA_FILE`]: the same layout with
+//! its own magic, bound to the memo file by its length and checksum, holding the entries
+//! made and those of the last delta used), as the fit cache does, until the delta and the
+//! memo's unused entries pass 1/8 of its entries; a CJK font's memo is 77 MB. Outputs are
+//! the same with and without it. Limit: as with the fit cache, a forged file with a valid
+//! checksum is trusted.
 
 use std::collections::HashMap;
 use std::fs;
 use std::io;
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
@@ -33,10 +38,23 @@ use crate::xspline::ControlPoint;
 /// Name of the memo file in the output folder.
 pub const MEMO_FILE: &str = ".xglyph-sources";
 
+/// Name of the delta file beside it ([`SourceMemo::files_to_save`]).
+pub const DELTA_FILE: &str = ".xglyph-sources-delta";
+
+/// The delta may hold at most 1 / this of the memo file's entries, counting with it the
+/// memo's unused entries; beyond, the memo is written whole.
+const DELTA_SHARE: usize = 8;
+
 const HEADER: Header = Header {
     magic: b"XGLYPHSM",
     version: 1,
     not_ours: "it is not an xglyph source memo",
+};
+
+const DELTA_HEADER: Header = Header {
+    magic: b"XGLYPHSD",
+    version: 1,
+    not_ours: "it is not an xglyph source memo delta",
 };
 
 /// An entry of the last build's file.
@@ -45,6 +63,14 @@ struct Slot {
     range: Range<usize>,
     /// The decoded glyph until this build takes it (then `None`: used).
     glyph: Mutex<Option<(Glyph, GlyphSpans)>>,
+    /// Whether it came from the delta file (its bytes are in [`SourceMemo::delta_bytes`]).
+    in_delta: bool,
+}
+
+impl Slot {
+    fn used(&self) -> bool {
+        self.glyph.lock().map(|g| g.is_none()).unwrap_or(false)
+    }
 }
 
 /// The glyph files the last build loaded, and those this build loads.
@@ -53,6 +79,11 @@ pub struct SourceMemo {
     /// Off: nothing looked up, nothing kept.
     on: bool,
     bytes: Vec<u8>,
+    delta_bytes: Vec<u8>,
+    /// The memo file's binding (length, checksum) and entry count, when one was loaded.
+    base: Option<(u64, u32, usize)>,
+    /// Entries the delta file added.
+    delta_entries: usize,
     earlier: HashMap<[u8; 32], Slot>,
     made: Mutex<Vec<([u8; 32], Vec<u8>)>>,
     taken: AtomicUsize,
@@ -85,14 +116,35 @@ impl SourceMemo {
             Err(e) if e.kind() == io::ErrorKind::NotFound => return (memo, None),
             Err(e) => return (memo, Some(crate::write::reason(&e))),
         };
-        match decode(&bytes) {
+        match decode(&HEADER, &bytes, None, false) {
             Ok(earlier) => {
+                let binding = binding(&bytes);
+                memo.base = Some((binding.0, binding.1, earlier.len()));
                 memo.earlier = earlier;
                 memo.bytes = bytes;
+                memo.add_delta(path, binding);
                 (memo, None)
             }
             Err(why) => (memo, Some(why.to_string())),
         }
+    }
+
+    /// Adds the entries of the delta file beside `path` when it is whole and bound to the
+    /// memo file (`binding`); otherwise it is ignored (those files are parsed again).
+    fn add_delta(&mut self, path: &Path, binding: (u64, u32)) {
+        let Ok(bytes) = fs::read(delta_path(path)) else {
+            return;
+        };
+        let Ok(entries) = decode(&DELTA_HEADER, &bytes, Some(binding), true) else {
+            return;
+        };
+        for (key, slot) in entries {
+            if let std::collections::hash_map::Entry::Vacant(v) = self.earlier.entry(key) {
+                v.insert(slot);
+                self.delta_entries += 1;
+            }
+        }
+        self.delta_bytes = bytes;
     }
 
     /// The key of the glyph file `path` holding `text`.
@@ -131,13 +183,56 @@ impl SourceMemo {
         }
     }
 
-    /// Writes the entries this build used or made to `path` (atomically), unless they are
-    /// those of the file it loaded.
+    /// Writes the entries this build used or made to `path`, or only its delta file
+    /// ([`SourceMemo::files_to_save`]), atomically; nothing when they are those of the
+    /// files it loaded.
     pub fn save(&self, path: &Path) -> io::Result<()> {
-        match self.bytes_to_save() {
-            Some(bytes) => crate::write::write_atomic(path, &bytes),
-            None => Ok(()),
+        for (path, bytes) in self.files_to_save(path) {
+            crate::write::write_atomic(&path, &bytes)?;
         }
+        Ok(())
+    }
+
+    /// What [`SourceMemo::save`] writes, the memo having been loaded from `path`: nothing
+    /// (off, or every entry used and none made); only the delta file when the memo file's
+    /// unused entries, the delta's used ones and the new ones together are at most
+    /// 1/[`DELTA_SHARE`] of the memo file's entries; else the memo file whole
+    /// ([`SourceMemo::bytes_to_save`]).
+    pub fn files_to_save(&self, path: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+        if !self.on {
+            return Vec::new();
+        }
+        if let Some((len, crc, base_entries)) = self.base {
+            let Ok(made) = self.made.lock() else {
+                return Vec::new();
+            };
+            let (mut base_unused, mut delta_used) = (0, 0);
+            for slot in self.earlier.values() {
+                let used = slot.used();
+                base_unused += usize::from(!slot.in_delta && !used);
+                delta_used += usize::from(slot.in_delta && used);
+            }
+            if (base_unused + delta_used + made.len()) * DELTA_SHARE <= base_entries {
+                if made.is_empty() && delta_used == self.delta_entries {
+                    return Vec::new();
+                }
+                let mut entries: Vec<([u8; 32], &[u8])> =
+                    made.iter().map(|(k, b)| (*k, &b[..])).collect();
+                for (key, slot) in &self.earlier {
+                    if slot.in_delta && slot.used() {
+                        entries.push((*key, &self.delta_bytes[slot.range.clone()]));
+                    }
+                }
+                let mut out = DELTA_HEADER.start();
+                out.extend_from_slice(&len.to_le_bytes());
+                out.extend_from_slice(&crc.to_le_bytes());
+                put_entries(&mut out, entries);
+                return vec![(delta_path(path), out)];
+            }
+        }
+        self.bytes_to_save()
+            .map(|bytes| vec![(path.to_path_buf(), bytes)])
+            .unwrap_or_default()
     }
 
     /// The bytes [`SourceMemo::save`] writes; `None` when there is nothing to write (the
@@ -150,31 +245,65 @@ impl SourceMemo {
         let mut entries: Vec<([u8; 32], &[u8])> = made.iter().map(|(k, b)| (*k, &b[..])).collect();
         let mut all_used = true;
         for (key, slot) in &self.earlier {
-            let used = slot.glyph.lock().map(|g| g.is_none()).unwrap_or(false);
+            let used = slot.used();
             if used {
-                entries.push((*key, &self.bytes[slot.range.clone()]));
+                let from = if slot.in_delta {
+                    &self.delta_bytes
+                } else {
+                    &self.bytes
+                };
+                entries.push((*key, &from[slot.range.clone()]));
             }
             all_used &= used;
         }
-        if made.is_empty() && all_used {
+        if made.is_empty() && all_used && self.delta_entries == 0 {
             return None;
         }
-        entries.sort_by_key(|(key, _)| *key);
         let mut out = HEADER.start();
-        out.extend_from_slice(&(entries.len() as u32).to_le_bytes());
-        for (key, body) in entries {
-            out.extend_from_slice(&key);
-            out.extend_from_slice(&(body.len() as u32).to_le_bytes());
-            out.extend_from_slice(body);
-        }
-        Header::seal(&mut out);
+        put_entries(&mut out, entries);
         Some(out)
     }
 }
 
-/// Every entry of a memo file, decoded and checked, or what is wrong with it.
-fn decode(bytes: &[u8]) -> Result<HashMap<[u8; 32], Slot>, &'static str> {
-    let mut r = HEADER.open(bytes)?;
+/// The delta file beside the memo file at `path`.
+pub fn delta_path(path: &Path) -> PathBuf {
+    path.with_file_name(DELTA_FILE)
+}
+
+/// What binds a delta file to the memo file `bytes`: its length and checksum.
+fn binding(bytes: &[u8]) -> (u64, u32) {
+    let crc = bytes
+        .split_last_chunk::<4>()
+        .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
+    (bytes.len() as u64, crc)
+}
+
+/// Appends the entries sorted by key, and the checksum.
+fn put_entries(out: &mut Vec<u8>, mut entries: Vec<([u8; 32], &[u8])>) {
+    entries.sort_by_key(|(key, _)| *key);
+    out.extend_from_slice(&(entries.len() as u32).to_le_bytes());
+    for (key, body) in entries {
+        out.extend_from_slice(&key);
+        out.extend_from_slice(&(body.len() as u32).to_le_bytes());
+        out.extend_from_slice(body);
+    }
+    Header::seal(out);
+}
+
+/// Every entry of a memo file (or, with `bound`, of a delta file bound to the memo file of
+/// that length and checksum), decoded and checked, or what is wrong with it.
+fn decode(
+    header: &Header,
+    bytes: &[u8],
+    bound: Option<(u64, u32)>,
+    in_delta: bool,
+) -> Result<HashMap<[u8; 32], Slot>, &'static str> {
+    let mut r = header.open(bytes)?;
+    if let Some(binding) = bound {
+        if (r.u64()?, r.u32()?) != binding {
+            return Err("it belongs to another memo file");
+        }
+    }
     let count = r.u32()?;
     let count = r.count(u64::from(count), 36)?;
     let mut earlier = HashMap::with_capacity(count);
@@ -192,6 +321,7 @@ fn decode(bytes: &[u8]) -> Result<HashMap<[u8; 32], Slot>, &'static str> {
         let slot = Slot {
             range: start..start + len,
             glyph: Mutex::new(Some(glyph)),
+            in_delta,
         };
         if earlier.insert(key, slot).is_some() {
             return Err("a file is recorded twice");

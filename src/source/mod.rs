@@ -37,4 +37,4 @@ pub use kerning::load_kerning_text;
 pub use load::{
     load_family, load_family_with, load_font, load_sources, LoadedFont, SourceFile, SourceKind,
 };
-pub use memo::{SourceMemo, MEMO_FILE};
+pub use memo::{delta_path as memo_delta_path, SourceMemo, MEMO_FILE};

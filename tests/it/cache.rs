@@ -91,6 +91,7 @@ fn a_warm_cache_gives_the_same_fits_without_fitting() {
 fn an_edited_contour_is_refitted_and_the_rest_come_from_the_cache() {
     let mut splines = contours();
     splines.truncate(40);
+    let before = distinct(&splines);
     let path = temp_dir("edit").join(".xglyph-cache");
     let cold = FitCache::new();
     splines.iter().for_each(|s| drop(cold.fit(s, 0.5)));
@@ -104,12 +105,96 @@ fn an_edited_contour_is_refitted_and_the_rest_come_from_the_cache() {
     fit_all(&warm, &splines, &direct, 0.5);
     assert_eq!(warm.misses(), 1);
     assert_eq!(warm.hits(), splines.len() - 1);
-    // The next file holds the contours of this run: the edited one, not the old one.
+    // The next files hold the contours of this run: the edited one in the delta file, and
+    // until the cache file is written whole, the old one.
     warm.save(&path).unwrap();
-    assert_eq!(
-        FitCache::load(&path).1,
-        LoadOutcome::Loaded(distinct(&splines))
-    );
+    assert_eq!(FitCache::load(&path).1, LoadOutcome::Loaded(before + 1));
+}
+
+/// `splines` with the first point of each contour numbered in `edited` moved by the
+/// smallest step an f64 can take.
+fn edited(splines: &[XSpline], edited: &[usize]) -> Vec<XSpline> {
+    let mut out = splines.to_vec();
+    for &k in edited {
+        let mut points = out[k].points().to_vec();
+        points[0].pos.x = f64::from_bits(points[0].pos.x.to_bits() + 1);
+        out[k] = XSpline::new(points).unwrap();
+    }
+    out
+}
+
+#[test]
+fn an_edit_writes_only_a_delta_file_that_the_next_run_trusts_only_whole_and_bound() {
+    use xglyph::cache::delta_path;
+    // The first 40 distinct contours.
+    let mut splines: Vec<XSpline> = Vec::new();
+    for s in contours() {
+        if splines.len() < 40 && !splines.contains(&s) {
+            splines.push(s);
+        }
+    }
+    assert_eq!(distinct(&splines), 40);
+    let path = temp_dir("delta").join(".xglyph-cache");
+    let delta = delta_path(&path);
+    let cold = FitCache::new();
+    splines.iter().for_each(|s| drop(cold.fit(s, 0.5)));
+    cold.save(&path).unwrap();
+    let whole = std::fs::read(&path).unwrap();
+    assert!(!delta.exists());
+
+    // One contour edited: 1 new + 1 unused entry is within 1/8 of 40, so only the delta
+    // file is written; the cache file keeps its bytes.
+    let splines = edited(&splines, &[7]);
+    let direct: Vec<ContourFit> = splines.iter().map(|s| fit_contour(s, 0.5)).collect();
+    let (warm, _) = FitCache::load(&path);
+    fit_all(&warm, &splines, &direct, 0.5);
+    assert_eq!(warm.misses(), 1);
+    let files = warm.files_to_save(&path);
+    assert_eq!(files.iter().map(|f| &f.0).collect::<Vec<_>>(), [&delta]);
+    warm.save(&path).unwrap();
+    assert_eq!(std::fs::read(&path).unwrap(), whole);
+
+    // The next run takes every fit from the two files, bit for bit, and writes nothing.
+    let (next, outcome) = FitCache::load(&path);
+    assert_eq!(outcome, LoadOutcome::Loaded(41));
+    fit_all(&next, &splines, &direct, 0.5);
+    assert_eq!((next.hits(), next.misses()), (40, 0));
+    assert!(next.files_to_save(&path).is_empty());
+
+    // A damaged or truncated delta file is ignored: its contour is fitted again.
+    let good = std::fs::read(&delta).unwrap();
+    let mut flipped = good.clone();
+    flipped[good.len() / 2] ^= 0x10;
+    for damaged in [
+        flipped,
+        good[..good.len() - 1].to_vec(),
+        b"XGLYPHFD".to_vec(),
+    ] {
+        std::fs::write(&delta, &damaged).unwrap();
+        let (cache, outcome) = FitCache::load(&path);
+        assert_eq!(outcome, LoadOutcome::Loaded(40));
+        fit_all(&cache, &splines, &direct, 0.5);
+        assert_eq!((cache.hits(), cache.misses()), (39, 1));
+    }
+
+    // Five more edits: 6 new + 6 unused entries pass 1/8 of 40, so the cache file is
+    // written whole, with exactly this run's contours; the delta file left behind is bound
+    // to the old cache file and ignored.
+    std::fs::write(&delta, &good).unwrap();
+    let splines = edited(&splines, &[1, 2, 3, 4, 5]);
+    let direct: Vec<ContourFit> = splines.iter().map(|s| fit_contour(s, 0.5)).collect();
+    let (many, _) = FitCache::load(&path);
+    fit_all(&many, &splines, &direct, 0.5);
+    assert_eq!((many.hits(), many.misses()), (35, 5));
+    let files = many.files_to_save(&path);
+    assert_eq!(files.iter().map(|f| &f.0).collect::<Vec<_>>(), [&path]);
+    assert_eq!(files[0].1, many.to_bytes());
+    many.save(&path).unwrap();
+    assert_eq!(std::fs::read(&delta).unwrap(), good);
+    let (after, outcome) = FitCache::load(&path);
+    assert_eq!(outcome, LoadOutcome::Loaded(40));
+    fit_all(&after, &splines, &direct, 0.5);
+    assert_eq!((after.hits(), after.misses()), (40, 0));
 }
 
 #[test]
@@ -309,15 +394,17 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
         b
     };
     // Header: magic 8, format 4, fit version 4 and fingerprint 4, compatible version 4
-    // (bytes 20..24) and fingerprint 4 (24..28), no static entry (28..36), then the
-    // compatible entries: the first one's tolerance (44..52) and master count (52..56).
-    assert_eq!(&good[28..36], &0u64.to_le_bytes());
-    assert_eq!(&good[52..56], &2u32.to_le_bytes());
+    // (bytes 20..24) and fingerprint 4 (24..28), orientation version and fingerprint
+    // (28..36), no orientation (36..44), no static entry (44..52), then the compatible
+    // entries (52..60): the first one's tolerance (60..68) and master count (68..72).
+    assert_eq!(&good[36..44], &0u64.to_le_bytes());
+    assert_eq!(&good[44..52], &0u64.to_le_bytes());
+    assert_eq!(&good[68..72], &2u32.to_le_bytes());
     let word = |at: usize| u32::from_le_bytes(good[at..at + 4].try_into().unwrap()) as usize;
     // Then its point and position counts, its points, its weights, and its segment count.
-    let (points, count) = (word(56), word(60));
+    let (points, count) = (word(72), word(76));
     assert_eq!(count, positions.len());
-    let segments = 64 + 2 * points * 24 + count * 2 * 8;
+    let segments = 80 + 2 * points * 24 + count * 2 * 8;
     let stored_segments = word(segments) as u32;
     assert!(direct
         .iter()
@@ -337,7 +424,7 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
             "no masters",
             resign({
                 let mut b = good.clone();
-                b[52..56].copy_from_slice(&0u32.to_le_bytes());
+                b[68..72].copy_from_slice(&0u32.to_le_bytes());
                 b
             }),
             "",
@@ -346,7 +433,7 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
             "a huge master count",
             resign({
                 let mut b = good.clone();
-                b[52..56].copy_from_slice(&u32::MAX.to_le_bytes());
+                b[68..72].copy_from_slice(&u32::MAX.to_le_bytes());
                 b
             }),
             "a count exceeds the file's size",
@@ -364,7 +451,7 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
     for cut in [n - 1, n - 5, n - 40, n / 2, 60] {
         cases.push(("truncated", good[..cut].to_vec(), ""));
     }
-    for at in (44..n).step_by((n - 44) / 17) {
+    for at in (60..n).step_by((n - 60) / 17) {
         cases.push(("one bit flipped", flip(at, 0x08), ""));
     }
     for (what, bytes, reason) in cases {
@@ -507,6 +594,60 @@ fn load_through_memo(dir: &Path, path: &Path) -> usize {
     assert_eq!(through, load_family(dir));
     memo.save(path).unwrap();
     memo.taken()
+}
+
+#[test]
+fn an_edited_glyph_file_goes_into_the_memo_delta_and_a_bad_delta_is_ignored() {
+    use xglyph::source::{load_family, load_family_with, SourceMemo, MEMO_FILE};
+    // Twenty copies of `mini`'s `o`, so that one edit is within 1/8 of the memo.
+    let dir = memo_fixture("memo-delta");
+    let o = std::fs::read_to_string(dir.join("o.toml")).unwrap();
+    for k in 0..20 {
+        let copy = o
+            .replacen("name = \"o\"", &format!("name = \"o{k}\""), 1)
+            .replacen("unicode = 0x6F\n", "", 1);
+        assert_ne!(copy, o);
+        std::fs::write(dir.join(format!("o{k}.toml")), copy).unwrap();
+    }
+    let path = dir.with_file_name(MEMO_FILE);
+    let delta = xglyph::source::memo_delta_path(&path);
+    assert_eq!(load_through_memo(&dir, &path), 0);
+    assert_eq!(load_through_memo(&dir, &path), 28);
+    let whole = std::fs::read(&path).unwrap();
+    assert!(!delta.exists());
+
+    // `o3` edited: parsed again, and only the delta file written.
+    let o3 = dir.join("o3.toml");
+    let text = std::fs::read_to_string(&o3).unwrap();
+    let moved = text.replacen("[520, 250, -1]", "[525, 250, -1]", 1);
+    assert_ne!(moved, text);
+    std::fs::write(&o3, &moved).unwrap();
+    assert_eq!(load_through_memo(&dir, &path), 27);
+    assert_eq!(std::fs::read(&path).unwrap(), whole);
+    assert!(delta.exists());
+    // Next: all 28 from the memo and its delta, the same family, nothing written.
+    let (memo, ignored) = SourceMemo::load(&path);
+    assert_eq!(ignored, None);
+    assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
+    assert_eq!(memo.taken(), 28);
+    assert!(memo.files_to_save(&path).is_empty());
+
+    // A damaged delta, or one bound to another memo file, is ignored: `o3` is parsed again.
+    let good = std::fs::read(&delta).unwrap();
+    let mut flipped = good.clone();
+    flipped[good.len() / 2] ^= 0x01;
+    let mut rebound = good.clone();
+    rebound[12] ^= 0x01; // the memo file's length it is bound to
+    let body = rebound.len() - 4;
+    let crc = crc32fast::hash(&rebound[..body]);
+    rebound[body..].copy_from_slice(&crc.to_le_bytes());
+    for damaged in [flipped, rebound] {
+        std::fs::write(&delta, &damaged).unwrap();
+        let (memo, ignored) = SourceMemo::load(&path);
+        assert_eq!(ignored, None);
+        assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
+        assert_eq!(memo.taken(), 27);
+    }
 }
 
 #[test]
