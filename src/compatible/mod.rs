@@ -56,7 +56,7 @@
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
 //!   refitted as long as that helps.
 
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 use std::fmt;
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
@@ -66,7 +66,7 @@ use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER
 mod span;
 
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
-use span::{Handle, Part, StretchGrid};
+use span::{Handle, Part, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
@@ -262,7 +262,9 @@ pub fn fit_compatible(
         }
     }
     let spans = fitter.verify(spans, closes);
-    Ok(fitter.assemble(&pieces, &spans, positions.len()))
+    let fit = fitter.assemble(&pieces, &spans, positions.len());
+    fitter.keep_buffers();
+    Ok(fit)
 }
 
 /// Same point count and the same sharp points in every master.
@@ -412,6 +414,8 @@ struct Fitter<'a> {
     /// middle ([`JointSamples::segment_bound`]), and each probe's gap is measured from
     /// that interpolant ([`Fitter::gap_table`]).
     middle: Option<usize>,
+    /// The search's trial buffers (this thread's, handed back by [`Fitter::keep_buffers`]).
+    buffers: RefCell<TrialBuffers>,
 }
 
 impl<'a> Fitter<'a> {
@@ -473,7 +477,13 @@ impl<'a> Fitter<'a> {
             gap_tables,
             master_grid: OnceCell::new(),
             middle,
+            buffers: RefCell::new(TrialBuffers::take()),
         }
+    }
+
+    /// Hands the trial buffers back to this thread, for the next contour.
+    fn keep_buffers(self) {
+        self.buffers.into_inner().keep();
     }
 
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sample
@@ -495,38 +505,33 @@ impl<'a> Fitter<'a> {
         low: f64,
     ) -> (Vec<CubicBez>, f64) {
         let third = (b - a) / 3.0;
-        let mut parts: Vec<Part> = self
-            .masters
-            .iter()
-            .zip(grids.iter_mut())
-            .map(|(spline, grid)| {
-                let samples = grid.samples(a, b);
-                let (start, end) = samples.end_derivs();
-                // The span's Hermite cubic: handle lengths from the curve's derivatives.
-                let d0 = heading(spline, a, (t0, t1), start);
-                let d1 = heading(spline, b, (t0, t1), end);
-                Part {
-                    samples,
-                    start: Handle {
-                        direction: d0,
-                        shared: None,
-                        length: start.dot(d0) * third,
-                    },
-                    end: Handle {
-                        direction: d1,
-                        shared: None,
-                        length: end.dot(d1) * third,
-                    },
-                }
-            })
-            .collect();
+        let mut buffers = self.buffers.borrow_mut();
+        let parts = &mut buffers.parts;
+        parts.resize_with(self.masters.len(), Part::default);
+        for ((spline, grid), part) in self.masters.iter().zip(grids.iter_mut()).zip(&mut *parts) {
+            grid.samples(a, b, &mut part.samples);
+            let (start, end) = part.samples.end_derivs();
+            // The span's Hermite cubic: handle lengths from the curve's derivatives.
+            let d0 = heading(spline, a, (t0, t1), start);
+            let d1 = heading(spline, b, (t0, t1), end);
+            part.start = Handle {
+                direction: d0,
+                shared: None,
+                length: start.dot(d0) * third,
+            };
+            part.end = Handle {
+                direction: d1,
+                shared: None,
+                length: end.dot(d1) * third,
+            };
+        }
         if let Some(before) = ends.before {
-            share_start(&mut parts, before);
+            share_start(parts, before);
         }
         if let Some(after) = ends.after {
-            share_end(&mut parts, after);
+            share_end(parts, after);
         }
-        span::fit_joint(&parts, self.goal, low)
+        buffers.fit_joint(self.goal, low)
     }
 
     /// Measures the span's blended cubic at each probe in `probes`; the largest error as a
@@ -1315,21 +1320,21 @@ impl JointSamples {
             middle: None,
         };
         let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
-        let mut row =
-            |t: f64| -> Vec<(Point, Vec2)> { runs.iter_mut().map(|r| r.eval_deriv(t)).collect() };
-        let mut previous: Option<(f64, Vec<(Point, Vec2)>)> = None;
+        // The rows of samples still to push (one point and derivative per master), as a
+        // stack: the next uniform sample's, then the refinement's midpoints.
+        let mut stack: Vec<(Point, Vec2)> = Vec::with_capacity(count * (MAX_REFINE + 1));
         for i in 0..=n {
             let t = if i == n {
                 b
             } else {
                 a + (b - a) * i as f64 / n as f64
             };
-            let here = row(t);
-            if let Some(start) = previous.take() {
-                out.refine(&mut row, &start, (t, &here), MAX_REFINE);
+            stack.extend(runs.iter_mut().map(|r| r.eval_deriv(t)));
+            if i > 0 {
+                out.refine(&mut runs, &mut stack, t, MAX_REFINE);
             }
-            out.push(t, &here);
-            previous = Some((t, here));
+            out.push(t, &stack);
+            stack.clear();
         }
         let last = out.t.len() - 1;
         for (j, cubic) in cubics.iter().enumerate() {
@@ -1390,28 +1395,26 @@ impl JointSamples {
         }
     }
 
-    /// Adds the samples strictly between `start` and `end` that keep every master's turn
-    /// between neighbours below [`fit::MAX_TURN`], bisecting at most `depth` times.
-    fn refine(
-        &mut self,
-        row: &mut impl FnMut(f64) -> Vec<(Point, Vec2)>,
-        start: &(f64, Vec<(Point, Vec2)>),
-        end: (f64, &[(Point, Vec2)]),
-        depth: usize,
-    ) {
-        let fast = start
-            .1
-            .iter()
-            .zip(end.1)
-            .any(|(&(p0, d0), &(p1, d1))| turns_fast(p0, d0, p1, d1));
+    /// Adds the samples strictly between the last pushed and the row on top of `stack`
+    /// (at `t`) that keep every master's turn between neighbours below [`fit::MAX_TURN`],
+    /// bisecting at most `depth` times. The stack is as it was on return.
+    fn refine(&mut self, runs: &mut [Run], stack: &mut Vec<(Point, Vec2)>, t: f64, depth: usize) {
+        let count = runs.len();
+        let last = self.t.len() - 1;
+        let end = &stack[stack.len() - count..];
+        let fast = (0..count).any(|j| {
+            let (p1, d1) = end[j];
+            turns_fast(self.p[j][last], self.d[j][last], p1, d1)
+        });
         if depth == 0 || !fast {
             return;
         }
-        let t = 0.5 * (start.0 + end.0);
-        let mid = (t, row(t));
-        self.refine(row, start, (t, &mid.1), depth - 1);
-        self.push(t, &mid.1);
-        self.refine(row, &mid, end, depth - 1);
+        let mid = 0.5 * (self.t[last] + t);
+        stack.extend(runs.iter_mut().map(|r| r.eval_deriv(mid)));
+        self.refine(runs, stack, mid, depth - 1);
+        self.push(mid, &stack[stack.len() - count..]);
+        stack.truncate(stack.len() - count);
+        self.refine(runs, stack, t, depth - 1);
     }
 
     /// The Hermite piece of interval `i` from its end points and derivatives, as Bézier
