@@ -66,7 +66,7 @@ use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER
 mod span;
 
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
-use span::{Handle, Part, StretchGrid, TrialBuffers};
+use span::{Handle, Part, Power, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
@@ -1478,6 +1478,7 @@ impl JointSamples {
     /// position between the masters (convex hull again), and the pairing suits both ends.
     fn segment_bound(&self, cubics: [&CubicBez; 2], goal: f64) -> f64 {
         let n = self.t.len();
+        let powers = &cubics.map(Power::new);
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
             let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
@@ -1493,7 +1494,7 @@ impl JointSamples {
                         middle: None,
                     };
                     let ends = [ends(0), ends(1)];
-                    interval_net_bound(curve, cubics, (0.0, 1.0), ends, goal, PAIR_SPLITS)
+                    interval_net_bound(curve, cubics, powers, (0.0, 1.0), ends, goal, PAIR_SPLITS)
                 }
                 Some((p, d, u)) => {
                     // The whole axis paired linearly between the masters' projections;
@@ -1502,20 +1503,36 @@ impl JointSamples {
                     let middle = Some(self.hermite(i, [p[i], p[i + 1]], [d[i], d[i + 1]]));
                     let curve = Curve { pieces, middle };
                     let whole = [ends(0), ends(1)];
-                    let once = interval_net_bound(curve, cubics, (0.0, 1.0), whole, goal, 0);
+                    let once =
+                        interval_net_bound(curve, cubics, powers, (0.0, 1.0), whole, goal, 0);
                     let centre = (u[i], u[i + 1]);
                     let low = [ends(0), centre];
                     let high = [centre, ends(1)];
                     let first = if once <= WHOLE_AXIS * goal {
                         once
                     } else {
-                        interval_net_bound(curve, cubics, (0.0, 0.5), low, goal, PAIR_SPLITS)
+                        interval_net_bound(
+                            curve,
+                            cubics,
+                            powers,
+                            (0.0, 0.5),
+                            low,
+                            goal,
+                            PAIR_SPLITS,
+                        )
                     };
                     if first > goal || once <= WHOLE_AXIS * goal {
                         first
                     } else {
-                        let second =
-                            interval_net_bound(curve, cubics, (0.5, 1.0), high, goal, PAIR_SPLITS);
+                        let second = interval_net_bound(
+                            curve,
+                            cubics,
+                            powers,
+                            (0.5, 1.0),
+                            high,
+                            goal,
+                            PAIR_SPLITS,
+                        );
                         first.max(second)
                     }
                 }
@@ -1658,6 +1675,7 @@ fn paired_bound(
 fn interval_net_bound(
     curve: Curve,
     cubics: [&CubicBez; 2],
+    powers: &[Power; 2],
     (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
     goal: f64,
@@ -1671,16 +1689,15 @@ fn interval_net_bound(
         let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
         let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
         // At a master the blend is its cubic (the same values, without the sums).
-        let cubic = match lambda {
-            0.0 => *cubics[0],
-            1.0 => *cubics[1],
-            _ => blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]),
+        let power = match lambda {
+            0.0 => powers[0],
+            1.0 => powers[1],
+            _ => powers[0].blend(&powers[1], lambda),
         };
-        let run = cubic.subsegment(u0..u1);
-        let paired = [run.p0, run.p1, run.p2, run.p3];
+        let paired = power.subsegment(u0, u1);
         let at = curve.at(lambda);
         for (k, row) in values.iter_mut().enumerate() {
-            row[m] = at[k] - paired[k].to_vec2();
+            row[m] = at[k] - paired[k];
         }
     }
     let net = values.map(|row| {
@@ -1718,6 +1735,7 @@ fn interval_net_bound(
     let left = interval_net_bound(
         left,
         cubics,
+        powers,
         (l0, l1),
         [(ends[0].0, m0), (ends[1].0, m1)],
         goal,
@@ -1729,6 +1747,7 @@ fn interval_net_bound(
     let right = interval_net_bound(
         right,
         cubics,
+        powers,
         (l0, l1),
         [(m0, ends[0].1), (m1, ends[1].1)],
         goal,

@@ -171,10 +171,11 @@ impl SpanSamples {
 }
 
 /// A cubic in power form for cheap evaluation: `c0 + c1 u + c2 u² + c3 u³`.
-struct Power([Vec2; 4]);
+#[derive(Clone, Copy)]
+pub(super) struct Power([Vec2; 4]);
 
 impl Power {
-    fn new(c: &CubicBez) -> Power {
+    pub(super) fn new(c: &CubicBez) -> Power {
         let (p0, p1, p2, p3) = (
             c.p0.to_vec2(),
             c.p1.to_vec2(),
@@ -213,6 +214,32 @@ impl Power {
     fn at(&self, u: f64) -> Vec2 {
         let [c0, c1, c2, c3] = self.0;
         c0 + u * (c1 + u * (c2 + u * c3))
+    }
+
+    /// The derivative at `u`.
+    fn deriv_at(&self, u: f64) -> Vec2 {
+        let [_, c1, c2, c3] = self.0;
+        c1 + u * (2.0 * c2 + 3.0 * u * c3)
+    }
+
+    /// `(1 - λ) self + λ other`, coefficient by coefficient (the blend of the two cubics).
+    pub(super) fn blend(&self, other: &Power, lambda: f64) -> Power {
+        Power(std::array::from_fn(|k| {
+            (1.0 - lambda) * self.0[k] + lambda * other.0[k]
+        }))
+    }
+
+    /// The Bézier control points of the cubic run from `u0` to `u1` (as kurbo's
+    /// `subsegment`: the end points and the end derivatives scaled to the run).
+    pub(super) fn subsegment(&self, u0: f64, u1: f64) -> [Vec2; 4] {
+        let (p0, p3) = (self.at(u0), self.at(u1));
+        let third = (u1 - u0) * (1.0 / 3.0);
+        [
+            p0,
+            p0 + third * self.deriv_at(u0),
+            p3 - third * self.deriv_at(u1),
+            p3,
+        ]
     }
 }
 
