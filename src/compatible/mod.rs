@@ -1338,33 +1338,37 @@ impl JointSamples {
         }
         let last = out.t.len() - 1;
         for (j, cubic) in cubics.iter().enumerate() {
-            let mut guess = 0.0;
-            for i in 0..=last {
-                let u = if i == 0 {
-                    0.0
-                } else if i == last {
-                    1.0
-                } else {
-                    let point = out.p[j][i];
-                    let near = fit::project_onto(cubic, point, guess, PROJECT_STEPS);
-                    let far = cubic.eval(near).distance(point);
-                    if far <= goal {
-                        near
-                    } else {
-                        // A poor start can stall at a clamp or a far branch: retry from
-                        // the sample's share of the span.
-                        let share = (out.t[i] - a) / (b - a);
-                        let alt = fit::project_onto(cubic, point, share, PROJECT_STEPS);
-                        if cubic.eval(alt).distance(point) < far {
-                            alt
-                        } else {
-                            near
-                        }
+            let power = Power::new(cubic);
+            let (t, u) = (&out.t, &mut out.u[j]);
+            u.push(0.0);
+            for i in 1..last {
+                // From the last two samples' parameters, extrapolated (Newton then needs
+                // a step or two).
+                let guess = match i {
+                    1 => u[0],
+                    _ => {
+                        let slope = (u[i - 1] - u[i - 2]) / (t[i - 1] - t[i - 2]);
+                        (u[i - 1] + slope * (t[i] - t[i - 1])).clamp(0.0, 1.0)
                     }
                 };
-                out.u[j].push(u);
-                guess = u;
+                let point = out.p[j][i].to_vec2();
+                let (near, far) = power.project(point, guess, PROJECT_STEPS);
+                let next = if far <= goal {
+                    near
+                } else {
+                    // A poor start can stall at a clamp or a far branch: retry from the
+                    // sample's share of the span.
+                    let share = (t[i] - a) / (b - a);
+                    let (alt, other) = power.project(point, share, PROJECT_STEPS);
+                    if other < far {
+                        alt
+                    } else {
+                        near
+                    }
+                };
+                u.push(next);
             }
+            u.push(1.0);
         }
         // The middle at the masters' samples (it does not refine them), paired with the
         // masters' cubics blended there, from the masters' pairings blended.

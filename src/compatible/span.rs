@@ -19,6 +19,9 @@
 
 use kurbo::{CubicBez, Point, Vec2};
 
+#[cfg(doc)]
+use crate::fit;
+
 use super::Run;
 use crate::xspline::XSpline;
 
@@ -209,6 +212,28 @@ impl Power {
             }
         }
         (u, self.at(u) - p)
+    }
+
+    /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
+    /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
+    pub(super) fn project(&self, p: Vec2, mut u: f64, steps: usize) -> (f64, f64) {
+        let [_, c1, c2, c3] = self.0;
+        for _ in 0..steps {
+            let r = self.at(u) - p;
+            let d1 = c1 + u * (2.0 * c2 + 3.0 * u * c3);
+            let d2 = 2.0 * c2 + 6.0 * u * c3;
+            let curvature = d1.dot(d1) + r.dot(d2);
+            if curvature <= 1e-300 {
+                break;
+            }
+            let next = (u - r.dot(d1) / curvature).clamp(0.0, 1.0);
+            let done = (next - u).abs() < 1e-10;
+            u = next;
+            if done {
+                break;
+            }
+        }
+        (u, (self.at(u) - p).hypot())
     }
 
     fn at(&self, u: f64) -> Vec2 {
