@@ -28,7 +28,7 @@ use crate::xspline::XSpline;
 /// Grid points per X-spline segment at the coarsest level.
 const GRID_PER_SEGMENT: f64 = 10.0;
 /// A span gets at least this many grid steps (a finer level is taken for short spans).
-const MIN_STEPS: usize = 6;
+const MIN_STEPS: usize = 4;
 /// Finest level: spacing `1 / (GRID_PER_SEGMENT * 2^MAX_LEVEL)`.
 const MAX_LEVEL: usize = 12;
 /// Most polish rounds.
