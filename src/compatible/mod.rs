@@ -1243,8 +1243,9 @@ const WHOLE_AXIS: f64 = 0.9;
 const REPROJECT_STEPS: usize = 2;
 /// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
 const PAIR_SPLITS: usize = 3;
-/// Newton steps when projecting a sample onto a master's cubic (from the previous one's
-/// parameter; any pairing gives a valid bound, a closer one a tighter bound).
+/// Newton steps when projecting a sample onto a master's cubic (from the previous two
+/// samples' parameters, extrapolated; any pairing gives a valid bound, a closer one a
+/// tighter bound).
 const PROJECT_STEPS: usize = 4;
 
 /// One span sampled in every master at common curve parameters, each sample paired with
