@@ -1313,11 +1313,13 @@ impl JointSamples {
     ) -> JointSamples {
         let n = (((b - a) * SAMPLES_PER_SEGMENT).ceil() as usize).max(MIN_SAMPLES);
         let count = masters.len();
+        // Room for the refinement's samples too (most spans get a few).
+        let room = n + 1 + n / 2;
         let mut out = JointSamples {
-            t: Vec::with_capacity(n + 1),
-            p: vec![Vec::with_capacity(n + 1); count],
-            d: vec![Vec::with_capacity(n + 1); count],
-            u: vec![Vec::with_capacity(n + 1); count],
+            t: Vec::with_capacity(room),
+            p: vec![Vec::with_capacity(room); count],
+            d: vec![Vec::with_capacity(room); count],
+            u: vec![Vec::with_capacity(room); count],
             middle: None,
         };
         let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
@@ -1705,17 +1707,7 @@ fn interval_net_bound(
             row[m] = at[k] - paired[k];
         }
     }
-    let net = values.map(|row| {
-        // The end coefficients are the end values (rows 0 and 4 of the inverse are unit).
-        let mut out = [row[0], Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, row[4]];
-        for (o, weights) in out[1..4].iter_mut().zip(&LAMBDA_BERNSTEIN[1..4]) {
-            *o = row
-                .iter()
-                .zip(weights)
-                .fold(Vec2::ZERO, |acc, (v, w)| acc + *w * *v);
-        }
-        out
-    });
+    let net = values.map(|row| lambda_bernstein(&row));
     let bound = net_bound(&net, goal, GAP_HALVINGS);
     if bound <= goal || splits == 0 {
         return bound;
@@ -1802,20 +1794,19 @@ impl Curve {
 }
 
 /// Bernstein coefficients (degree 4) from values at `λ = 0, 1/4, 1/2, 3/4, 1`: the inverse
-/// of the basis evaluated there.
-const LAMBDA_BERNSTEIN: [[f64; 5]; 5] = [
-    [1.0, 0.0, 0.0, 0.0, 0.0],
-    [-13.0 / 12.0, 4.0, -3.0, 4.0 / 3.0, -0.25],
+/// of the basis evaluated there. The end coefficients are the end values; the inner rows
+/// are `[-13/12, 4, -3, 4/3, -1/4]`, `[13/18, -32/9, 20/3, -32/9, 13/18]` and the first
+/// reversed (written out: a loop over the matrix cost three times as many instructions).
+fn lambda_bernstein(v: &[Vec2; 5]) -> [Vec2; 5] {
+    let (outer, inner) = (v[0] + v[4], v[1] + v[3]);
     [
-        13.0 / 18.0,
-        -32.0 / 9.0,
-        20.0 / 3.0,
-        -32.0 / 9.0,
-        13.0 / 18.0,
-    ],
-    [-0.25, 4.0 / 3.0, -3.0, 4.0, -13.0 / 12.0],
-    [0.0, 0.0, 0.0, 0.0, 1.0],
-];
+        v[0],
+        -13.0 / 12.0 * v[0] + 4.0 * v[1] - 3.0 * v[2] + 4.0 / 3.0 * v[3] - 0.25 * v[4],
+        13.0 / 18.0 * outer - 32.0 / 9.0 * inner + 20.0 / 3.0 * v[2],
+        -0.25 * v[0] + 4.0 / 3.0 * v[1] - 3.0 * v[2] + 4.0 * v[3] - 13.0 / 12.0 * v[4],
+        v[4],
+    ]
+}
 
 /// The largest coefficient length of a tensor-product Bézier net (degree 3 in `s`, 4 in
 /// `λ`), which bounds it on the unit square; halved in both directions up to `halvings`
