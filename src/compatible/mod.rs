@@ -1485,7 +1485,13 @@ impl JointSamples {
     /// position between the masters (convex hull again), and the pairing suits both ends.
     fn segment_bound(&self, cubics: [&CubicBez; 2], goal: f64) -> f64 {
         let n = self.t.len();
-        let powers = &cubics.map(Power::new);
+        let powers = cubics.map(Power::new);
+        // The blended cubics at the nets' five positions, per range of the axis.
+        let whole_axis = &along_axis(&powers, (0.0, 1.0));
+        let halves = self
+            .middle
+            .as_ref()
+            .map(|_| [(0.0, 0.5), (0.5, 1.0)].map(|range| along_axis(&powers, range)));
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
             let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
@@ -1501,7 +1507,15 @@ impl JointSamples {
                         middle: None,
                     };
                     let ends = [ends(0), ends(1)];
-                    interval_net_bound(curve, cubics, powers, (0.0, 1.0), ends, goal, PAIR_SPLITS)
+                    interval_net_bound(
+                        curve,
+                        cubics,
+                        whole_axis,
+                        (0.0, 1.0),
+                        ends,
+                        goal,
+                        PAIR_SPLITS,
+                    )
                 }
                 Some((p, d, u)) => {
                     // The whole axis paired linearly between the masters' projections;
@@ -1511,17 +1525,18 @@ impl JointSamples {
                     let curve = Curve { pieces, middle };
                     let whole = [ends(0), ends(1)];
                     let once =
-                        interval_net_bound(curve, cubics, powers, (0.0, 1.0), whole, goal, 0);
+                        interval_net_bound(curve, cubics, whole_axis, (0.0, 1.0), whole, goal, 0);
                     let centre = (u[i], u[i + 1]);
                     let low = [ends(0), centre];
                     let high = [centre, ends(1)];
+                    let [low_axis, high_axis] = halves.as_ref().expect("with the middle");
                     let first = if once <= WHOLE_AXIS * goal {
                         once
                     } else {
                         interval_net_bound(
                             curve,
                             cubics,
-                            powers,
+                            low_axis,
                             (0.0, 0.5),
                             low,
                             goal,
@@ -1534,7 +1549,7 @@ impl JointSamples {
                         let second = interval_net_bound(
                             curve,
                             cubics,
-                            powers,
+                            high_axis,
                             (0.5, 1.0),
                             high,
                             goal,
@@ -1682,7 +1697,7 @@ fn paired_bound(
 fn interval_net_bound(
     curve: Curve,
     cubics: [&CubicBez; 2],
-    powers: &[Power; 2],
+    blends: &[Power; 5],
     (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
     goal: f64,
@@ -1695,19 +1710,16 @@ fn interval_net_bound(
         let lambda = l0 + mu * (l1 - l0);
         let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
         let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
-        // At a master the blend is its cubic (the same values, without the sums).
-        let power = match lambda {
-            0.0 => powers[0],
-            1.0 => powers[1],
-            _ => powers[0].blend(&powers[1], lambda),
-        };
-        let paired = power.subsegment(u0, u1);
+        let paired = blends[m].subsegment(u0, u1);
         let at = curve.at(lambda);
         for (k, row) in values.iter_mut().enumerate() {
             row[m] = at[k] - paired[k];
         }
     }
-    let net = values.map(|row| lambda_bernstein(&row));
+    let mut net = [[Vec2::ZERO; 5]; 4];
+    for (coefficients, row) in net.iter_mut().zip(&values) {
+        *coefficients = lambda_bernstein(row);
+    }
     let bound = net_bound(&net, goal, GAP_HALVINGS);
     if bound <= goal || splits == 0 {
         return bound;
@@ -1732,7 +1744,7 @@ fn interval_net_bound(
     let left = interval_net_bound(
         left,
         cubics,
-        powers,
+        blends,
         (l0, l1),
         [(ends[0].0, m0), (ends[1].0, m1)],
         goal,
@@ -1744,13 +1756,28 @@ fn interval_net_bound(
     let right = interval_net_bound(
         right,
         cubics,
-        powers,
+        blends,
         (l0, l1),
         [(m0, ends[0].1), (m1, ends[1].1)],
         goal,
         splits - 1,
     );
     left.max(right)
+}
+
+/// The blend of two masters' cubics (power form) at the five positions
+/// `λ = l0 + μ (l1 - l0)`, `μ = 0, 1/4, ..., 1`, where [`interval_net_bound`] takes the gap.
+fn along_axis(powers: &[Power; 2], (l0, l1): (f64, f64)) -> [Power; 5] {
+    std::array::from_fn(|m| {
+        let mu = m as f64 / 4.0;
+        let lambda = l0 + mu * (l1 - l0);
+        // At a master the blend is its cubic (the same values, without the sums).
+        match lambda {
+            0.0 => powers[0],
+            1.0 => powers[1],
+            _ => powers[0].blend(&powers[1], lambda),
+        }
+    })
 }
 
 /// One interval of the curve at every position between two masters, as Hermite pieces
