@@ -11,7 +11,9 @@
 //!
 //! The curve's samples come from a grid per stretch and master ([`StretchGrid`]): the
 //! search tries several spans from one start, and the next span's trials run over the
-//! same curve, so most samples were taken before.
+//! same curve, so most samples were taken before. The masters' parts and the polish's
+//! arrays are kept from one trial to the next and, on each thread, from one contour to the
+//! next ([`TrialBuffers`]), as the static fitter keeps its own.
 //!
 //! Limits: the polish sees samples only (10 per X-spline segment, more on short spans), so
 //! its error is a lower bound; the span is taken on the measure of `super::JointSamples`,
