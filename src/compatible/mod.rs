@@ -49,7 +49,7 @@
 //!   each such join the in-handle is the same multiple of the out-handle in every master
 //!   (each span shares one factor times the neighbour's handles, polished with the free
 //!   handles), so the blended handles are collinear at any weights. On the bundled glyphs
-//!   with the synthetic bold: 1633 against 1520 static segments of the more demanding
+//!   with the synthetic bold: 1628 against 1520 static segments of the more demanding
 //!   master (1.07×; the issue allows 1.25×; 1.22× when the handles were matched after
 //!   polishing each master alone). A join at a cusp of only some masters (a cut shared
 //!   by all) is not smooth in those and is left as it is.
