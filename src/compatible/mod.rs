@@ -49,14 +49,14 @@
 //!   each such join the in-handle is the same multiple of the out-handle in every master
 //!   (each span shares one factor times the neighbour's handles, polished with the free
 //!   handles), so the blended handles are collinear at any weights. On the bundled glyphs
-//!   with the synthetic bold: 1633 against 1520 static segments of the more demanding
+//!   with the synthetic bold: 1628 against 1520 static segments of the more demanding
 //!   master (1.07×; the issue allows 1.25×; 1.22× when the handles were matched after
 //!   polishing each master alone). A join at a cusp of only some masters (a cut shared
 //!   by all) is not smooth in those and is left as it is.
 //! - A cusp that appears only between the masters is not a cut: the spans around it are
 //!   refitted as long as that helps.
 
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 use std::fmt;
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
@@ -66,7 +66,7 @@ use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER
 mod span;
 
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
-use span::{Handle, Part, StretchGrid};
+use span::{Handle, Part, Power, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
@@ -262,7 +262,9 @@ pub fn fit_compatible(
         }
     }
     let spans = fitter.verify(spans, closes);
-    Ok(fitter.assemble(&pieces, &spans, positions.len()))
+    let fit = fitter.assemble(&pieces, &spans, positions.len());
+    fitter.keep_buffers();
+    Ok(fit)
 }
 
 /// Same point count and the same sharp points in every master.
@@ -412,6 +414,8 @@ struct Fitter<'a> {
     /// middle ([`JointSamples::segment_bound`]), and each probe's gap is measured from
     /// that interpolant ([`Fitter::gap_table`]).
     middle: Option<usize>,
+    /// The search's trial buffers (this thread's, handed back by [`Fitter::keep_buffers`]).
+    buffers: RefCell<TrialBuffers>,
 }
 
 impl<'a> Fitter<'a> {
@@ -473,7 +477,13 @@ impl<'a> Fitter<'a> {
             gap_tables,
             master_grid: OnceCell::new(),
             middle,
+            buffers: RefCell::new(TrialBuffers::take()),
         }
+    }
+
+    /// Hands the trial buffers back to this thread, for the next contour.
+    fn keep_buffers(self) {
+        self.buffers.into_inner().keep();
     }
 
     /// One cubic per master for `[a, b]` of the stretch `[t0, t1]`, and the largest sample
@@ -495,38 +505,33 @@ impl<'a> Fitter<'a> {
         low: f64,
     ) -> (Vec<CubicBez>, f64) {
         let third = (b - a) / 3.0;
-        let mut parts: Vec<Part> = self
-            .masters
-            .iter()
-            .zip(grids.iter_mut())
-            .map(|(spline, grid)| {
-                let samples = grid.samples(a, b);
-                let (start, end) = samples.end_derivs();
-                // The span's Hermite cubic: handle lengths from the curve's derivatives.
-                let d0 = heading(spline, a, (t0, t1), start);
-                let d1 = heading(spline, b, (t0, t1), end);
-                Part {
-                    samples,
-                    start: Handle {
-                        direction: d0,
-                        shared: None,
-                        length: start.dot(d0) * third,
-                    },
-                    end: Handle {
-                        direction: d1,
-                        shared: None,
-                        length: end.dot(d1) * third,
-                    },
-                }
-            })
-            .collect();
+        let mut buffers = self.buffers.borrow_mut();
+        let parts = &mut buffers.parts;
+        parts.resize_with(self.masters.len(), Part::default);
+        for ((spline, grid), part) in self.masters.iter().zip(grids.iter_mut()).zip(&mut *parts) {
+            grid.samples(a, b, &mut part.samples);
+            let (start, end) = part.samples.end_derivs();
+            // The span's Hermite cubic: handle lengths from the curve's derivatives.
+            let d0 = heading(spline, a, (t0, t1), start);
+            let d1 = heading(spline, b, (t0, t1), end);
+            part.start = Handle {
+                direction: d0,
+                shared: None,
+                length: start.dot(d0) * third,
+            };
+            part.end = Handle {
+                direction: d1,
+                shared: None,
+                length: end.dot(d1) * third,
+            };
+        }
         if let Some(before) = ends.before {
-            share_start(&mut parts, before);
+            share_start(parts, before);
         }
         if let Some(after) = ends.after {
-            share_end(&mut parts, after);
+            share_end(parts, after);
         }
-        span::fit_joint(&parts, self.goal, low)
+        buffers.fit_joint(self.goal, low)
     }
 
     /// Measures the span's blended cubic at each probe in `probes`; the largest error as a
@@ -1238,8 +1243,9 @@ const WHOLE_AXIS: f64 = 0.9;
 const REPROJECT_STEPS: usize = 2;
 /// Most halvings of an interval with a fresh pairing at its midpoint ([`paired_bound`]).
 const PAIR_SPLITS: usize = 3;
-/// Newton steps when projecting a sample onto a master's cubic (from the previous one's
-/// parameter; any pairing gives a valid bound, a closer one a tighter bound).
+/// Newton steps when projecting a sample onto a master's cubic (from the previous two
+/// samples' parameters, extrapolated; any pairing gives a valid bound, a closer one a
+/// tighter bound).
 const PROJECT_STEPS: usize = 4;
 
 /// One span sampled in every master at common curve parameters, each sample paired with
@@ -1307,59 +1313,65 @@ impl JointSamples {
     ) -> JointSamples {
         let n = (((b - a) * SAMPLES_PER_SEGMENT).ceil() as usize).max(MIN_SAMPLES);
         let count = masters.len();
+        // Room for the refinement's samples too (most spans get a few).
+        let room = n + 1 + n / 2;
         let mut out = JointSamples {
-            t: Vec::with_capacity(n + 1),
-            p: vec![Vec::with_capacity(n + 1); count],
-            d: vec![Vec::with_capacity(n + 1); count],
-            u: vec![Vec::with_capacity(n + 1); count],
+            t: Vec::with_capacity(room),
+            p: vec![Vec::with_capacity(room); count],
+            d: vec![Vec::with_capacity(room); count],
+            u: vec![Vec::with_capacity(room); count],
             middle: None,
         };
         let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
-        let mut row =
-            |t: f64| -> Vec<(Point, Vec2)> { runs.iter_mut().map(|r| r.eval_deriv(t)).collect() };
-        let mut previous: Option<(f64, Vec<(Point, Vec2)>)> = None;
+        // The rows of samples still to push (one point and derivative per master), as a
+        // stack: the next uniform sample's, then the refinement's midpoints.
+        let mut stack: Vec<(Point, Vec2)> = Vec::with_capacity(count * (MAX_REFINE + 1));
         for i in 0..=n {
             let t = if i == n {
                 b
             } else {
                 a + (b - a) * i as f64 / n as f64
             };
-            let here = row(t);
-            if let Some(start) = previous.take() {
-                out.refine(&mut row, &start, (t, &here), MAX_REFINE);
+            stack.extend(runs.iter_mut().map(|r| r.eval_deriv(t)));
+            if i > 0 {
+                out.refine(&mut runs, &mut stack, t, MAX_REFINE);
             }
-            out.push(t, &here);
-            previous = Some((t, here));
+            out.push(t, &stack);
+            stack.clear();
         }
         let last = out.t.len() - 1;
         for (j, cubic) in cubics.iter().enumerate() {
-            let mut guess = 0.0;
-            for i in 0..=last {
-                let u = if i == 0 {
-                    0.0
-                } else if i == last {
-                    1.0
-                } else {
-                    let point = out.p[j][i];
-                    let near = fit::project_onto(cubic, point, guess, PROJECT_STEPS);
-                    let far = cubic.eval(near).distance(point);
-                    if far <= goal {
-                        near
-                    } else {
-                        // A poor start can stall at a clamp or a far branch: retry from
-                        // the sample's share of the span.
-                        let share = (out.t[i] - a) / (b - a);
-                        let alt = fit::project_onto(cubic, point, share, PROJECT_STEPS);
-                        if cubic.eval(alt).distance(point) < far {
-                            alt
-                        } else {
-                            near
-                        }
+            let power = Power::new(cubic);
+            let (t, u) = (&out.t, &mut out.u[j]);
+            u.push(0.0);
+            for i in 1..last {
+                // From the last two samples' parameters, extrapolated (Newton then needs
+                // a step or two).
+                let guess = match i {
+                    1 => u[0],
+                    _ => {
+                        let slope = (u[i - 1] - u[i - 2]) / (t[i - 1] - t[i - 2]);
+                        (u[i - 1] + slope * (t[i] - t[i - 1])).clamp(0.0, 1.0)
                     }
                 };
-                out.u[j].push(u);
-                guess = u;
+                let point = out.p[j][i].to_vec2();
+                let (near, far) = power.project(point, guess, PROJECT_STEPS);
+                let next = if far <= goal {
+                    near
+                } else {
+                    // A poor start can stall at a clamp or a far branch: retry from the
+                    // sample's share of the span.
+                    let share = (t[i] - a) / (b - a);
+                    let (alt, other) = power.project(point, share, PROJECT_STEPS);
+                    if other < far {
+                        alt
+                    } else {
+                        near
+                    }
+                };
+                u.push(next);
             }
+            u.push(1.0);
         }
         // The middle at the masters' samples (it does not refine them), paired with the
         // masters' cubics blended there, from the masters' pairings blended.
@@ -1390,28 +1402,26 @@ impl JointSamples {
         }
     }
 
-    /// Adds the samples strictly between `start` and `end` that keep every master's turn
-    /// between neighbours below [`fit::MAX_TURN`], bisecting at most `depth` times.
-    fn refine(
-        &mut self,
-        row: &mut impl FnMut(f64) -> Vec<(Point, Vec2)>,
-        start: &(f64, Vec<(Point, Vec2)>),
-        end: (f64, &[(Point, Vec2)]),
-        depth: usize,
-    ) {
-        let fast = start
-            .1
-            .iter()
-            .zip(end.1)
-            .any(|(&(p0, d0), &(p1, d1))| turns_fast(p0, d0, p1, d1));
+    /// Adds the samples strictly between the last pushed and the row on top of `stack`
+    /// (at `t`) that keep every master's turn between neighbours below [`fit::MAX_TURN`],
+    /// bisecting at most `depth` times. The stack is as it was on return.
+    fn refine(&mut self, runs: &mut [Run], stack: &mut Vec<(Point, Vec2)>, t: f64, depth: usize) {
+        let count = runs.len();
+        let last = self.t.len() - 1;
+        let end = &stack[stack.len() - count..];
+        let fast = (0..count).any(|j| {
+            let (p1, d1) = end[j];
+            turns_fast(self.p[j][last], self.d[j][last], p1, d1)
+        });
         if depth == 0 || !fast {
             return;
         }
-        let t = 0.5 * (start.0 + end.0);
-        let mid = (t, row(t));
-        self.refine(row, start, (t, &mid.1), depth - 1);
-        self.push(t, &mid.1);
-        self.refine(row, &mid, end, depth - 1);
+        let mid = 0.5 * (self.t[last] + t);
+        stack.extend(runs.iter_mut().map(|r| r.eval_deriv(mid)));
+        self.refine(runs, stack, mid, depth - 1);
+        self.push(mid, &stack[stack.len() - count..]);
+        stack.truncate(stack.len() - count);
+        self.refine(runs, stack, t, depth - 1);
     }
 
     /// The Hermite piece of interval `i` from its end points and derivatives, as Bézier
@@ -1475,6 +1485,13 @@ impl JointSamples {
     /// position between the masters (convex hull again), and the pairing suits both ends.
     fn segment_bound(&self, cubics: [&CubicBez; 2], goal: f64) -> f64 {
         let n = self.t.len();
+        let powers = cubics.map(Power::new);
+        // The blended cubics at the nets' five positions, per range of the axis.
+        let whole_axis = &along_axis(&powers, (0.0, 1.0));
+        let halves = self
+            .middle
+            .as_ref()
+            .map(|_| [(0.0, 0.5), (0.5, 1.0)].map(|range| along_axis(&powers, range)));
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
             let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
@@ -1490,7 +1507,15 @@ impl JointSamples {
                         middle: None,
                     };
                     let ends = [ends(0), ends(1)];
-                    interval_net_bound(curve, cubics, (0.0, 1.0), ends, goal, PAIR_SPLITS)
+                    interval_net_bound(
+                        curve,
+                        cubics,
+                        whole_axis,
+                        (0.0, 1.0),
+                        ends,
+                        goal,
+                        PAIR_SPLITS,
+                    )
                 }
                 Some((p, d, u)) => {
                     // The whole axis paired linearly between the masters' projections;
@@ -1499,20 +1524,37 @@ impl JointSamples {
                     let middle = Some(self.hermite(i, [p[i], p[i + 1]], [d[i], d[i + 1]]));
                     let curve = Curve { pieces, middle };
                     let whole = [ends(0), ends(1)];
-                    let once = interval_net_bound(curve, cubics, (0.0, 1.0), whole, goal, 0);
+                    let once =
+                        interval_net_bound(curve, cubics, whole_axis, (0.0, 1.0), whole, goal, 0);
                     let centre = (u[i], u[i + 1]);
                     let low = [ends(0), centre];
                     let high = [centre, ends(1)];
+                    let [low_axis, high_axis] = halves.as_ref().expect("with the middle");
                     let first = if once <= WHOLE_AXIS * goal {
                         once
                     } else {
-                        interval_net_bound(curve, cubics, (0.0, 0.5), low, goal, PAIR_SPLITS)
+                        interval_net_bound(
+                            curve,
+                            cubics,
+                            low_axis,
+                            (0.0, 0.5),
+                            low,
+                            goal,
+                            PAIR_SPLITS,
+                        )
                     };
                     if first > goal || once <= WHOLE_AXIS * goal {
                         first
                     } else {
-                        let second =
-                            interval_net_bound(curve, cubics, (0.5, 1.0), high, goal, PAIR_SPLITS);
+                        let second = interval_net_bound(
+                            curve,
+                            cubics,
+                            high_axis,
+                            (0.5, 1.0),
+                            high,
+                            goal,
+                            PAIR_SPLITS,
+                        );
                         first.max(second)
                     }
                 }
@@ -1655,6 +1697,7 @@ fn paired_bound(
 fn interval_net_bound(
     curve: Curve,
     cubics: [&CubicBez; 2],
+    blends: &[Power; 5],
     (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
     goal: f64,
@@ -1667,30 +1710,16 @@ fn interval_net_bound(
         let lambda = l0 + mu * (l1 - l0);
         let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
         let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
-        // At a master the blend is its cubic (the same values, without the sums).
-        let cubic = match lambda {
-            0.0 => *cubics[0],
-            1.0 => *cubics[1],
-            _ => blend_cubic(&[*cubics[0], *cubics[1]], &[1.0 - lambda, lambda]),
-        };
-        let run = cubic.subsegment(u0..u1);
-        let paired = [run.p0, run.p1, run.p2, run.p3];
+        let paired = blends[m].subsegment(u0, u1);
         let at = curve.at(lambda);
         for (k, row) in values.iter_mut().enumerate() {
-            row[m] = at[k] - paired[k].to_vec2();
+            row[m] = at[k] - paired[k];
         }
     }
-    let net = values.map(|row| {
-        // The end coefficients are the end values (rows 0 and 4 of the inverse are unit).
-        let mut out = [row[0], Vec2::ZERO, Vec2::ZERO, Vec2::ZERO, row[4]];
-        for (o, weights) in out[1..4].iter_mut().zip(&LAMBDA_BERNSTEIN[1..4]) {
-            *o = row
-                .iter()
-                .zip(weights)
-                .fold(Vec2::ZERO, |acc, (v, w)| acc + *w * *v);
-        }
-        out
-    });
+    let mut net = [[Vec2::ZERO; 5]; 4];
+    for (coefficients, row) in net.iter_mut().zip(&values) {
+        *coefficients = lambda_bernstein(row);
+    }
     let bound = net_bound(&net, goal, GAP_HALVINGS);
     if bound <= goal || splits == 0 {
         return bound;
@@ -1715,6 +1744,7 @@ fn interval_net_bound(
     let left = interval_net_bound(
         left,
         cubics,
+        blends,
         (l0, l1),
         [(ends[0].0, m0), (ends[1].0, m1)],
         goal,
@@ -1726,12 +1756,28 @@ fn interval_net_bound(
     let right = interval_net_bound(
         right,
         cubics,
+        blends,
         (l0, l1),
         [(m0, ends[0].1), (m1, ends[1].1)],
         goal,
         splits - 1,
     );
     left.max(right)
+}
+
+/// The blend of two masters' cubics (power form) at the five positions
+/// `λ = l0 + μ (l1 - l0)`, `μ = 0, 1/4, ..., 1`, where [`interval_net_bound`] takes the gap.
+fn along_axis(powers: &[Power; 2], (l0, l1): (f64, f64)) -> [Power; 5] {
+    std::array::from_fn(|m| {
+        let mu = m as f64 / 4.0;
+        let lambda = l0 + mu * (l1 - l0);
+        // At a master the blend is its cubic (the same values, without the sums).
+        match lambda {
+            0.0 => powers[0],
+            1.0 => powers[1],
+            _ => powers[0].blend(&powers[1], lambda),
+        }
+    })
 }
 
 /// One interval of the curve at every position between two masters, as Hermite pieces
@@ -1775,20 +1821,19 @@ impl Curve {
 }
 
 /// Bernstein coefficients (degree 4) from values at `λ = 0, 1/4, 1/2, 3/4, 1`: the inverse
-/// of the basis evaluated there.
-const LAMBDA_BERNSTEIN: [[f64; 5]; 5] = [
-    [1.0, 0.0, 0.0, 0.0, 0.0],
-    [-13.0 / 12.0, 4.0, -3.0, 4.0 / 3.0, -0.25],
+/// of the basis evaluated there. The end coefficients are the end values; the inner rows
+/// are `[-13/12, 4, -3, 4/3, -1/4]`, `[13/18, -32/9, 20/3, -32/9, 13/18]` and the first
+/// reversed (written out: a loop over the matrix cost three times as many instructions).
+fn lambda_bernstein(v: &[Vec2; 5]) -> [Vec2; 5] {
+    let (outer, inner) = (v[0] + v[4], v[1] + v[3]);
     [
-        13.0 / 18.0,
-        -32.0 / 9.0,
-        20.0 / 3.0,
-        -32.0 / 9.0,
-        13.0 / 18.0,
-    ],
-    [-0.25, 4.0 / 3.0, -3.0, 4.0, -13.0 / 12.0],
-    [0.0, 0.0, 0.0, 0.0, 1.0],
-];
+        v[0],
+        -13.0 / 12.0 * v[0] + 4.0 * v[1] - 3.0 * v[2] + 4.0 / 3.0 * v[3] - 0.25 * v[4],
+        13.0 / 18.0 * outer - 32.0 / 9.0 * inner + 20.0 / 3.0 * v[2],
+        -0.25 * v[0] + 4.0 / 3.0 * v[1] - 3.0 * v[2] + 4.0 * v[3] - 13.0 / 12.0 * v[4],
+        v[4],
+    ]
+}
 
 /// The largest coefficient length of a tensor-product Bézier net (degree 3 in `s`, 4 in
 /// `λ`), which bounds it on the unit square; halved in both directions up to `halvings`

@@ -11,7 +11,9 @@
 //!
 //! The curve's samples come from a grid per stretch and master ([`StretchGrid`]): the
 //! search tries several spans from one start, and the next span's trials run over the
-//! same curve, so most samples were taken before.
+//! same curve, so most samples were taken before. The masters' parts and the polish's
+//! arrays are kept from one trial to the next and, on each thread, from one contour to the
+//! next ([`TrialBuffers`]), as the static fitter keeps its own.
 //!
 //! Limits: the polish sees samples only (10 per X-spline segment, more on short spans), so
 //! its error is a lower bound; the span is taken on the measure of `super::JointSamples`,
@@ -19,13 +21,16 @@
 
 use kurbo::{CubicBez, Point, Vec2};
 
+#[cfg(doc)]
+use crate::fit;
+
 use super::Run;
 use crate::xspline::XSpline;
 
 /// Grid points per X-spline segment at the coarsest level.
 const GRID_PER_SEGMENT: f64 = 10.0;
 /// A span gets at least this many grid steps (a finer level is taken for short spans).
-const MIN_STEPS: usize = 6;
+const MIN_STEPS: usize = 4;
 /// Finest level: spacing `1 / (GRID_PER_SEGMENT * 2^MAX_LEVEL)`.
 const MAX_LEVEL: usize = 12;
 /// Most polish rounds.
@@ -58,6 +63,7 @@ pub(super) struct StretchGrid<'a> {
 
 /// A span's samples in one master: parameters and points, the span's ends first and
 /// last, and the derivatives at the two ends.
+#[derive(Default)]
 pub(super) struct SpanSamples {
     t: Vec<f64>,
     p: Vec<Point>,
@@ -75,9 +81,10 @@ impl<'a> StretchGrid<'a> {
         }
     }
 
-    /// The samples of `[a, b]`: its ends, and the grid points of the coarsest level with at
-    /// least [`MIN_STEPS`] steps in the span, except those within a quarter step of an end.
-    pub(super) fn samples(&mut self, a: f64, b: f64) -> SpanSamples {
+    /// The samples of `[a, b]`, written to `out`: its ends, and the grid points of the
+    /// coarsest level with at least [`MIN_STEPS`] steps in the span, except those within a
+    /// quarter step of an end.
+    pub(super) fn samples(&mut self, a: f64, b: f64, out: &mut SpanSamples) {
         // The search's trials share their start.
         let (pa, start) = match self.start {
             Some((at, p, d)) if at == a => (p, d),
@@ -90,11 +97,9 @@ impl<'a> StretchGrid<'a> {
         let h = b - a;
         let level = (0..=MAX_LEVEL)
             .find(|&l| h * GRID_PER_SEGMENT * (1u64 << l) as f64 >= MIN_STEPS as f64);
-        let capacity = 2 + level.map_or(MIN_STEPS, |l| {
-            (h * GRID_PER_SEGMENT * (1u64 << l) as f64) as usize + 1
-        });
-        let mut t = Vec::with_capacity(capacity);
-        let mut p = Vec::with_capacity(capacity);
+        let (t, p) = (&mut out.t, &mut out.p);
+        t.clear();
+        p.clear();
         t.push(a);
         p.push(pa);
         match level {
@@ -134,13 +139,13 @@ impl<'a> StretchGrid<'a> {
         let (pb, end) = self.run.eval_deriv(b);
         t.push(b);
         p.push(pb);
-        SpanSamples { t, p, start, end }
+        (out.start, out.end) = (start, end);
     }
 }
 
 /// One handle of one master's cubic: its unit direction (out of the start, or into the
 /// end) and how its length is set.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Handle {
     pub(super) direction: Vec2,
     /// `None`: free; `Some(unit)`: the length is a factor shared by every master times
@@ -151,6 +156,7 @@ pub(super) struct Handle {
 }
 
 /// One master's part of a joint span fit.
+#[derive(Default)]
 pub(super) struct Part {
     pub(super) samples: SpanSamples,
     pub(super) start: Handle,
@@ -170,10 +176,11 @@ impl SpanSamples {
 }
 
 /// A cubic in power form for cheap evaluation: `c0 + c1 u + c2 u² + c3 u³`.
-struct Power([Vec2; 4]);
+#[derive(Clone, Copy)]
+pub(super) struct Power([Vec2; 4]);
 
 impl Power {
-    fn new(c: &CubicBez) -> Power {
+    pub(super) fn new(c: &CubicBez) -> Power {
         let (p0, p1, p2, p3) = (
             c.p0.to_vec2(),
             c.p1.to_vec2(),
@@ -209,14 +216,63 @@ impl Power {
         (u, self.at(u) - p)
     }
 
+    /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
+    /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
+    pub(super) fn project(&self, p: Vec2, mut u: f64, steps: usize) -> (f64, f64) {
+        let [_, c1, c2, c3] = self.0;
+        for _ in 0..steps {
+            let r = self.at(u) - p;
+            let d1 = c1 + u * (2.0 * c2 + 3.0 * u * c3);
+            let d2 = 2.0 * c2 + 6.0 * u * c3;
+            let curvature = d1.dot(d1) + r.dot(d2);
+            if curvature <= 1e-300 {
+                break;
+            }
+            let next = (u - r.dot(d1) / curvature).clamp(0.0, 1.0);
+            let done = (next - u).abs() < 1e-10;
+            u = next;
+            if done {
+                break;
+            }
+        }
+        (u, (self.at(u) - p).hypot())
+    }
+
     fn at(&self, u: f64) -> Vec2 {
         let [c0, c1, c2, c3] = self.0;
         c0 + u * (c1 + u * (c2 + u * c3))
+    }
+
+    /// The derivative at `u`.
+    fn deriv_at(&self, u: f64) -> Vec2 {
+        let [_, c1, c2, c3] = self.0;
+        c1 + u * (2.0 * c2 + 3.0 * u * c3)
+    }
+
+    /// `(1 - λ) self + λ other`, coefficient by coefficient (the blend of the two cubics).
+    pub(super) fn blend(&self, other: &Power, lambda: f64) -> Power {
+        Power(std::array::from_fn(|k| {
+            (1.0 - lambda) * self.0[k] + lambda * other.0[k]
+        }))
+    }
+
+    /// The Bézier control points of the cubic run from `u0` to `u1` (as kurbo's
+    /// `subsegment`: the end points and the end derivatives scaled to the run).
+    pub(super) fn subsegment(&self, u0: f64, u1: f64) -> [Vec2; 4] {
+        let (p0, p3) = (self.at(u0), self.at(u1));
+        let third = (u1 - u0) * (1.0 / 3.0);
+        [
+            p0,
+            p0 + third * self.deriv_at(u0),
+            p3 - third * self.deriv_at(u1),
+            p3,
+        ]
     }
 }
 
 /// The unknowns of a joint fit: one per free handle, one per shared factor; and where
 /// each master's handle lengths come from.
+#[derive(Default)]
 struct Unknowns {
     values: Vec<f64>,
     /// Lower bound of each unknown.
@@ -226,12 +282,11 @@ struct Unknowns {
 }
 
 impl Unknowns {
-    fn new(parts: &[Part]) -> Unknowns {
-        let mut out = Unknowns {
-            values: Vec::new(),
-            floors: Vec::new(),
-            slots: Vec::with_capacity(parts.len()),
-        };
+    /// The unknowns of `parts`, written over `self`'s.
+    fn set(&mut self, parts: &[Part]) {
+        self.values.clear();
+        self.floors.clear();
+        self.slots.clear();
         // The shared factor of each side, once created.
         let mut shared: [Option<usize>; 2] = [None, None];
         for part in parts {
@@ -241,31 +296,30 @@ impl Unknowns {
             for (side, handle) in [part.start, part.end].iter().enumerate() {
                 slot[side] = match handle.shared {
                     None => {
-                        out.values.push(handle.length.max(floor));
-                        out.floors.push(floor);
-                        (out.values.len() - 1, 1.0)
+                        self.values.push(handle.length.max(floor));
+                        self.floors.push(floor);
+                        (self.values.len() - 1, 1.0)
                     }
                     Some(unit) => {
                         let k = *shared[side].get_or_insert_with(|| {
-                            out.values.push(0.0);
-                            out.floors.push(0.0);
-                            out.values.len() - 1
+                            self.values.push(0.0);
+                            self.floors.push(0.0);
+                            self.values.len() - 1
                         });
                         if unit > 0.0 {
                             // Every master's start length is the factor times its unit.
-                            out.values[k] = handle.length / unit;
-                            out.floors[k] = out.floors[k].max(floor / unit);
+                            self.values[k] = handle.length / unit;
+                            self.floors[k] = self.floors[k].max(floor / unit);
                         }
                         (k, unit)
                     }
                 };
             }
-            out.slots.push(slot);
+            self.slots.push(slot);
         }
-        for (v, f) in out.values.iter_mut().zip(&out.floors) {
+        for (v, f) in self.values.iter_mut().zip(&self.floors) {
             *v = v.max(*f);
         }
-        out
     }
 
     fn cubic(&self, part: &Part, j: usize, values: &[f64]) -> CubicBez {
@@ -280,113 +334,164 @@ impl Unknowns {
     }
 }
 
-/// Fits one cubic per master to the parts' samples (exact ends, the given handle
-/// directions), the lengths polished towards the least largest sample distance over all
-/// masters. Returns the cubics and that distance (a lower bound of the error). The polish
-/// stops early after a round whose error is below `low` (the span is clearly short), far
-/// above `goal`, or no longer improving.
-pub(super) fn fit_joint(parts: &[Part], goal: f64, low: f64) -> (Vec<CubicBez>, f64) {
-    let unknowns = Unknowns::new(parts);
-    let n = unknowns.values.len();
-    // Per sample of every master in turn: its cubic parameter (carried over between
-    // rounds) and its weight.
-    let total: usize = parts.iter().map(|p| p.samples.t.len()).sum();
-    let mut params = Vec::with_capacity(total);
-    for part in parts {
-        let t = &part.samples.t;
-        let (a, b) = (t[0], t[t.len() - 1]);
-        params.extend(t.iter().map(|x| (x - a) / (b - a)));
+/// The buffers of the search's trials: the masters' parts and the polish's arrays, kept
+/// from one trial to the next and, on each thread, from one contour to the next
+/// ([`TrialBuffers::take`], [`TrialBuffers::keep`]). Only their capacity carries over:
+/// each is cleared or overwritten before it is read.
+#[derive(Default)]
+pub(super) struct TrialBuffers {
+    /// One part per master, filled by the caller before [`TrialBuffers::fit_joint`].
+    pub(super) parts: Vec<Part>,
+    unknowns: Unknowns,
+    params: Vec<f64>,
+    weights: Vec<f64>,
+    values: Vec<f64>,
+    normal: Vec<f64>,
+    rhs: Vec<f64>,
+    best: Vec<f64>,
+    step: Vec<f64>,
+}
+
+thread_local! {
+    static TRIAL_BUFFERS: std::cell::RefCell<TrialBuffers> = std::cell::RefCell::default();
+}
+
+impl TrialBuffers {
+    /// This thread's buffers of the last contour (empty on a thread's first).
+    pub(super) fn take() -> TrialBuffers {
+        TRIAL_BUFFERS.with(|b| b.take())
     }
-    let mut weights = vec![1.0 / total as f64; total];
-    let mut values = unknowns.values.clone();
-    let mut normal = vec![0.0; n * n];
-    let mut rhs = vec![0.0; n];
-    // The best values so far, their error and the Gauss-Newton step from them.
-    let mut best = values.clone();
-    let mut best_error = f64::INFINITY;
-    let mut step = vec![0.0; n];
-    let mut damping = 1.0;
-    for round in 0..ROUNDS {
-        normal.fill(0.0);
-        rhs.fill(0.0);
-        let mut worst: f64 = 0.0;
-        let mut sum = 0.0;
-        let mut offset = 0;
-        for (j, part) in parts.iter().enumerate() {
-            let poly = Power::new(&unknowns.cubic(part, j, &values));
-            let [(ka, sa), (kb, sb)] = unknowns.slots[j];
-            let (da, db) = (part.start.direction, part.end.direction);
-            let count = part.samples.p.len();
-            let inner = offset + 1..offset + count - 1;
-            // This master's terms, added in the same order as into the system itself.
-            let (mut ra, mut rb) = (rhs[ka], rhs[kb]);
-            let [mut naa, mut nab, mut nba, mut nbb] = [
-                normal[ka * n + ka],
-                normal[ka * n + kb],
-                normal[kb * n + ka],
-                normal[kb * n + kb],
-            ];
-            let samples = part.samples.p[1..count - 1].iter();
-            let state = params[inner.clone()].iter_mut().zip(&mut weights[inner]);
-            for (p, (param, weight)) in samples.zip(state) {
-                let (u, r) = poly.nearest(p.to_vec2(), *param);
-                *param = u;
-                let dist = r.hypot();
-                worst = worst.max(dist);
-                if round >= LAWSON_FROM {
-                    *weight *= dist;
-                }
-                sum += *weight;
-                if dist <= 0.0 {
-                    continue;
-                }
-                // How the distance changes with each handle length (along the residual).
-                let away = r / dist;
-                let v = 1.0 - u;
-                let ja = 3.0 * v * v * u * away.dot(da) * sa;
-                let jb = -3.0 * v * u * u * away.dot(db) * sb;
-                let w = *weight;
-                ra += w * ja * dist;
-                rb += w * jb * dist;
-                naa += w * ja * ja;
-                nab += w * ja * jb;
-                nba += w * jb * ja;
-                nbb += w * jb * jb;
-            }
-            (rhs[ka], rhs[kb]) = (ra, rb);
-            normal[ka * n + ka] = naa;
-            normal[ka * n + kb] = nab;
-            normal[kb * n + ka] = nba;
-            normal[kb * n + kb] = nbb;
-            offset += count;
-        }
-        if round >= LAWSON_FROM && sum > 0.0 {
-            weights.iter_mut().for_each(|w| *w /= sum);
-        }
-        if worst < best_error {
-            let stalled = best_error.is_finite() && worst > STALL * best_error;
-            let hopeless = (round >= 1 && worst > HOPELESS * goal)
-                || (round > LAWSON_FROM && worst > HOPELESS_LATE * goal);
-            solve(&mut normal, &mut rhs, n, &mut step);
-            best.copy_from_slice(&values);
-            best_error = worst;
-            damping = 1.0;
-            if stalled || hopeless || (round >= 1 && worst < low) {
-                break;
-            }
-        } else {
-            damping *= 0.25;
-        }
-        for k in 0..n {
-            values[k] = (best[k] - damping * step[k]).max(unknowns.floors[k]);
-        }
+
+    /// Hands the buffers back to this thread, for the next contour.
+    pub(super) fn keep(self) {
+        TRIAL_BUFFERS.with(|b| b.replace(self));
     }
-    let cubics = parts
-        .iter()
-        .enumerate()
-        .map(|(j, part)| unknowns.cubic(part, j, &best))
-        .collect();
-    (cubics, best_error)
+
+    /// Fits one cubic per master to the parts' samples (exact ends, the given handle
+    /// directions), the lengths polished towards the least largest sample distance over all
+    /// masters. Returns the cubics and that distance (a lower bound of the error). The
+    /// polish stops early after a round whose error is below `low` (the span is clearly
+    /// short), far above `goal`, or no longer improving.
+    pub(super) fn fit_joint(&mut self, goal: f64, low: f64) -> (Vec<CubicBez>, f64) {
+        let TrialBuffers {
+            parts,
+            unknowns,
+            params,
+            weights,
+            values,
+            normal,
+            rhs,
+            best,
+            step,
+        } = self;
+        unknowns.set(parts);
+        let n = unknowns.values.len();
+        // Per sample of every master in turn: its cubic parameter (carried over between
+        // rounds) and its weight.
+        let total: usize = parts.iter().map(|p| p.samples.t.len()).sum();
+        params.clear();
+        for part in parts.iter() {
+            let t = &part.samples.t;
+            let (a, b) = (t[0], t[t.len() - 1]);
+            params.extend(t.iter().map(|x| (x - a) / (b - a)));
+        }
+        weights.clear();
+        weights.resize(total, 1.0 / total as f64);
+        values.clear();
+        values.extend_from_slice(&unknowns.values);
+        normal.clear();
+        normal.resize(n * n, 0.0);
+        rhs.clear();
+        rhs.resize(n, 0.0);
+        // The best values so far, their error and the Gauss-Newton step from them.
+        best.clear();
+        best.extend_from_slice(values);
+        let mut best_error = f64::INFINITY;
+        step.clear();
+        step.resize(n, 0.0);
+        let mut damping = 1.0;
+        for round in 0..ROUNDS {
+            normal.fill(0.0);
+            rhs.fill(0.0);
+            let mut worst: f64 = 0.0;
+            let mut sum = 0.0;
+            let mut offset = 0;
+            for (j, part) in parts.iter().enumerate() {
+                let poly = Power::new(&unknowns.cubic(part, j, values));
+                let [(ka, sa), (kb, sb)] = unknowns.slots[j];
+                let (da, db) = (part.start.direction, part.end.direction);
+                let count = part.samples.p.len();
+                let inner = offset + 1..offset + count - 1;
+                // This master's terms, added in the same order as into the system itself.
+                let (mut ra, mut rb) = (rhs[ka], rhs[kb]);
+                let [mut naa, mut nab, mut nba, mut nbb] = [
+                    normal[ka * n + ka],
+                    normal[ka * n + kb],
+                    normal[kb * n + ka],
+                    normal[kb * n + kb],
+                ];
+                let samples = part.samples.p[1..count - 1].iter();
+                let state = params[inner.clone()].iter_mut().zip(&mut weights[inner]);
+                for (p, (param, weight)) in samples.zip(state) {
+                    let (u, r) = poly.nearest(p.to_vec2(), *param);
+                    *param = u;
+                    let dist = r.hypot();
+                    worst = worst.max(dist);
+                    if round >= LAWSON_FROM {
+                        *weight *= dist;
+                    }
+                    sum += *weight;
+                    if dist <= 0.0 {
+                        continue;
+                    }
+                    // How the distance changes with each handle length (along the residual).
+                    let away = r / dist;
+                    let v = 1.0 - u;
+                    let ja = 3.0 * v * v * u * away.dot(da) * sa;
+                    let jb = -3.0 * v * u * u * away.dot(db) * sb;
+                    let w = *weight;
+                    ra += w * ja * dist;
+                    rb += w * jb * dist;
+                    naa += w * ja * ja;
+                    nab += w * ja * jb;
+                    nba += w * jb * ja;
+                    nbb += w * jb * jb;
+                }
+                (rhs[ka], rhs[kb]) = (ra, rb);
+                normal[ka * n + ka] = naa;
+                normal[ka * n + kb] = nab;
+                normal[kb * n + ka] = nba;
+                normal[kb * n + kb] = nbb;
+                offset += count;
+            }
+            if round >= LAWSON_FROM && sum > 0.0 {
+                weights.iter_mut().for_each(|w| *w /= sum);
+            }
+            if worst < best_error {
+                let stalled = best_error.is_finite() && worst > STALL * best_error;
+                let hopeless = (round >= 1 && worst > HOPELESS * goal)
+                    || (round > LAWSON_FROM && worst > HOPELESS_LATE * goal);
+                solve(normal, rhs, n, step);
+                best.copy_from_slice(values);
+                best_error = worst;
+                damping = 1.0;
+                if stalled || hopeless || (round >= 1 && worst < low) {
+                    break;
+                }
+            } else {
+                damping *= 0.25;
+            }
+            for k in 0..n {
+                values[k] = (best[k] - damping * step[k]).max(unknowns.floors[k]);
+            }
+        }
+        let cubics = parts
+            .iter()
+            .enumerate()
+            .map(|(j, part)| unknowns.cubic(part, j, best))
+            .collect();
+        (cubics, best_error)
+    }
 }
 
 /// Solves the small symmetric system `a x = b` (`n` × `n`, row-major) by Gaussian
