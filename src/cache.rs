@@ -469,7 +469,7 @@ impl FitCache {
     /// this run used and nothing new was made; only the delta file ([`DELTA_FILE`]: the
     /// entries made in this run and those of the last delta file it used, bound to the
     /// cache file) when the cache file at `path` is the one loaded and its unused entries
-    /// and the delta's together are at most 1/[`DELTA_SHARE`] of its entries, so that an
+    /// and the delta's together are at most one eighth of its entries, so that an
     /// edit of one glyph does not rewrite a CJK font's 100 MB; else the cache file whole
     /// ([`FitCache::to_bytes`]), which leaves any delta file bound to the old one.
     pub fn files_to_save(&self, path: &Path) -> Vec<(std::path::PathBuf, Vec<u8>)> {

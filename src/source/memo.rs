@@ -2,8 +2,10 @@
 //! again a glyph file that did not change: a CJK font's 20,902 files cost a quarter of an
 //! edited build's CPU time in TOML parsing and the area checks of every contour.
 //!
-//! Each entry is keyed by a SHA-256 of the program's identity, the file's path and its
-//! text ([`crate::reuse::KeyBuilder`]), and holds what [`super::glyph::load_glyph`] made of
+//! Each entry is keyed by a SHA-256 of the program's identity, the file's name and its
+//! text ([`crate::reuse::KeyBuilder`]): the loader reads nothing else of a glyph file, and
+//! the folder's own path is left out, so that `build src` and `build /abs/path/src` share
+//! the memo. It holds what [`super::glyph::load_glyph`] made of
 //! it: the glyph and where its parts were written. Only files that loaded complete and
 //! without any diagnostic are kept, so a memo hit gives what the loader would, and there is
 //! no message to replay. The checks across files (names, components, anchors, limits) still
@@ -147,10 +149,12 @@ impl SourceMemo {
         self.delta_bytes = bytes;
     }
 
-    /// The key of the glyph file `path` holding `text`.
+    /// The key of the glyph file `path` holding `text`: its name (the glyph's name comes
+    /// from it) and text.
     pub(super) fn key(path: &Path, text: &str) -> [u8; 32] {
+        let name = path.file_name().unwrap_or(path.as_os_str());
         let mut k = KeyBuilder::new("glyph source");
-        k.bytes(path.as_os_str().as_encoded_bytes()).str(text);
+        k.bytes(name.as_encoded_bytes()).str(text);
         k.finish().to_bytes()
     }
 
@@ -196,7 +200,7 @@ impl SourceMemo {
     /// What [`SourceMemo::save`] writes, the memo having been loaded from `path`: nothing
     /// (off, or every entry used and none made); only the delta file when the memo file's
     /// unused entries, the delta's used ones and the new ones together are at most
-    /// 1/[`DELTA_SHARE`] of the memo file's entries; else the memo file whole
+    /// one eighth of the memo file's entries; else the memo file whole
     /// ([`SourceMemo::bytes_to_save`]).
     pub fn files_to_save(&self, path: &Path) -> Vec<(PathBuf, Vec<u8>)> {
         if !self.on {

@@ -631,6 +631,13 @@ fn an_edited_glyph_file_goes_into_the_memo_delta_and_a_bad_delta_is_ignored() {
     assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
     assert_eq!(memo.taken(), 28);
     assert!(memo.files_to_save(&path).is_empty());
+    // The same folder spelled another way (`build src`, then `build /abs/path/src`): every
+    // file still comes from the memo.
+    let respelled = dir.join("..").join(dir.file_name().unwrap());
+    let (memo, ignored) = SourceMemo::load(&path);
+    assert_eq!(ignored, None);
+    assert_eq!(load_family_with(&respelled, &memo), load_family(&respelled));
+    assert_eq!(memo.taken(), 28);
 
     // A damaged delta, or one bound to another memo file, is ignored: `o3` is parsed again.
     let good = std::fs::read(&delta).unwrap();
