@@ -448,5 +448,9 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             errln!("warning: {e}");
         }
     }
+    // The command ends here and the process with it: the outlined font, the memo and the
+    // records (a CJK font's millions of small allocations) are left to the exit instead of
+    // being freed one by one (an edited CJK build: 2.95 s instead of 3.0 s).
+    std::mem::forget((loaded, memo, reuse, cache, variable, kept));
     Ok(ExitCode::SUCCESS)
 }
