@@ -196,29 +196,20 @@ impl Power {
     }
 
     /// The residual `self(u) - p` at the parameter nearest `p` by Newton's method from `u`.
-    fn nearest(&self, p: Vec2, mut u: f64) -> (f64, Vec2) {
-        let [_, c1, c2, c3] = self.0;
-        for _ in 0..PROJECT_STEPS {
-            let r = self.at(u) - p;
-            let d1 = c1 + u * (2.0 * c2 + 3.0 * u * c3);
-            let d2 = 2.0 * c2 + 6.0 * u * c3;
-            let curvature = d1.dot(d1) + r.dot(d2);
-            if curvature <= 1e-300 {
-                break;
-            }
-            let next = (u - r.dot(d1) / curvature).clamp(0.0, 1.0);
-            let done = (next - u).abs() < 1e-10;
-            u = next;
-            if done {
-                break;
-            }
-        }
+    fn nearest(&self, p: Vec2, u: f64) -> (f64, Vec2) {
+        let u = self.newton(p, u, PROJECT_STEPS);
         (u, self.at(u) - p)
     }
 
     /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
     /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
-    pub(super) fn project(&self, p: Vec2, mut u: f64, steps: usize) -> (f64, f64) {
+    pub(super) fn project(&self, p: Vec2, u: f64, steps: usize) -> (f64, f64) {
+        let u = self.newton(p, u, steps);
+        (u, (self.at(u) - p).hypot())
+    }
+
+    /// At most `steps` Newton steps from `u` towards the parameter nearest `p`.
+    fn newton(&self, p: Vec2, mut u: f64, steps: usize) -> f64 {
         let [_, c1, c2, c3] = self.0;
         for _ in 0..steps {
             let r = self.at(u) - p;
@@ -235,7 +226,7 @@ impl Power {
                 break;
             }
         }
-        (u, (self.at(u) - p).hypot())
+        u
     }
 
     fn at(&self, u: f64) -> Vec2 {
