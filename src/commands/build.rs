@@ -303,7 +303,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     // The sources (after the memo of them), the fit cache and the output record are read on
     // any core at once (a CJK font's are 20,000 files and 60 MB, 100 MB and 20 MB); the
     // messages keep their order.
-    let (((memo, memo_ignored), sources), ((cache, outcome), (reuse, ignored))) = rayon::join(
+    let (((mut memo, memo_ignored), sources), ((cache, outcome), (reuse, ignored))) = rayon::join(
         || {
             let memo = SourceMemo::load(&memo_path);
             let sources =
@@ -317,6 +317,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             )
         },
     );
+    memo.release_unused();
     if let Some(reason) = memo_ignored {
         errln!(
             "note: ignoring {}: {reason}; every glyph file is read anew",

@@ -63,15 +63,17 @@ const DELTA_HEADER: Header = Header {
 struct Slot {
     /// Its bytes in [`SourceMemo::bytes`] (kept as they are for the next file).
     range: Range<usize>,
-    /// The decoded glyph until this build takes it (then `None`: used).
+    /// The decoded glyph until this build takes it or [`SourceMemo::release_unused`] drops it.
     glyph: Mutex<Option<(Glyph, GlyphSpans)>>,
+    /// Whether this build took it.
+    used: std::sync::atomic::AtomicBool,
     /// Whether it came from the delta file (its bytes are in [`SourceMemo::delta_bytes`]).
     in_delta: bool,
 }
 
 impl Slot {
     fn used(&self) -> bool {
-        self.glyph.lock().map(|g| g.is_none()).unwrap_or(false)
+        self.used.load(Ordering::Relaxed)
     }
 }
 
@@ -160,11 +162,32 @@ impl SourceMemo {
 
     /// What the last build loaded from the file of `key`, if it did.
     pub(super) fn take(&self, key: &[u8; 32]) -> Option<(Glyph, GlyphSpans)> {
-        let taken = self.earlier.get(key)?.glyph.lock().ok()?.take();
+        let slot = self.earlier.get(key)?;
+        let taken = slot.glyph.lock().ok()?.take();
         if taken.is_some() {
+            slot.used.store(true, Ordering::Relaxed);
             self.taken.fetch_add(1, Ordering::Relaxed);
         }
         taken
+    }
+
+    /// Drops the decoded glyphs this build did not take, once the sources are loaded: after
+    /// a new `xglyph` binary no entry applies, and a CJK font's 20,902 decoded glyphs (some
+    /// 250 MB) would otherwise stay while every output is made again. What is saved is
+    /// unchanged: only taken entries' bytes are written.
+    pub fn release_unused(&mut self) {
+        for slot in self.earlier.values_mut() {
+            if !slot.used() {
+                if let Ok(glyph) = slot.glyph.get_mut() {
+                    *glyph = None;
+                }
+            }
+        }
+        if self.taken() == 0 {
+            // No entry's bytes will be written again.
+            self.bytes = Vec::new();
+            self.delta_bytes = Vec::new();
+        }
     }
 
     /// How many glyph files came from the memo.
@@ -325,6 +348,7 @@ fn decode(
         let slot = Slot {
             range: start..start + len,
             glyph: Mutex::new(Some(glyph)),
+            used: std::sync::atomic::AtomicBool::new(false),
             in_delta,
         };
         if earlier.insert(key, slot).is_some() {

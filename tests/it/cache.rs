@@ -588,10 +588,15 @@ fn memo_fixture(name: &str) -> PathBuf {
 /// give the same family and diagnostics. Returns how many glyph files the memo gave.
 fn load_through_memo(dir: &Path, path: &Path) -> usize {
     use xglyph::source::{load_family, load_family_with, SourceMemo};
-    let (memo, ignored) = SourceMemo::load(path);
+    let (mut memo, ignored) = SourceMemo::load(path);
     assert_eq!(ignored, None);
     let through = load_family_with(dir, &memo);
     assert_eq!(through, load_family(dir));
+    // As `build` does: the entries not taken are dropped before the save, which must
+    // write what it would have written with them.
+    let before = memo.files_to_save(path);
+    memo.release_unused();
+    assert_eq!(memo.files_to_save(path), before);
     memo.save(path).unwrap();
     memo.taken()
 }
