@@ -3,20 +3,22 @@
 //! 0 or 1 everywhere. Such a glyph's union is the glyph itself.
 //!
 //! Why by hand: linesweeper's sweep answers the same question, but it builds the whole
-//! topology first, at about 0.4 ms for a CJK glyph of 90 segments; most glyphs of a font
-//! (80 % of a CJK block) have nothing to remove. This test costs a few microseconds and
-//! answers "no" (then the sweep runs) whenever it cannot prove the answer.
+//! topology first, at about 0.4 ms for a CJK glyph of 90 segments, while most glyphs of a
+//! font (80 % of a CJK block, every bundled glyph) have nothing to remove. This test takes
+//! about 4 µs a bundled glyph and 25 µs a CJK glyph it proves, and answers "no" (then the
+//! sweep runs) whenever it cannot prove the answer.
 //!
 //! How: every segment is cut at its x and y extrema into monotone pieces; a monotone
 //! piece lies inside the box its two ends span. Two pieces whose boxes, grown by `eps / 2`,
-//! do not meet are more than `eps` apart. Pieces whose boxes meet are halved (halves of a
-//! monotone piece are monotone) until the boxes part, within a budget. Two consecutive
-//! pieces of a contour share an end `P`: they meet nowhere else when their boxes meet only
-//! at `P`, or when they leave `P` on strictly opposite sides of a line through it
-//! (a monotone piece reaches the line `x = P.x` only at its end). Once no two contours come
-//! within `eps` and no contour crosses itself, each contour's two sides have the windings
-//! of the contours around it (tested at one of its points) and those plus its own turn;
-//! the glyph passes when these are 0 and 1 for every contour.
+//! do not meet are more than `eps` apart. Two lines are measured exactly; other pieces whose
+//! boxes meet are halved (halves of a monotone piece are monotone) until the boxes part,
+//! within a budget. Two consecutive pieces of a contour share an end `P`: they meet nowhere
+//! else when they leave `P` on strictly opposite sides of the vertical or the horizontal
+//! through it (a monotone piece reaches the line `x = P.x` only at its end), or else when
+//! the cones from `P` over their control points (each holds its piece) share no direction.
+//! Once no two contours come within `eps` and no contour crosses itself, each contour's two
+//! sides have the windings of the contours around it (tested at one of its points) and
+//! those plus its own turn; the glyph passes when these are 0 and 1 for every contour.
 //!
 //! Limits: conservative. Contours closer than `eps` anywhere, touching at a point, a piece
 //! shorter than its rounding, a contour of fewer than three pieces, or a pair of pieces
