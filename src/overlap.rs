@@ -46,7 +46,7 @@ mod disjoint;
 
 use crate::orient::orient_contours;
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::reuse::{KeyBuilder, Reuse};
+use crate::reuse::{outline_key, Key, KeyBuilder, OutlineKeys, Reuse};
 
 /// The share of the font's tolerance the union may move a boundary by.
 pub const UNION_SHARE: f64 = 1e-3;
@@ -201,28 +201,43 @@ fn push_without_slivers(out: &mut BezPath, contour: &BezPath, eps: f64) {
 /// would be a hole there, while the union must add it. A glyph without components is
 /// unioned as it is.
 pub fn remove_overlaps_font(font: &OutlinedFont) -> OutlinedFont {
-    remove_overlaps_font_with(font, &Reuse::off())
+    remove_overlaps_font_with(font, &Reuse::off(), &OutlineKeys::default())
 }
 
 /// [`remove_overlaps_font`], taking each glyph's union from the last build when its parts
 /// are the same ([`Reuse::path_or_make`]): a rebuild after one edit unions one glyph.
-pub fn remove_overlaps_font_with(font: &OutlinedFont, reuse: &Reuse) -> OutlinedFont {
+/// `outlines` are the font's [`OutlineKeys`].
+pub fn remove_overlaps_font_with(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> OutlinedFont {
     use rayon::prelude::*;
     let eps = UNION_SHARE * font.tolerance;
     let by_name: HashMap<&str, &OutlinedGlyph> =
         font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
+    // Field by field: `..font.clone()` would copy every glyph only to drop the copies.
     OutlinedFont {
+        info: font.info.clone(),
+        kerning: font.kerning.clone(),
+        features: font.features.clone(),
+        tolerance: font.tolerance,
         glyphs: font
             .glyphs
             .par_iter()
-            .map(|glyph| remove_glyph_overlaps(glyph, &by_name, eps, reuse))
+            .enumerate()
+            .map(|(i, glyph)| {
+                let outline = || outlines.get(i, &glyph.path);
+                remove_glyph_overlaps(glyph, outline, &by_name, eps, reuse)
+            })
             .collect(),
-        ..font.clone()
     }
 }
 
+/// `outline`: the key of `glyph.path` ([`OutlineKeys::get`]).
 fn remove_glyph_overlaps(
     glyph: &OutlinedGlyph,
+    outline: impl FnOnce() -> Key,
     by_name: &HashMap<&str, &OutlinedGlyph>,
     eps: f64,
     reuse: &Reuse,
@@ -230,7 +245,11 @@ fn remove_glyph_overlaps(
     let parts = parts(glyph, by_name);
     let input = parts.as_ref().unwrap_or(&glyph.path);
     let path = if reuse.is_on() {
-        let key = KeyBuilder::new("union").f64(eps).path(input).finish();
+        let input_key = match &parts {
+            Some(parts) => outline_key(parts),
+            None => outline(),
+        };
+        let key = KeyBuilder::new("union").f64(eps).key(&input_key).finish();
         reuse.path_or_make(key, input, || remove_overlaps(input, eps))
     } else {
         remove_overlaps(input, eps)
@@ -240,10 +259,18 @@ fn remove_glyph_overlaps(
         .iter()
         .filter(|el| !matches!(el, PathEl::MoveTo(_) | PathEl::ClosePath))
         .count();
+    // Field by field, so that the old path is not copied.
     OutlinedGlyph {
+        name: glyph.name.clone(),
+        unicodes: glyph.unicodes.clone(),
+        advance: glyph.advance,
+        components: glyph.components.clone(),
+        anchors: glyph.anchors.clone(),
+        placed_anchors: glyph.placed_anchors.clone(),
+        contours: glyph.contours.clone(),
         path,
+        max_error: glyph.max_error,
         segments,
-        ..glyph.clone()
     }
 }
 

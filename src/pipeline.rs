@@ -26,7 +26,7 @@ use crate::render::{
     encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
 };
-use crate::reuse::{font_key, KeyBuilder, Reuse};
+use crate::reuse::{font_key, KeyBuilder, OutlineKeys, Reuse};
 use crate::source::{check_tolerance_flag, load_family_with, Diagnostic, Severity, SourceMemo};
 use crate::svg::{glyph_svg, output_stem, svg_font, svg_glyph_key};
 use crate::write::{OutputSet, WriteError};
@@ -311,9 +311,14 @@ pub fn instance_outputs_reusing(
     let instances = named_instances_with(loaded, cache)?;
     let default_stem = output_stem(&loaded.font.info);
     let named = &loaded.family.designspace.instances;
+    // Each instance's outlines hashed once for its keys.
+    let outlines: Vec<OutlineKeys> = instances
+        .iter()
+        .map(|(_, font)| OutlineKeys::new(font, reuse))
+        .collect();
     // Which instances get files of their own (checked in order, before any work).
     let mut written = Vec::new();
-    for ((name, font), named) in instances.iter().zip(named) {
+    for (((name, font), named), outlines) in instances.iter().zip(named).zip(&outlines) {
         let stem = output_stem(&font.info);
         if stem == default_stem {
             let at_default = loaded
@@ -331,12 +336,12 @@ pub fn instance_outputs_reusing(
                  `style`"
             )));
         }
-        written.push((stem, font));
+        written.push((stem, font, outlines));
     }
     // Each instance's fonts in parallel, in order; its TTF also shapes its proof block.
     let built: Vec<Result<InstanceFonts, PipelineError>> = written
         .par_iter()
-        .map(|(stem, font)| instance_fonts(stem, font, opts, reuse))
+        .map(|(stem, font, outlines)| instance_fonts(stem, font, opts, reuse, outlines))
         .collect();
     let built = built.into_iter().collect::<Result<Vec<_>, _>>()?;
     let mut files = Vec::new();
@@ -346,7 +351,7 @@ pub fn instance_outputs_reusing(
     let mut layouts = Vec::with_capacity(instances.len());
     // What the proof depends on: each instance as drawn (its TTF and glyphs).
     let mut drawn = Vec::new();
-    for (name, font) in &instances {
+    for ((name, font), outlines) in instances.iter().zip(&outlines) {
         let stem = output_stem(&font.info);
         let ttf = match built.iter().find(|b| b.stem == stem) {
             Some(b) => b.ttf.clone(),
@@ -354,7 +359,7 @@ pub fn instance_outputs_reusing(
             None => otf::ttf(font)?,
         };
         if reuse.is_on() {
-            drawn.push(font_key(font, &ttf));
+            drawn.push(font_key(font, &ttf, outlines));
         }
         layouts.push((
             name,
@@ -411,8 +416,9 @@ fn instance_fonts(
     font: &OutlinedFont,
     opts: &BuildOptions,
     reuse: &Reuse,
+    outlines: &OutlineKeys,
 ) -> Result<InstanceFonts, PipelineError> {
-    let ot = for_opentype(font, opts, reuse);
+    let ot = for_opentype(font, opts, reuse, outlines);
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
         || otf::ttf(ot),
@@ -567,14 +573,17 @@ pub fn static_outputs_with(
     ufo: bool,
 ) -> Result<Vec<OutputFile>, PipelineError> {
     let stem = output_stem(&font.info);
+    // Each glyph's outline hashed once, for the keys of every output below.
+    let outlines = OutlineKeys::new(font, reuse);
+    let outlines = &outlines;
     let (binary, text) = rayon::join(
-        || opentype_and_images(font, opts, &stem, reuse),
+        || opentype_and_images(font, opts, &stem, reuse, outlines),
         || -> Result<_, PipelineError> {
             let (svg, ufo) = rayon::join(
-                || svg_outputs_reusing(font, reuse),
+                || svg_outputs_reusing(font, reuse, outlines),
                 || {
                     if ufo {
-                        crate::ufo::output_files_reusing(font, reuse)
+                        crate::ufo::output_files_reusing(font, reuse, outlines)
                     } else {
                         Ok(Vec::new())
                     }
@@ -626,14 +635,15 @@ fn opentype_and_images(
     opts: &BuildOptions,
     stem: &str,
     reuse: &Reuse,
+    outlines: &OutlineKeys,
 ) -> Result<Binary, PipelineError> {
-    let ot = for_opentype(font, opts, reuse);
+    let ot = for_opentype(font, opts, reuse, outlines);
     let ot = ot.as_ref();
     let ttf = otf::ttf(ot)?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
     let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
     // What the proof and the sheet labels set in the font depend on.
-    let drawn = reuse.is_on().then(|| font_key(font, &ttf));
+    let drawn = reuse.is_on().then(|| font_key(font, &ttf, outlines));
     let proof_key = drawn.map(|drawn| {
         KeyBuilder::new("proof")
             .key(&drawn)
@@ -643,7 +653,16 @@ fn opentype_and_images(
     let ((sheets, proof), (woff2, otf)) = rayon::join(
         || {
             rayon::join(
-                || sheet_png_files_reusing(&layout, &opts.sheet, "sheet", reuse, drawn.as_ref()),
+                || {
+                    sheet_png_files_reusing(
+                        &layout,
+                        &opts.sheet,
+                        "sheet",
+                        reuse,
+                        drawn.as_ref(),
+                        outlines,
+                    )
+                },
                 || {
                     let draw = || encode_png(&render_proof_with(&layout, &opts.proof)?);
                     match proof_key {
@@ -681,28 +700,34 @@ fn woff2_reusing(ttf: &[u8], name: &str, reuse: &Reuse) -> Result<Vec<u8>, OtfEr
 
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
 /// `opts.keep_overlaps`.
-/// Unions made by the last build are taken from `reuse`.
+/// Unions made by the last build are taken from `reuse` (`outlines`: `font`'s
+/// [`OutlineKeys`]).
 fn for_opentype<'a>(
     font: &'a OutlinedFont,
     opts: &BuildOptions,
     reuse: &Reuse,
+    outlines: &OutlineKeys,
 ) -> Cow<'a, OutlinedFont> {
     if opts.keep_overlaps {
         Cow::Borrowed(font)
     } else {
-        Cow::Owned(remove_overlaps_font_with(font, reuse))
+        Cow::Owned(remove_overlaps_font_with(font, reuse, outlines))
     }
 }
 
 /// The SVG font and the SVG glyph set (`svg/<glyph>.svg`).
 pub fn svg_outputs(font: &OutlinedFont) -> Vec<OutputFile> {
-    svg_outputs_reusing(font, &Reuse::off())
+    svg_outputs_reusing(font, &Reuse::off(), &OutlineKeys::default())
 }
 
 /// [`svg_outputs`], leaving out each glyph's SVG that OUT holds already as the last build
 /// made it from the same glyph ([`Reuse::kept_or_make`]). The glyph files are made on
-/// every core.
-pub fn svg_outputs_reusing(font: &OutlinedFont, reuse: &Reuse) -> Vec<OutputFile> {
+/// every core. `outlines`: `font`'s [`OutlineKeys`].
+pub fn svg_outputs_reusing(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Vec<OutputFile> {
     let (font_svg, glyphs) = rayon::join(
         || svg_font(font).into_bytes(),
         || {
@@ -710,9 +735,10 @@ pub fn svg_outputs_reusing(font: &OutlinedFont, reuse: &Reuse) -> Vec<OutputFile
             font.glyphs
                 .par_iter()
                 .zip(stems)
-                .filter_map(|(g, stem)| {
+                .enumerate()
+                .filter_map(|(i, (g, stem))| {
                     let path = Path::new("svg").join(format!("{stem}.svg"));
-                    let key = svg_glyph_key(&font.info, g);
+                    let key = svg_glyph_key(&font.info, g, &outlines.get(i, &g.path));
                     let make = || Ok::<_, Infallible>(glyph_svg(&font.info, g).into_bytes());
                     let Ok(bytes) = reuse.kept_or_make(&path, key, make);
                     bytes.map(|bytes| (path, bytes))

@@ -501,11 +501,50 @@ fn relative_path(r: &mut Reader<'_>) -> Result<PathBuf, &'static str> {
     Ok(path)
 }
 
-/// The key of one glyph as drawn: name, code points, advance and outline, and with
-/// `contours` its X-spline contours too (the sheet's overlay draws them).
-pub fn glyph_key(glyph: &OutlinedGlyph, contours: bool) -> Key {
+/// Each glyph's outline of a font, hashed once ([`KeyBuilder::path`]). The keys of the
+/// outputs made from the font (the union, each glyph's SVG and `.glif`, the sheet pages,
+/// the proof) take it instead of hashing the path again each: a CJK font's outlines are
+/// about 130 MB of numbers, and five keys read them.
+#[derive(Debug, Default)]
+pub struct OutlineKeys(Vec<Key>);
+
+impl OutlineKeys {
+    /// The keys of `font`'s glyphs, hashed on every core; none when `reuse` is off (then
+    /// [`OutlineKeys::get`] hashes a path when asked).
+    pub fn new(font: &OutlinedFont, reuse: &Reuse) -> Self {
+        use rayon::prelude::*;
+        if !reuse.is_on() {
+            return OutlineKeys::default();
+        }
+        OutlineKeys(
+            font.glyphs
+                .par_iter()
+                .map(|g| outline_key(&g.path))
+                .collect(),
+        )
+    }
+
+    /// The key of `path`, the outline of the glyph at `index` of the font these keys were
+    /// made for; hashed now when they were not made.
+    pub fn get(&self, index: usize, path: &BezPath) -> Key {
+        match self.0.get(index) {
+            Some(key) => *key,
+            None => outline_key(path),
+        }
+    }
+}
+
+/// The key of one outline (every element's kind and the bits of its points).
+pub fn outline_key(path: &BezPath) -> Key {
+    KeyBuilder::new("outline").path(path).finish()
+}
+
+/// The key of one glyph as drawn: name, code points, advance and outline (`outline`, its
+/// [`outline_key`]), and with `contours` its X-spline contours too (the sheet's overlay
+/// draws them).
+pub fn glyph_key(glyph: &OutlinedGlyph, outline: &Key, contours: bool) -> Key {
     let mut k = KeyBuilder::new("glyph");
-    k.str(&glyph.name).f64(glyph.advance).path(&glyph.path);
+    k.str(&glyph.name).f64(glyph.advance).key(outline);
     k.u64(glyph.unicodes.len() as u64);
     for &c in &glyph.unicodes {
         k.u64(u64::from(c));
@@ -519,13 +558,14 @@ pub fn glyph_key(glyph: &OutlinedGlyph, contours: bool) -> Key {
 
 /// The key of everything a drawing of `font` through its TTF `ttf` can depend on: the
 /// TTF's bytes (shaping, metrics), the font's info, and every glyph as drawn
-/// ([`glyph_key`], hashed in parallel).
-pub fn font_key(font: &OutlinedFont, ttf: &[u8]) -> Key {
+/// ([`glyph_key`], hashed in parallel; `outlines` are the font's [`OutlineKeys`]).
+pub fn font_key(font: &OutlinedFont, ttf: &[u8], outlines: &OutlineKeys) -> Key {
     use rayon::prelude::*;
     let glyphs: Vec<Key> = font
         .glyphs
         .par_iter()
-        .map(|g| glyph_key(g, false))
+        .enumerate()
+        .map(|(i, g)| glyph_key(g, &outlines.get(i, &g.path), false))
         .collect();
     let mut k = KeyBuilder::new("font");
     k.bytes(ttf)

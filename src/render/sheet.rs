@@ -21,7 +21,7 @@ use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement}
 use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
-use crate::reuse::{glyph_key, Key, KeyBuilder, Reuse};
+use crate::reuse::{glyph_key, Key, KeyBuilder, OutlineKeys, Reuse};
 
 /// How to draw the sheet.
 #[derive(Clone, Debug, PartialEq)]
@@ -137,19 +137,28 @@ pub fn sheet_png_files_with(
     opts: &SheetOptions,
     stem: &str,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
-    sheet_png_files_reusing(layout, opts, stem, &Reuse::off(), None)
+    sheet_png_files_reusing(
+        layout,
+        opts,
+        stem,
+        &Reuse::off(),
+        None,
+        &OutlineKeys::default(),
+    )
 }
 
 /// [`sheet_png_files_with`], taking from OUT each page whose inputs did not change since the
 /// last build ([`Reuse`]). `font_key` is [`crate::reuse::font_key`] of the layout's font
 /// and TTF; a page whose labels are set in the font's own glyphs depends on it (without
 /// it such a page is always drawn), a page of built-in labels only on its own glyphs.
+/// `outlines` are the font's [`OutlineKeys`].
 pub fn sheet_png_files_reusing(
     layout: &Layout<'_>,
     opts: &SheetOptions,
     stem: &str,
     reuse: &Reuse,
     font_key: Option<&Key>,
+    outlines: &OutlineKeys,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
     use rayon::prelude::*;
     let pages = sheet_pages(layout.font(), opts)?;
@@ -161,7 +170,7 @@ pub fn sheet_png_files_reusing(
         .zip(pages.par_iter())
         .map(|(name, order)| {
             let draw = || super::encode_png(&render_page(layout, &geometry, opts, order)?);
-            let png = match page_key(layout, &geometry, opts, &name, order, font_key) {
+            let png = match page_key(layout, &geometry, opts, &name, order, font_key, outlines) {
                 Some(key) => reuse.get_or_make(Path::new(&name), key, draw)?,
                 None => draw()?,
             };
@@ -179,6 +188,7 @@ fn page_key(
     name: &str,
     order: &[usize],
     font_key: Option<&Key>,
+    outlines: &OutlineKeys,
 ) -> Option<Key> {
     let font = layout.font();
     let info = &font.info;
@@ -202,7 +212,7 @@ fn page_key(
     let mut uses_font = false;
     for &i in order {
         let g = &font.glyphs[i];
-        k.key(&glyph_key(g, opts.overlay));
+        k.key(&glyph_key(g, &outlines.get(i, &g.path), opts.overlay));
         uses_font |= label(&g.name, &g.unicodes)
             .chars()
             .all(|c| layout.covers(c));

@@ -63,15 +63,15 @@ pub fn glyph_svg(info: &FontInfo, glyph: &OutlinedGlyph) -> String {
 }
 
 /// What [`glyph_svg`] reads, as a [`Key`]: the em's metrics, the glyph's name, advance and
-/// path.
-pub fn svg_glyph_key(info: &FontInfo, glyph: &OutlinedGlyph) -> Key {
+/// path (`outline`, its [`crate::reuse::outline_key`]).
+pub fn svg_glyph_key(info: &FontInfo, glyph: &OutlinedGlyph, outline: &Key) -> Key {
     KeyBuilder::new("svg glyph")
         .f64(info.ascender)
         .f64(info.descender)
         .u64(u64::from(info.units_per_em))
         .str(&glyph.name)
         .f64(glyph.advance)
-        .path(&glyph.path)
+        .key(outline)
         .finish()
 }
 

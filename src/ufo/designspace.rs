@@ -28,7 +28,7 @@ use crate::designspace::{Designspace, Location};
 use crate::family::OutlinedFamily;
 use crate::model::{Family, FontInfo, Glyph};
 use crate::outline::OutlinedFont;
-use crate::reuse::Reuse;
+use crate::reuse::{OutlineKeys, Reuse};
 use crate::svg::output_stem;
 
 /// The designspace's file name: `<Family>.designspace`, the family part of the static
@@ -171,7 +171,8 @@ pub fn output_files_reusing(
     }
     let mut out = Vec::new();
     for font in &fonts {
-        out.extend(super::output_files_reusing(font, reuse)?);
+        let outlines = OutlineKeys::new(font, reuse);
+        out.extend(super::output_files_reusing(font, reuse, &outlines)?);
     }
     let xml = document(family, &dirs)
         .serialize_to_string()

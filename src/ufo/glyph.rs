@@ -59,14 +59,15 @@ pub fn glyph(g: &OutlinedGlyph, own: usize) -> Result<norad::Glyph, UfoError> {
 }
 
 /// What [`glyph`] reads of `g` (whose first `own` contours are its own), as a [`Key`]:
-/// name, advance, code points, outline, components, anchors and the own X-splines.
-pub fn key(g: &OutlinedGlyph, own: usize) -> Key {
+/// name, advance, code points, outline (`outline`, its [`crate::reuse::outline_key`]),
+/// components, anchors and the own X-splines.
+pub fn key(g: &OutlinedGlyph, own: usize, outline: &Key) -> Key {
     let mut k = KeyBuilder::new("glif");
     k.str(&g.name).f64(g.advance).u64(g.unicodes.len() as u64);
     for &c in &g.unicodes {
         k.u64(u64::from(c));
     }
-    k.path(&g.path).u64(g.components.len() as u64);
+    k.key(outline).u64(g.components.len() as u64);
     for c in &g.components {
         k.str(&c.base).f64(c.offset.0).f64(c.offset.1);
     }

@@ -44,7 +44,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crate::outline::OutlinedFont;
-use crate::reuse::Reuse;
+use crate::reuse::{OutlineKeys, Reuse};
 use crate::svg::output_stem;
 
 /// Why a font could not be exported as UFO.
@@ -159,7 +159,7 @@ fn fill_font(ufo: &mut norad::Font, font: &OutlinedFont) -> Result<(), UfoError>
 /// Every file of the UFO in memory, paths relative to the build's output folder
 /// (`<Family>-<Style>.ufo/metainfo.plist`, …), sorted by path: what `build` writes.
 pub fn output_files(font: &OutlinedFont) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
-    output_files_reusing(font, &Reuse::off())
+    output_files_reusing(font, &Reuse::off(), &OutlineKeys::default())
 }
 
 /// One file of a UFO: its path and bytes.
@@ -169,9 +169,11 @@ type UfoFile = (PathBuf, Vec<u8>);
 /// it from the same glyph ([`Reuse::kept_or_make`]). The `.glif`s are encoded on every core
 /// (norad, as it would write them); the other files are norad's, of the font with empty
 /// glyphs of the same names (so `contents.plist` and the file names are norad's too).
+/// `outlines` are the font's [`OutlineKeys`].
 pub fn output_files_reusing(
     font: &OutlinedFont,
     reuse: &Reuse,
+    outlines: &OutlineKeys,
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
     use rayon::prelude::*;
     check_file_names(font)?;
@@ -189,7 +191,8 @@ pub fn output_files_reusing(
         .glyphs
         .par_iter()
         .zip(owns)
-        .map(|(g, own)| {
+        .enumerate()
+        .map(|(i, (g, own))| {
             let file = layer.get_path(&g.name).ok_or_else(|| {
                 UfoError::Write(format!("no file name for the glyph `{}`", g.name))
             })?;
@@ -199,7 +202,8 @@ pub fn output_files_reusing(
                     .encode_xml()
                     .map_err(|e| UfoError::Write(error_chain(&e)))
             };
-            let bytes = reuse.kept_or_make(&dir.join(&path), glyph::key(g, own), make)?;
+            let key = glyph::key(g, own, &outlines.get(i, &g.path));
+            let bytes = reuse.kept_or_make(&dir.join(&path), key, make)?;
             Ok(bytes.map(|bytes| (path, bytes)))
         })
         .collect();

@@ -10,7 +10,7 @@ use xglyph::layout::Layout;
 use xglyph::otf;
 use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{sheet_png_files_reusing, SheetOptions};
-use xglyph::reuse::{font_key, Reuse, REUSE_FILE};
+use xglyph::reuse::{font_key, outline_key, OutlineKeys, Reuse, REUSE_FILE};
 
 use crate::common::fonts::square_ideographs;
 
@@ -42,9 +42,11 @@ const OPTS: SheetOptions = SheetOptions {
 /// The sheet pages of `font` through `reuse`, written into `dir` with the record.
 fn pages(font: &OutlinedFont, dir: &Path, reuse: &Reuse) -> Vec<(String, Vec<u8>)> {
     let ttf = otf::ttf(font).unwrap();
-    let key = font_key(font, &ttf);
+    let outlines = OutlineKeys::new(font, reuse);
+    let key = font_key(font, &ttf, &outlines);
     let layout = Layout::with_ttf(font, ttf).unwrap();
-    let files = sheet_png_files_reusing(&layout, &OPTS, "sheet", reuse, Some(&key)).unwrap();
+    let files =
+        sheet_png_files_reusing(&layout, &OPTS, "sheet", reuse, Some(&key), &outlines).unwrap();
     for (name, bytes) in &files {
         std::fs::write(dir.join(name), bytes).unwrap();
     }
@@ -55,7 +57,8 @@ fn pages(font: &OutlinedFont, dir: &Path, reuse: &Reuse) -> Vec<(String, Vec<u8>
 /// The same pages drawn without any record.
 fn fresh(font: &OutlinedFont) -> Vec<(String, Vec<u8>)> {
     let layout = Layout::new(font).unwrap();
-    sheet_png_files_reusing(&layout, &OPTS, "sheet", &Reuse::off(), None).unwrap()
+    let none = OutlineKeys::default();
+    sheet_png_files_reusing(&layout, &OPTS, "sheet", &Reuse::off(), None, &none).unwrap()
 }
 
 fn load(dir: &Path) -> Reuse {
@@ -263,6 +266,32 @@ fn an_output_changed_in_out_is_rewritten_though_its_length_is_the_same() {
 }
 
 #[test]
+fn outline_keys_are_each_outlines_own_and_tell_an_edit() {
+    let dir = scratch("outline-keys");
+    let mut font = cjk_like();
+    let on = load(&dir);
+    let made = OutlineKeys::new(&font, &on);
+    let none = OutlineKeys::new(&font, &Reuse::off());
+    for (i, g) in font.glyphs.iter().enumerate() {
+        assert_eq!(made.get(i, &g.path), outline_key(&g.path), "{}", g.name);
+        assert_eq!(none.get(i, &g.path), outline_key(&g.path), "{}", g.name);
+    }
+    // One point moved by one bit: another key; the other glyphs' keys stay.
+    let before = made.get(1, &font.glyphs[1].path);
+    if let Some(kurbo::PathEl::LineTo(p)) = font.glyphs[1].path.elements_mut().get_mut(1) {
+        p.x = f64::from_bits(p.x.to_bits() + 1);
+    } else {
+        panic!("glyph 1's second element is a line");
+    }
+    let after = OutlineKeys::new(&font, &on);
+    assert_ne!(after.get(1, &font.glyphs[1].path), before);
+    assert_eq!(
+        after.get(0, &font.glyphs[0].path),
+        made.get(0, &font.glyphs[0].path)
+    );
+}
+
+#[test]
 fn unions_from_the_record_are_those_made_anew() {
     use xglyph::overlap::{remove_overlaps_font, remove_overlaps_font_with};
     let dir = scratch("unions");
@@ -280,10 +309,10 @@ fn unions_from_the_record_are_those_made_anew() {
     }
     let fresh = remove_overlaps_font(&font);
     let first = load(&dir);
-    let made = remove_overlaps_font_with(&font, &first);
+    let made = remove_overlaps_font_with(&font, &first, &OutlineKeys::new(&font, &first));
     first.save().unwrap();
     let second = load(&dir);
-    let taken = remove_overlaps_font_with(&font, &second);
+    let taken = remove_overlaps_font_with(&font, &second, &OutlineKeys::new(&font, &second));
     for ((a, b), c) in fresh.glyphs.iter().zip(&made.glyphs).zip(&taken.glyphs) {
         assert_eq!(a.path, b.path, "{}", a.name);
         assert_eq!(a.path, c.path, "{}", a.name);
