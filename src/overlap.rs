@@ -212,47 +212,62 @@ pub fn remove_overlaps_font_with(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> OutlinedFont {
+    remove_overlaps_font_keyed(font, reuse, outlines).0
+}
+
+/// [`remove_overlaps_font_with`], with [`OutlineKeys`] of the result: each glyph's union
+/// key, which determines its union (none when `reuse` is off).
+pub fn remove_overlaps_font_keyed(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> (OutlinedFont, OutlineKeys) {
     use rayon::prelude::*;
     let eps = UNION_SHARE * font.tolerance;
     let by_name: HashMap<&str, &OutlinedGlyph> =
         font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
+    let (glyphs, keys): (Vec<OutlinedGlyph>, Vec<Option<Key>>) = font
+        .glyphs
+        .par_iter()
+        .enumerate()
+        .map(|(i, glyph)| {
+            let outline = || outlines.get(i, &glyph.path);
+            remove_glyph_overlaps(glyph, outline, &by_name, eps, reuse)
+        })
+        .unzip();
     // Field by field: `..font.clone()` would copy every glyph only to drop the copies.
-    OutlinedFont {
+    let unioned = OutlinedFont {
         info: font.info.clone(),
         kerning: font.kerning.clone(),
         features: font.features.clone(),
         tolerance: font.tolerance,
-        glyphs: font
-            .glyphs
-            .par_iter()
-            .enumerate()
-            .map(|(i, glyph)| {
-                let outline = || outlines.get(i, &glyph.path);
-                remove_glyph_overlaps(glyph, outline, &by_name, eps, reuse)
-            })
-            .collect(),
-    }
+        glyphs,
+    };
+    let keys: Option<Vec<Key>> = keys.into_iter().collect();
+    (unioned, OutlineKeys::from_keys(keys.unwrap_or_default()))
 }
 
-/// `outline`: the key of `glyph.path` ([`OutlineKeys::get`]).
+/// `outline`: the key of `glyph.path` ([`OutlineKeys::get`]). With `reuse` on, also the
+/// union's key.
 fn remove_glyph_overlaps(
     glyph: &OutlinedGlyph,
     outline: impl FnOnce() -> Key,
     by_name: &HashMap<&str, &OutlinedGlyph>,
     eps: f64,
     reuse: &Reuse,
-) -> OutlinedGlyph {
+) -> (OutlinedGlyph, Option<Key>) {
     let parts = parts(glyph, by_name);
     let input = parts.as_ref().unwrap_or(&glyph.path);
-    let path = if reuse.is_on() {
+    let (path, key) = if reuse.is_on() {
         let input_key = match &parts {
             Some(parts) => outline_key(parts),
             None => outline(),
         };
         let key = KeyBuilder::new("union").f64(eps).key(&input_key).finish();
-        reuse.path_or_make(key, input, || remove_overlaps(input, eps))
+        let path = reuse.path_or_make(key, input, || remove_overlaps(input, eps));
+        (path, Some(key))
     } else {
-        remove_overlaps(input, eps)
+        (remove_overlaps(input, eps), None)
     };
     let segments = path
         .elements()
@@ -260,7 +275,7 @@ fn remove_glyph_overlaps(
         .filter(|el| !matches!(el, PathEl::MoveTo(_) | PathEl::ClosePath))
         .count();
     // Field by field, so that the old path is not copied.
-    OutlinedGlyph {
+    let glyph = OutlinedGlyph {
         name: glyph.name.clone(),
         unicodes: glyph.unicodes.clone(),
         advance: glyph.advance,
@@ -271,7 +286,8 @@ fn remove_glyph_overlaps(
         path,
         max_error: glyph.max_error,
         segments,
-    }
+    };
+    (glyph, key)
 }
 
 /// A composite's path with each part (its own contours, each component's own) oriented on

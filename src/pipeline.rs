@@ -21,7 +21,7 @@ use crate::model::Family;
 use crate::names::file_stems;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
-use crate::overlap::remove_overlaps_font_with;
+use crate::overlap::remove_overlaps_font_keyed;
 use crate::render::{
     encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
@@ -418,10 +418,10 @@ fn instance_fonts(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<InstanceFonts, PipelineError> {
-    let ot = for_opentype(font, opts, reuse, outlines);
+    let (ot, ot_keys) = for_opentype(font, opts, reuse, outlines);
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
-        || otf::ttf(ot),
+        || otf::ttf_reusing(ot, reuse, &ot_keys),
         || rayon::join(|| otf::otf(ot), || svg_font(font).into_bytes()),
     );
     let ttf = ttf?;
@@ -637,9 +637,9 @@ fn opentype_and_images(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Binary, PipelineError> {
-    let ot = for_opentype(font, opts, reuse, outlines);
+    let (ot, ot_keys) = for_opentype(font, opts, reuse, outlines);
     let ot = ot.as_ref();
-    let ttf = otf::ttf(ot)?;
+    let ttf = otf::ttf_reusing(ot, reuse, &ot_keys)?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
     let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
     // What the proof and the sheet labels set in the font depend on.
@@ -701,17 +701,18 @@ fn woff2_reusing(ttf: &[u8], name: &str, reuse: &Reuse) -> Result<Vec<u8>, OtfEr
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
 /// `opts.keep_overlaps`.
 /// Unions made by the last build are taken from `reuse` (`outlines`: `font`'s
-/// [`OutlineKeys`]).
+/// [`OutlineKeys`]). With the result's keys.
 fn for_opentype<'a>(
     font: &'a OutlinedFont,
     opts: &BuildOptions,
     reuse: &Reuse,
-    outlines: &OutlineKeys,
-) -> Cow<'a, OutlinedFont> {
+    outlines: &'a OutlineKeys,
+) -> (Cow<'a, OutlinedFont>, Cow<'a, OutlineKeys>) {
     if opts.keep_overlaps {
-        Cow::Borrowed(font)
+        (Cow::Borrowed(font), Cow::Borrowed(outlines))
     } else {
-        Cow::Owned(remove_overlaps_font_with(font, reuse, outlines))
+        let (font, keys) = remove_overlaps_font_keyed(font, reuse, outlines);
+        (Cow::Owned(font), Cow::Owned(keys))
     }
 }
 

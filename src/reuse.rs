@@ -19,7 +19,9 @@
 //! The same record holds outlines made from outlines: each glyph's union of overlapping
 //! contours ([`crate::overlap`]), keyed by its input outline and the union's setting, so
 //! that a rebuild unions only the glyphs that changed. A union equal to its input (a glyph
-//! without overlaps) is recorded as such, not stored again.
+//! without overlaps) is recorded as such, not stored again. It holds, the same way, data
+//! made from one glyph's outline for a font's tables: its TrueType contours
+//! ([`crate::otf`]), so that a rebuild converts one glyph to quadratics, not 20,000.
 //!
 //! It also holds each output file's [`FileStamp`] after the commit (its metadata and the
 //! SHA-256 of its bytes), so that the next commit need not read back the ~42,000 files of a
@@ -59,7 +61,7 @@ const HEADER: Header = Header {
     not_ours: "it is not an xglyph output record",
 };
 /// Layout of the record file.
-const FORMAT_VERSION: u32 = 2;
+const FORMAT_VERSION: u32 = 3;
 
 /// What an output's bytes are made from, hashed (SHA-256).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -177,6 +179,10 @@ pub struct Reuse {
     earlier_paths: HashMap<Key, Option<BezPath>>,
     /// Those of this build.
     now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
+    /// Glyph data made by the last build ([`Reuse::data_or_make`]), by key.
+    earlier_data: HashMap<Key, Vec<u8>>,
+    /// Those of this build; `None`: the last build's, unchanged (not copied).
+    now_data: Mutex<BTreeMap<Key, Option<Vec<u8>>>>,
     /// The output files as the last build's commit left them, by path relative to `out`.
     earlier_files: HashMap<PathBuf, FileStamp>,
     /// As this build's commit left them.
@@ -211,6 +217,7 @@ impl Reuse {
             Ok(parsed) => {
                 reuse.earlier = parsed.records;
                 reuse.earlier_paths = parsed.paths;
+                reuse.earlier_data = parsed.data;
                 reuse.earlier_files = parsed.files;
                 (reuse, None)
             }
@@ -323,6 +330,35 @@ impl Reuse {
         path
     }
 
+    /// The value `make()` computes under `key` (which must cover every input `make` reads),
+    /// kept as bytes: the last build's when it made one under `key` and `decode` accepts its
+    /// bytes, else made now. Kept for the next build either way. Without an output folder,
+    /// `make()`.
+    pub fn data_or_make<T, E>(
+        &self,
+        key: Key,
+        encode: impl FnOnce(&T) -> Vec<u8>,
+        decode: impl FnOnce(&[u8]) -> Option<T>,
+        make: impl FnOnce() -> Result<T, E>,
+    ) -> Result<T, E> {
+        if self.out.is_none() {
+            return make();
+        }
+        let earlier = self.earlier_data.get(&key).and_then(|bytes| decode(bytes));
+        let (value, bytes) = match earlier {
+            Some(value) => (value, None),
+            None => {
+                let value = make()?;
+                let bytes = encode(&value);
+                (value, Some(bytes))
+            }
+        };
+        if let Ok(mut now) = self.now_data.lock() {
+            now.insert(key, bytes);
+        }
+        Ok(value)
+    }
+
     fn record(&self, path: &Path, record: Record) {
         if let Ok(mut now) = self.now.lock() {
             now.insert(path.to_path_buf(), record);
@@ -410,6 +446,21 @@ impl Reuse {
                 }
             }
         }
+        let data = self
+            .now_data
+            .lock()
+            .map_err(|_| io::Error::other("a build thread panicked"))?;
+        // `None` was taken from `earlier_data`, so it is there.
+        let data: Vec<(&Key, &Vec<u8>)> = data
+            .iter()
+            .filter_map(|(key, bytes)| Some((key, bytes.as_ref().or(self.earlier_data.get(key))?)))
+            .collect();
+        body.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        for (key, bytes) in data {
+            body.extend_from_slice(&key.0);
+            body.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+            body.extend_from_slice(bytes);
+        }
         let files = self
             .now_files
             .lock()
@@ -437,6 +488,7 @@ impl Reuse {
 struct Parsed {
     records: HashMap<PathBuf, Record>,
     paths: HashMap<Key, Option<BezPath>>,
+    data: HashMap<Key, Vec<u8>>,
     files: HashMap<PathBuf, FileStamp>,
 }
 
@@ -467,6 +519,16 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
         }
     }
     let count = r.u32()?;
+    let count = r.count(u64::from(count), 32 + 4)?;
+    let mut data = HashMap::with_capacity(count);
+    for _ in 0..count {
+        let key = Key(r.array()?);
+        let len = r.u32()? as usize;
+        if data.insert(key, r.take(len)?.to_vec()).is_some() {
+            return Err("glyph data is recorded twice");
+        }
+    }
+    let count = r.u32()?;
     let count = r.count(u64::from(count), 4 + 48 + 32)?;
     let mut files = HashMap::with_capacity(count);
     for _ in 0..count {
@@ -486,6 +548,7 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     Ok(Parsed {
         records,
         paths,
+        data,
         files,
     })
 }
@@ -501,11 +564,12 @@ fn relative_path(r: &mut Reader<'_>) -> Result<PathBuf, &'static str> {
     Ok(path)
 }
 
-/// Each glyph's outline of a font, hashed once ([`KeyBuilder::path`]). The keys of the
+/// Each glyph's outline of a font, hashed once ([`KeyBuilder::path`]), or another key that
+/// determines it (the same key never comes with two outlines). The keys of the
 /// outputs made from the font (the union, each glyph's SVG and `.glif`, the sheet pages,
 /// the proof) take it instead of hashing the path again each: a CJK font's outlines are
 /// about 130 MB of numbers, and five keys read them.
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct OutlineKeys(Vec<Key>);
 
 impl OutlineKeys {
@@ -522,6 +586,12 @@ impl OutlineKeys {
                 .map(|g| outline_key(&g.path))
                 .collect(),
         )
+    }
+
+    /// Keys made elsewhere, one per glyph, each determining its glyph's outline (e.g. a
+    /// union's key, [`crate::overlap`]); none: every key hashed when asked.
+    pub(crate) fn from_keys(keys: Vec<Key>) -> Self {
+        OutlineKeys(keys)
     }
 
     /// The key of `path`, the outline of the glyph at `index` of the font these keys were

@@ -52,7 +52,8 @@ mod tests {
         path.extend(Rect::new(200.0, 0.0, 300.0, 100.0).path_elements(0.1));
         boxes.path = path;
         let glyphs = [ot_glyph(".notdef", &[], 500), boxes];
-        let tt = truetype::glyphs(&glyphs, 0.5).expect("glyphs");
+        let tt = truetype::glyphs_reusing(&glyphs, 0.5, &crate::reuse::Reuse::off(), &[])
+            .expect("glyphs");
         let maxp = truetype_maxp(&tt);
         assert_eq!(maxp.num_glyphs, 2);
         // Two rectangles: 8 points in 2 contours.

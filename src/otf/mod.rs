@@ -55,6 +55,7 @@ use kurbo::BezPath;
 use rayon::prelude::*;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
+use crate::reuse::{Key, OutlineKeys, Reuse};
 
 pub use features::check_features;
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
@@ -179,8 +180,29 @@ impl OtGlyph {
 
 /// The font as TrueType (`glyf` outlines, quadratic splines on the integer grid).
 pub fn ttf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
+    ttf_reusing(font, &Reuse::off(), &OutlineKeys::default())
+}
+
+/// [`ttf`], taking each glyph's TrueType contours from the last build when it converted
+/// the same outline ([`Reuse::data_or_make`]): a rebuild after one edit converts one glyph.
+/// `outlines` are `font`'s [`OutlineKeys`] (keys that determine each glyph's path).
+pub fn ttf_reusing(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Result<Vec<u8>, OtfError> {
     let set = GlyphSet::new(font)?;
-    let glyphs = truetype::glyphs(&set.glyphs, font.tolerance)?;
+    // The set's glyphs are the font's, after a synthesised `.notdef` (not kept).
+    let keys: Vec<Option<Key>> = if reuse.is_on() {
+        let synthesised = set.glyphs.len() - font.glyphs.len();
+        let own = font.glyphs.iter().enumerate();
+        std::iter::repeat_n(None, synthesised)
+            .chain(own.map(|(i, g)| Some(outlines.get(i, &g.path))))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let glyphs = truetype::glyphs_reusing(&set.glyphs, font.tolerance, reuse, &keys)?;
     tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
 }
 
