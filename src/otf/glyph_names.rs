@@ -50,13 +50,13 @@ pub(crate) fn ps_names(glyphs: &[OtGlyph]) -> Vec<String> {
 mod tests {
     use super::*;
 
-    fn glyph(name: &str, unicodes: &[char]) -> OtGlyph {
+    fn glyph(name: &str, unicodes: &[char]) -> OtGlyph<'static> {
         OtGlyph {
             model_name: name.into(),
             ps_name: String::new(),
             unicodes: unicodes.to_vec(),
             advance: 0,
-            path: kurbo::BezPath::new(),
+            path: std::borrow::Cow::Owned(kurbo::BezPath::new()),
             from_components: false,
             anchors: Vec::new(),
         }

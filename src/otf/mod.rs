@@ -49,6 +49,7 @@ mod truetype;
 mod variable;
 mod woff2;
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use kurbo::BezPath;
@@ -104,9 +105,11 @@ impl std::fmt::Display for OtfError {
 
 impl std::error::Error for OtfError {}
 
-/// One glyph as both flavours see it: final name, code points, advance and outline.
+/// One glyph as both flavours see it: final name, code points, advance and outline (the
+/// outlined font's, borrowed: a CJK font's outlines are 130 MB, and the TTF and the OTF
+/// are made at once).
 #[derive(Clone, Debug)]
-pub(crate) struct OtGlyph {
+pub(crate) struct OtGlyph<'a> {
     /// The model's name (used for kerning lookups).
     pub model_name: String,
     /// The PostScript name written into `post` / the CFF charset.
@@ -115,7 +118,7 @@ pub(crate) struct OtGlyph {
     /// Advance in font units, on the grid.
     pub advance: u16,
     /// y-up outline, outer contours counter-clockwise, not yet rounded.
-    pub path: BezPath,
+    pub path: Cow<'a, BezPath>,
     /// The outline includes resolved components, whose contours may overlap.
     pub from_components: bool,
     /// Anchors, the components' included (mark positioning, see `features.rs`).
@@ -123,26 +126,33 @@ pub(crate) struct OtGlyph {
 }
 
 /// The glyph order shared by both flavours.
-pub(crate) struct GlyphSet {
-    pub glyphs: Vec<OtGlyph>,
+pub(crate) struct GlyphSet<'a> {
+    pub glyphs: Vec<OtGlyph<'a>>,
     /// Model name -> glyph id.
     ids: BTreeMap<String, u16>,
 }
 
-impl GlyphSet {
+impl<'a> GlyphSet<'a> {
     /// The outlined font's glyphs in its order, after the [`notdef_box`] when the font
     /// has no `.notdef`.
-    pub fn new(font: &OutlinedFont) -> Result<Self, OtfError> {
+    pub fn new(font: &'a OutlinedFont) -> Result<Self, OtfError> {
         let notdef = (!font.has_notdef()).then(|| notdef_box(&font.info));
         let count = font.glyphs.len() + usize::from(notdef.is_some());
         if count > usize::from(u16::MAX) {
             return Err(OtfError::TooManyGlyphs(count));
         }
-        let all: Vec<&OutlinedGlyph> = notdef.iter().chain(&font.glyphs).collect();
+        // The synthesised `.notdef` owns its outline; the font's glyphs lend theirs.
+        let notdef = notdef.map(|g| OtGlyph::new(&g, Cow::Owned(g.path.clone())));
         // On every core; the first error in glyph order.
-        let each: Vec<Result<OtGlyph, OtfError>> =
-            all.par_iter().map(|g| OtGlyph::new(g)).collect();
-        let mut glyphs = each.into_iter().collect::<Result<Vec<_>, _>>()?;
+        let each: Vec<Result<OtGlyph<'a>, OtfError>> = font
+            .glyphs
+            .par_iter()
+            .map(|g| OtGlyph::new(g, Cow::Borrowed(&g.path)))
+            .collect();
+        let mut glyphs = notdef
+            .into_iter()
+            .chain(each)
+            .collect::<Result<Vec<_>, _>>()?;
         let names = glyph_names::ps_names(&glyphs);
         for (glyph, name) in glyphs.iter_mut().zip(names) {
             glyph.ps_name = name;
@@ -162,16 +172,17 @@ impl GlyphSet {
     }
 }
 
-impl OtGlyph {
-    /// The glyph with its advance on the grid; the PostScript name comes later.
-    fn new(glyph: &OutlinedGlyph) -> Result<Self, OtfError> {
+impl<'a> OtGlyph<'a> {
+    /// The glyph with its advance on the grid and outline `path`; the PostScript name comes
+    /// later.
+    fn new(glyph: &OutlinedGlyph, path: Cow<'a, BezPath>) -> Result<Self, OtfError> {
         let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
         Ok(OtGlyph {
             model_name: glyph.name.clone(),
             ps_name: String::new(),
             unicodes: glyph.unicodes.clone(),
             advance,
-            path: glyph.path.clone(),
+            path,
             from_components: !glyph.components.is_empty(),
             anchors: glyph.placed_anchors.clone(),
         })

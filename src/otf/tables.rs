@@ -277,13 +277,13 @@ pub(crate) mod tests {
     }
 
     /// A glyph with an empty outline and its name as PostScript name.
-    pub(crate) fn ot_glyph(name: &str, unicodes: &[char], advance: u16) -> OtGlyph {
+    pub(crate) fn ot_glyph(name: &str, unicodes: &[char], advance: u16) -> OtGlyph<'static> {
         OtGlyph {
             model_name: name.into(),
             ps_name: name.into(),
             unicodes: unicodes.to_vec(),
             advance,
-            path: BezPath::new(),
+            path: std::borrow::Cow::Owned(BezPath::new()),
             from_components: false,
             anchors: Vec::new(),
         }
