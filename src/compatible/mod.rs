@@ -1840,6 +1840,14 @@ impl Curve {
     /// The piece at position `λ` (weights `(1 - λ, λ)`).
     fn at(&self, lambda: f64) -> [Vec2; 4] {
         let [a, b] = &self.pieces;
+        // Where the weights are 1 and 0, the piece as it is (the same values, without the
+        // sums; up to the sign of a zero).
+        match (&self.middle, lambda) {
+            (_, 0.0) => return *a,
+            (_, 1.0) => return *b,
+            (Some(m), 0.5) => return *m,
+            _ => {}
+        }
         match &self.middle {
             None => std::array::from_fn(|k| (1.0 - lambda) * a[k] + lambda * b[k]),
             Some(m) => {
