@@ -2093,7 +2093,7 @@ mod tests {
             weights: vec![0.5, 0.5],
             spline: mid.clone(),
         };
-        assert_eq!(blend_gap(&[&a, &b], &probe), 0.0);
+        assert_eq!(blend_gap(&[&a, &b], &probe, BLEND_GAP_STEPS), 0.0);
         // Same `s`: the blended curve is the blend of the curves, point for point.
         let t = 1.37;
         let expected = (a.eval(t).to_vec2() + b.eval(t).to_vec2()) * 0.5;
@@ -2107,7 +2107,102 @@ mod tests {
                 weights: vec![0.5, 0.5],
                 spline: mid,
             },
+            BLEND_GAP_STEPS,
         );
         assert!(gap > 1.0 && gap < 100.0, "{gap}");
+    }
+
+    /// Two masters whose `s` differs everywhere, and positions between them.
+    fn different_shapes() -> (XSpline, XSpline, Vec<(Vec<f64>, XSpline)>) {
+        let a = contour(&[
+            (0., 0., 0.5),
+            (300., 0., -0.5),
+            (320., 250., 1.),
+            (60., 300., 0.3),
+        ]);
+        let b = contour(&[
+            (-20., -30., 0.),
+            (340., -20., 0.4),
+            (350., 290., 0.2),
+            (40., 340., -0.8),
+        ]);
+        let blends = [0.1, 0.3, 0.7, 0.9]
+            .iter()
+            .map(|&l| {
+                let weights = vec![1.0 - l, l];
+                let spline = blend(&[&a, &b], &weights).unwrap();
+                (weights, spline)
+            })
+            .collect();
+        (a, b, blends)
+    }
+
+    #[test]
+    fn the_goal_at_a_blend_is_the_same_with_the_short_cut() {
+        let (a, b, blends) = different_shapes();
+        let masters = [&a, &b];
+        // A small tolerance (the blend gap exceeds the goal: Newton decides) and a large one
+        // (the distance at the same parameter settles it).
+        let (mut newton, mut short) = (0, 0);
+        for tolerance in [0.05, 1.0, 50.0] {
+            let fitter = Fitter::new(&masters, blends.clone(), tolerance);
+            for k in masters.len()..fitter.probes.len() {
+                let probe = &fitter.probes[k];
+                let same = blend_gap(&masters, probe, 0);
+                let nearest = blend_gap(&masters, probe, BLEND_GAP_STEPS);
+                assert!(nearest > 0.0 && nearest <= same, "{nearest} {same}");
+                let expected = fitter.goal.max(VERTEX_MARGIN * nearest);
+                assert_eq!(fitter.goal_at(k), expected);
+                if VERTEX_MARGIN * same <= fitter.goal {
+                    short += 1;
+                } else {
+                    newton += 1;
+                }
+            }
+        }
+        assert!(newton > 0 && short > 0, "{newton} {short}");
+    }
+
+    #[test]
+    fn gap_tables_filled_segment_by_segment_agree_in_any_order() {
+        let (a, b, blends) = different_shapes();
+        let masters = [&a, &b];
+        let forward = Fitter::new(&masters, blends.clone(), 1.0);
+        let backward = Fitter::new(&masters, blends, 1.0);
+        assert_eq!(forward.middle, Some(2));
+        let n = a.segment_count();
+        let steps = forward.gap_steps();
+        for k in 3..forward.probes.len() {
+            let ahead: Vec<f64> = (0..n)
+                .map(|j| forward.gap(k, j as f64, (j + 1) as f64))
+                .collect();
+            let behind: Vec<f64> = (0..n)
+                .rev()
+                .map(|j| backward.gap(k, j as f64, (j + 1) as f64))
+                .collect();
+            assert!(ahead.iter().eq(behind.iter().rev()));
+            // Around the contour's start, and the whole contour.
+            let around = forward.gap(k, n as f64 - 0.5, n as f64 + 0.5);
+            assert_eq!(around, backward.gap(k, -0.5, 0.5));
+            let whole = forward.gap(k, 0.0, n as f64);
+            assert_eq!(whole, ahead.iter().copied().fold(0.0, f64::max));
+            // Each segment's value bounds the difference from the quadratic interpolant at
+            // its grid points (the hull's end points), computed here directly.
+            let [wa, wb, wm] = quadratic_weights(forward.probes[k].weights[1]);
+            let middle = &forward.probes[2].spline;
+            for (j, value) in ahead.iter().enumerate() {
+                let mut worst: f64 = 0.0;
+                for i in 0..=steps {
+                    let t = j as f64 + i as f64 / steps as f64;
+                    let t = if i == steps { t - 1e-12 } else { t };
+                    let quadratic = wa * a.eval(t).to_vec2()
+                        + wb * b.eval(t).to_vec2()
+                        + wm * middle.eval(t).to_vec2();
+                    let own = forward.probes[k].spline.eval(t).to_vec2();
+                    worst = worst.max((own - quadratic).hypot());
+                }
+                assert!(worst > 0.0 && worst <= value + 1e-9, "{worst} {value}");
+            }
+        }
     }
 }
