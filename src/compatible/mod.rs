@@ -23,8 +23,8 @@
 //! parameters (`JointSamples`). When all masters have the same `s`, the X-spline is
 //! linear in its points, and one bound from the masters alone covers every position
 //! between them. Otherwise that bound plus how far each position's curve strays from the
-//! blend of the masters' curves (a table per contour and position, `Fitter::gap_segment`)
-//! covers the position, and where that misses the goal the position gets a bound from its
+//! blend of the masters' curves (a table per contour and position, filled per X-spline
+//! segment when first needed, `Fitter::gap_segment`) covers the position, and where that misses the goal the position gets a bound from its
 //! own samples. With two masters the blend is quadratic in the position instead, through
 //! the masters' curves and their centroid's (sampled with the span): exact at those three
 //! and far closer than the linear blend elsewhere, so one bound covers the search's probes
