@@ -24,9 +24,10 @@
 //! linear in its points, and one bound from the masters alone covers every position
 //! between them. Otherwise that bound plus how far each position's curve strays from the
 //! blend of the masters' curves (a table per contour and position, filled per X-spline
-//! segment when first needed, `Fitter::gap_segment`) covers the position, and where that misses the goal the position gets a bound from its
-//! own samples. With two masters the blend is quadratic in the position instead, through
-//! the masters' curves and their centroid's (sampled with the span): exact at those three
+//! segment when first needed, `Fitter::gap_segment`) covers the position, and where that
+//! misses the goal the position gets a bound from its own samples. With two masters the
+//! blend is quadratic in the position instead, through the masters' curves and their
+//! centroid's (sampled with the span): exact at those three
 //! and far closer than the linear blend elsewhere, so one bound covers the search's probes
 //! and the gap tables add little at the others. Only where a
 //! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
@@ -698,7 +699,7 @@ impl<'a> Fitter<'a> {
         };
         let segment = probe.spline.segment(j);
         let mut diff = [(Vec2::ZERO, Vec2::ZERO); GAP_GRID_PER_SEGMENT + 1];
-        for (i, out) in diff.iter_mut().enumerate().take(steps + 1) {
+        for (i, slot) in diff.iter_mut().enumerate().take(steps + 1) {
             let (p, d) = segment.eval_deriv(i as f64 / steps as f64);
             let (mut p, mut d) = (p.to_vec2(), d);
             for (m, w) in coefficients.iter().enumerate() {
@@ -706,7 +707,7 @@ impl<'a> Fitter<'a> {
                 p -= *w * q.to_vec2();
                 d -= *w * e;
             }
-            *out = (p, d);
+            *slot = (p, d);
         }
         let third = 1.0 / (3.0 * steps as f64);
         for (i, hull) in out.iter_mut().enumerate() {
