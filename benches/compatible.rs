@@ -15,6 +15,8 @@
 //! timed alternately, best of 5 each, summed. Interleaving exposes both to the same load,
 //! which Criterion's consecutive groups do not. `XGLYPH_PROBE_ONLY=Bold` (or `="synthetic bold"`)
 //! runs that master's probe once (one round, no Criterion), for `valgrind --tool=callgrind`.
+//! `XGLYPH_PROBE_DIGEST=1` prints what the fits give (segments, largest error, a hash of
+//! the outputs' bits) and nothing else, to compare two binaries' outputs.
 
 use criterion::Criterion;
 use std::hint::black_box;
@@ -165,7 +167,41 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
+/// What the compatible fits of every bundled contour at the 11 positions give, per second
+/// master: segments, the largest `max_error`, and a hash of every path's and error's bits
+/// (to tell whether two binaries give the same outputs).
+fn digest() {
+    use std::hash::{Hash, Hasher};
+    let (bundled, synthetic, tolerance) = all_pairs();
+    let eleven = masters::evenly_spaced(11);
+    for (label, pairs) in [("Bold", &bundled), ("synthetic bold", &synthetic)] {
+        let mut hasher = std::collections::hash_map::DefaultHasher::new();
+        let (mut segments, mut worst) = (0, 0.0_f64);
+        for (light, bold) in pairs {
+            let fit = fit_compatible(&[light, bold], &eleven, tolerance).expect("a fit");
+            segments += fit.segments;
+            for path in &fit.paths {
+                // Rust prints an `f64` in the fewest digits that read back to it: exact.
+                path.to_svg().hash(&mut hasher);
+            }
+            for error in &fit.max_error {
+                error.to_bits().hash(&mut hasher);
+                worst = worst.max(*error);
+            }
+        }
+        println!(
+            "digest, Regular + {label}: {segments} segments, worst max_error {worst:.6}, \
+             hash {:016x}",
+            hasher.finish()
+        );
+    }
+}
+
 fn main() {
+    if std::env::var_os("XGLYPH_PROBE_DIGEST").is_some() {
+        digest();
+        return;
+    }
     if let Some(only) = std::env::var_os("XGLYPH_PROBE_ONLY") {
         probe(1, only.to_str());
         return;

@@ -1286,6 +1286,13 @@ pub(crate) fn project_onto(cubic: &CubicBez, p: Point, guess: f64, steps: usize)
     Poly::new(cubic).project_steps(p, guess, steps).0
 }
 
+/// [`project_onto`] for many points on one cubic: its power form built once (the same
+/// values).
+pub(crate) fn projector(cubic: &CubicBez, steps: usize) -> impl Fn(Point, f64) -> f64 {
+    let poly = Poly::new(cubic);
+    move |p, guess| poly.project_steps(p, guess, steps).0
+}
+
 /// The distance from `q` to the true curve near parameter `t`: `steps` Newton steps on the
 /// curve parameter within `[lo, hi]`, keeping the nearest point seen. Every distance taken
 /// is to a real curve point, so the result never underestimates the distance there.
@@ -1301,7 +1308,7 @@ pub(crate) fn distance_to_curve(
 
 /// [`distance_to_curve`] with the curve's point and derivative from `curve` (a
 /// [`Cursor`]'s, or [`XSpline::eval_deriv`]'s: the same values).
-fn distance_to_curve_by(
+pub(crate) fn distance_to_curve_by(
     mut curve: impl FnMut(f64) -> (Point, Vec2),
     q: Point,
     mut t: f64,

@@ -23,10 +23,11 @@
 //! parameters (`JointSamples`). When all masters have the same `s`, the X-spline is
 //! linear in its points, and one bound from the masters alone covers every position
 //! between them. Otherwise that bound plus how far each position's curve strays from the
-//! blend of the masters' curves (a table per contour and position, `Fitter::gap_table`)
-//! covers the position, and where that misses the goal the position gets a bound from its
-//! own samples. With two masters the blend is quadratic in the position instead, through
-//! the masters' curves and their centroid's (sampled with the span): exact at those three
+//! blend of the masters' curves (a table per contour and position, filled per X-spline
+//! segment when first needed, `Fitter::gap_segment`) covers the position, and where that
+//! misses the goal the position gets a bound from its own samples. With two masters the
+//! blend is quadratic in the position instead, through the masters' curves and their
+//! centroid's (sampled with the span): exact at those three
 //! and far closer than the linear blend elsewhere, so one bound covers the search's probes
 //! and the gap tables add little at the others. Only where a
 //! bound misses the goal does the two-sided measure decide. A bound within the goal accepts
@@ -84,15 +85,19 @@ const REFIT_GUESS: f64 = 0.6;
 /// The outputs' coordinate grid (font units): a segment shorter than this can round to
 /// zero length.
 const GRID_UNIT: f64 = 1.0;
-/// Grid steps per X-spline segment of [`Fitter::gap_table`].
+/// Grid steps per X-spline segment of [`Fitter::gap_segment`].
 const GAP_GRID_PER_SEGMENT: usize = 10;
 /// The same, from the curve quadratic in the position ([`Fitter::middle`]): what it leaves
 /// is small and smooth (on the bundled glyphs with the synthetic bold, at most 0.05 of the
 /// goal), so a coarser grid serves.
 const GAP_GRID_MIDDLE: usize = 4;
+// `Fitter::gap_segment` keeps a segment's grid in an array of the larger size.
+const _: () = assert!(GAP_GRID_MIDDLE <= GAP_GRID_PER_SEGMENT);
 /// Samples per X-spline segment when measuring how far a blend's curve lies from the blend
 /// of the masters' curves.
 const GAP_SAMPLES_PER_SEGMENT: usize = 8;
+/// Newton steps of [`blend_gap`] towards the probe's nearest curve point.
+const BLEND_GAP_STEPS: usize = 3;
 /// A blend's goal is at least this multiple of that distance (the cubics between vertices
 /// add their own error).
 const VERTEX_MARGIN: f64 = 1.25;
@@ -387,6 +392,13 @@ struct Probe {
     spline: XSpline,
 }
 
+/// One probe's [`Fitter::gap`] per interval of its grid, and which segments are filled.
+#[derive(Default)]
+struct GapTable {
+    values: Vec<f64>,
+    done: Vec<bool>,
+}
+
 /// The masters, the probes and the goal of one compatible fit.
 struct Fitter<'a> {
     masters: &'a [&'a XSpline],
@@ -404,15 +416,16 @@ struct Fitter<'a> {
     same_shape: bool,
     /// Where `s` differs: per probe, how far its curve strays from the blend of the
     /// masters' curves at the same parameter, per interval of a grid on the contour
-    /// ([`Fitter::gap_table`]), computed when first needed.
-    gap_tables: Vec<OnceCell<Vec<f64>>>,
-    /// The masters' points and derivatives on that grid, per master, then (when
-    /// `middle` is set) the middle probe's.
-    master_grid: OnceCell<Vec<Vec<(Point, Vec2)>>>,
+    /// ([`Fitter::gap_segment`]), computed segment by segment when first needed (the
+    /// segments of edges never are).
+    gap_tables: Vec<RefCell<GapTable>>,
+    /// The masters' points and derivatives on that grid, per segment: per master, then
+    /// (when `middle` is set) the middle probe's; empty until first needed.
+    master_grid: RefCell<Vec<Vec<(Point, Vec2)>>>,
     /// Two masters whose `s` differs, and their centroid a probe of its own: its index.
     /// Then the curve is taken as quadratic in the position, through the masters and the
     /// middle ([`JointSamples::segment_bound`]), and each probe's gap is measured from
-    /// that interpolant ([`Fitter::gap_table`]).
+    /// that interpolant ([`Fitter::gap_segment`]).
     middle: Option<usize>,
     /// The search's trial buffers (this thread's, handed back by [`Fitter::keep_buffers`]).
     buffers: RefCell<TrialBuffers>,
@@ -464,7 +477,7 @@ impl<'a> Fitter<'a> {
                 .zip(masters[0].points())
                 .all(|(p, q)| p.s == q.s)
         });
-        let gap_tables = probes.iter().map(|_| OnceCell::new()).collect();
+        let gap_tables = probes.iter().map(|_| RefCell::default()).collect();
         let middle = (count == 2 && !same_shape && searched == 3).then_some(2);
         Fitter {
             masters,
@@ -475,7 +488,7 @@ impl<'a> Fitter<'a> {
             goals,
             same_shape,
             gap_tables,
-            master_grid: OnceCell::new(),
+            master_grid: RefCell::default(),
             middle,
             buffers: RefCell::new(TrialBuffers::take()),
         }
@@ -552,8 +565,14 @@ impl<'a> Fitter<'a> {
             return self.goal;
         }
         *self.goals[k].get_or_init(|| {
+            let probe = &self.probes[k];
+            // The distance at the same parameter bounds the nearest one from above: where
+            // it leaves the goal as it is, the Newton steps would too.
+            if VERTEX_MARGIN * blend_gap(self.masters, probe, 0) <= self.goal {
+                return self.goal;
+            }
             self.goal
-                .max(VERTEX_MARGIN * blend_gap(self.masters, &self.probes[k]))
+                .max(VERTEX_MARGIN * blend_gap(self.masters, probe, BLEND_GAP_STEPS))
         })
     }
 
@@ -618,21 +637,33 @@ impl<'a> Fitter<'a> {
     /// masters' blend from the blended cubic ([`JointSamples::hull_bound`]), it bounds the
     /// probe's error without sampling the probe's curve for every span.
     fn gap(&self, k: usize, a: f64, b: f64) -> f64 {
-        let table = self.gap_tables[k].get_or_init(|| self.gap_table(k));
-        let per = self.gap_steps() as f64;
-        let len = table.len();
+        let steps = self.gap_steps();
+        let per = steps as f64;
+        let mut table = self.gap_tables[k].borrow_mut();
+        if table.done.is_empty() {
+            let count = self.masters[0].segment_count();
+            table.values = vec![0.0; count * steps];
+            table.done = vec![false; count];
+        }
+        let len = table.values.len() as i64;
         let first = (a * per).floor();
         let last = (b * per).ceil() as i64 - 1;
         let mut worst: f64 = 0.0;
         let mut i = first as i64;
         while i <= last {
-            worst = worst.max(table[i.rem_euclid(len as i64) as usize]);
+            let at = i.rem_euclid(len) as usize;
+            let j = at / steps;
+            if !table.done[j] {
+                self.gap_segment(k, j, &mut table.values[j * steps..(j + 1) * steps]);
+                table.done[j] = true;
+            }
+            worst = worst.max(table.values[at]);
             i += 1;
         }
         worst
     }
 
-    /// Steps per X-spline segment of [`Fitter::gap_table`].
+    /// Steps per X-spline segment of [`Fitter::gap_segment`].
     fn gap_steps(&self) -> usize {
         match self.middle {
             Some(_) => GAP_GRID_MIDDLE,
@@ -640,55 +671,53 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// [`Fitter::gap`] per interval of a grid of [`Fitter::gap_steps`] steps per
-    /// X-spline segment: the difference of the two curves is taken as its cubic Hermite
+    /// [`Fitter::gap`] on segment `j`, per interval of a grid of [`Fitter::gap_steps`]
+    /// steps (into `out`): the difference of the two curves is taken as its cubic Hermite
     /// interpolant between grid points (as every bound here takes the curves), and its
     /// Bézier control points bound it on the interval (convex hull). Both ends of an
     /// interval are evaluated in its own segment.
-    fn gap_table(&self, k: usize) -> Vec<f64> {
+    fn gap_segment(&self, k: usize, j: usize, out: &mut [f64]) {
         let steps = self.gap_steps();
-        let grids = self.master_grid.get_or_init(|| {
+        let mut grids = self.master_grid.borrow_mut();
+        if grids.is_empty() {
+            grids.resize_with(self.masters[0].segment_count(), Vec::new);
+        }
+        let grid = &mut grids[j];
+        if grid.is_empty() {
             let middle = self.middle.map(|m| &self.probes[m].spline);
-            self.masters
-                .iter()
-                .copied()
-                .chain(middle)
-                .map(|m| segment_grid(m, steps))
-                .collect()
-        });
-        let probe = &self.probes[k];
-        let coefficients = match self.middle {
-            Some(_) => quadratic_weights(probe.weights[1]).to_vec(),
-            None => probe.weights.clone(),
-        };
-        let own = segment_grid(&probe.spline, steps);
-        let diff: Vec<(Vec2, Vec2)> = own
-            .iter()
-            .enumerate()
-            .map(|(i, (p, d))| {
-                let (mut p, mut d) = (p.to_vec2(), *d);
-                for (w, grid) in coefficients.iter().zip(grids) {
-                    p -= *w * grid[i].0.to_vec2();
-                    d -= *w * grid[i].1;
-                }
-                (p, d)
-            })
-            .collect();
-        let third = 1.0 / (3.0 * steps as f64);
-        let count = probe.spline.segment_count();
-        let mut table = Vec::with_capacity(count * steps);
-        for j in 0..count {
-            for i in 0..steps {
-                let (p0, d0) = diff[j * (steps + 1) + i];
-                let (p1, d1) = diff[j * (steps + 1) + i + 1];
-                let hull = [p0, p0 + d0 * third, p1 - d1 * third, p1]
-                    .iter()
-                    .map(|v| v.hypot())
-                    .fold(0.0, f64::max);
-                table.push(hull);
+            grid.reserve_exact((self.masters.len() + 1) * (steps + 1));
+            for m in self.masters.iter().copied().chain(middle) {
+                let segment = m.segment(j);
+                grid.extend((0..=steps).map(|i| segment.eval_deriv(i as f64 / steps as f64)));
             }
         }
-        table
+        let probe = &self.probes[k];
+        let quadratic = self.middle.map(|_| quadratic_weights(probe.weights[1]));
+        let coefficients: &[f64] = match &quadratic {
+            Some(weights) => weights,
+            None => &probe.weights,
+        };
+        let segment = probe.spline.segment(j);
+        let mut diff = [(Vec2::ZERO, Vec2::ZERO); GAP_GRID_PER_SEGMENT + 1];
+        for (i, slot) in diff.iter_mut().enumerate().take(steps + 1) {
+            let (p, d) = segment.eval_deriv(i as f64 / steps as f64);
+            let (mut p, mut d) = (p.to_vec2(), d);
+            for (m, w) in coefficients.iter().enumerate() {
+                let (q, e) = grid[m * (steps + 1) + i];
+                p -= *w * q.to_vec2();
+                d -= *w * e;
+            }
+            *slot = (p, d);
+        }
+        let third = 1.0 / (3.0 * steps as f64);
+        for (i, hull) in out.iter_mut().enumerate() {
+            let (p0, d0) = diff[i];
+            let (p1, d1) = diff[i + 1];
+            *hull = [p0, p0 + d0 * third, p1 - d1 * third, p1]
+                .iter()
+                .map(|v| v.hypot())
+                .fold(0.0, f64::max);
+        }
     }
 
     fn span(&self, a: f64, b: f64, stretch: (f64, f64), cubics: Vec<CubicBez>) -> Span {
@@ -1236,6 +1265,11 @@ fn unit(v: Vec2) -> Vec2 {
 // `MIN_SAMPLES`, `MAX_REFINE`, `MAX_TURN`).
 /// Most halvings of a gap polynomial when its control points bound it above the goal.
 const GAP_HALVINGS: usize = 2;
+/// A net whose coefficients reach this multiple of the goal is not halved: on the bundled
+/// glyphs with the synthetic bold, halving never brought one from over 1.5 times the goal to
+/// within it (1934 nets), and each costs 21 nets' coefficients. A bound over the goal is as
+/// valid as any: the interval is halved with a fresh pairing, or the position bounded alone.
+const NET_HOPELESS: f64 = 1.5;
 /// With the middle's samples, one bound for the whole axis is taken where it is below this
 /// fraction of the goal (room for [`Fitter::gap`]); else the two halves are bounded.
 const WHOLE_AXIS: f64 = 0.9;
@@ -1379,13 +1413,14 @@ impl JointSamples {
             let mut run = Run::new(spline);
             let (p, d): (Vec<Point>, Vec<Vec2>) = out.t.iter().map(|&t| run.eval_deriv(t)).unzip();
             let cubic = blend_cubic(&[*c0, *c1], &[0.5, 0.5]);
+            let project = fit::projector(&cubic, REPROJECT_STEPS);
             let u = (0..=last)
                 .map(|i| {
                     let guess = 0.5 * (out.u[0][i] + out.u[1][i]);
                     if i == 0 || i == last {
                         guess
                     } else {
-                        fit::project_onto(&cubic, p[i], guess, REPROJECT_STEPS)
+                        project(p[i], guess)
                     }
                 })
                 .collect();
@@ -1607,6 +1642,7 @@ impl JointSamples {
         let samples: Vec<(Point, Vec2)> = (0..n).map(sample).collect();
         // The blended pairing, moved to the blended cubic's nearest points (from there the
         // Newton steps are few).
+        let project = fit::projector(&cubic, REPROJECT_STEPS);
         let u: Vec<f64> = u
             .iter()
             .enumerate()
@@ -1614,7 +1650,7 @@ impl JointSamples {
                 if i == 0 || i == n - 1 {
                     u
                 } else {
-                    fit::project_onto(&cubic, samples[i].0, u, REPROJECT_STEPS)
+                    project(samples[i].0, u)
                 }
             })
             .collect();
@@ -1810,6 +1846,14 @@ impl Curve {
     /// The piece at position `λ` (weights `(1 - λ, λ)`).
     fn at(&self, lambda: f64) -> [Vec2; 4] {
         let [a, b] = &self.pieces;
+        // Where the weights are 1 and 0, the piece as it is (the same values, without the
+        // sums; up to the sign of a zero).
+        match (&self.middle, lambda) {
+            (_, 0.0) => return *a,
+            (_, 1.0) => return *b,
+            (Some(m), 0.5) => return *m,
+            _ => {}
+        }
         match &self.middle {
             None => std::array::from_fn(|k| (1.0 - lambda) * a[k] + lambda * b[k]),
             Some(m) => {
@@ -1837,10 +1881,10 @@ fn lambda_bernstein(v: &[Vec2; 5]) -> [Vec2; 5] {
 
 /// The largest coefficient length of a tensor-product Bézier net (degree 3 in `s`, 4 in
 /// `λ`), which bounds it on the unit square; halved in both directions up to `halvings`
-/// times while it exceeds `goal`.
+/// times while it exceeds `goal`, unless it exceeds [`NET_HOPELESS`] times the goal.
 fn net_bound(net: &[[Vec2; 5]; 4], goal: f64, halvings: usize) -> f64 {
     let bound = net.iter().flatten().map(|c| c.hypot()).fold(0.0, f64::max);
-    if bound <= goal || halvings == 0 {
+    if bound <= goal || halvings == 0 || bound > NET_HOPELESS * goal {
         return bound;
     }
     // In `s`: each column's four control points; in `λ`: each row's five.
@@ -1938,18 +1982,6 @@ impl<'a> Run<'a> {
     }
 }
 
-/// Points and derivatives of every segment of `spline` at `steps + 1` evenly spaced
-/// parameters, both ends included (segment by segment, so `(steps + 1) * n` of them).
-fn segment_grid(spline: &XSpline, steps: usize) -> Vec<(Point, Vec2)> {
-    let count = spline.segment_count();
-    let mut out = Vec::with_capacity(count * (steps + 1));
-    for j in 0..count {
-        let segment = spline.segment(j);
-        out.extend((0..=steps).map(|i| segment.eval_deriv(i as f64 / steps as f64)));
-    }
-    out
-}
-
 /// The Lagrange weights of the masters and their middle (in that order) at position `λ`
 /// of two masters: the quadratic in `λ` through them.
 fn quadratic_weights(lambda: f64) -> [f64; 3] {
@@ -1998,10 +2030,11 @@ fn project_jointly(cubics: &[CubicBez], points: &[Point], guess: f64) -> f64 {
 }
 
 /// How far the blend of the masters' curve points, `Σ w_i C_i(T)`, strays from the blended
-/// X-spline's curve (the largest distance over samples of `T`). Zero when all masters have
-/// the same `s`; a span's vertices lie on the masters' curves, so at the probe they are
-/// this far off at worst.
-fn blend_gap(masters: &[&XSpline], probe: &Probe) -> f64 {
+/// X-spline's curve (the largest distance over samples of `T`, each the nearest curve point
+/// found by `steps` Newton steps from `T`; with none, the distance at `T`, never less).
+/// Zero when all masters have the same `s`; a span's vertices lie on the masters' curves,
+/// so at the probe they are this far off at worst.
+fn blend_gap(masters: &[&XSpline], probe: &Probe, steps: usize) -> f64 {
     let spline = &probe.spline;
     if masters.iter().all(|m| {
         m.points()
@@ -2011,18 +2044,27 @@ fn blend_gap(masters: &[&XSpline], probe: &Probe) -> f64 {
     }) {
         return 0.0;
     }
-    let steps = GAP_SAMPLES_PER_SEGMENT * spline.segment_count();
+    // Segment by segment (the masters' segments assembled once each, the probe's kept by
+    // a `Run`): the same values as `XSpline::eval` and `fit::distance_to_curve`.
+    let mut run = Run::new(spline);
+    let mut segments: Vec<Segment> = Vec::with_capacity(masters.len());
     let mut gap: f64 = 0.0;
-    for i in 0..steps {
-        let t = i as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
-        let q = masters
-            .iter()
-            .zip(&probe.weights)
-            .fold(Vec2::ZERO, |acc, (m, w)| acc + *w * m.eval(t).to_vec2())
-            .to_point();
-        // Newton on the curve parameter towards the nearest point, from the same `T`.
-        let unbounded = (f64::NEG_INFINITY, f64::INFINITY);
-        gap = gap.max(fit::distance_to_curve(spline, q, t, unbounded, 3));
+    for j in 0..spline.segment_count() {
+        segments.clear();
+        segments.extend(masters.iter().map(|m| m.segment(j)));
+        for i in 0..GAP_SAMPLES_PER_SEGMENT {
+            let t = (j * GAP_SAMPLES_PER_SEGMENT + i) as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
+            let local = t - j as f64;
+            let q = segments
+                .iter()
+                .zip(&probe.weights)
+                .fold(Vec2::ZERO, |acc, (m, w)| acc + *w * m.eval(local).to_vec2())
+                .to_point();
+            // Newton on the curve parameter towards the nearest point, from the same `T`.
+            let unbounded = (f64::NEG_INFINITY, f64::INFINITY);
+            let curve = |t: f64| run.eval_deriv(t);
+            gap = gap.max(fit::distance_to_curve_by(curve, q, t, unbounded, steps));
+        }
     }
     gap
 }
@@ -2052,7 +2094,7 @@ mod tests {
             weights: vec![0.5, 0.5],
             spline: mid.clone(),
         };
-        assert_eq!(blend_gap(&[&a, &b], &probe), 0.0);
+        assert_eq!(blend_gap(&[&a, &b], &probe, BLEND_GAP_STEPS), 0.0);
         // Same `s`: the blended curve is the blend of the curves, point for point.
         let t = 1.37;
         let expected = (a.eval(t).to_vec2() + b.eval(t).to_vec2()) * 0.5;
@@ -2066,7 +2108,102 @@ mod tests {
                 weights: vec![0.5, 0.5],
                 spline: mid,
             },
+            BLEND_GAP_STEPS,
         );
         assert!(gap > 1.0 && gap < 100.0, "{gap}");
+    }
+
+    /// Two masters whose `s` differs everywhere, and positions between them.
+    fn different_shapes() -> (XSpline, XSpline, Vec<(Vec<f64>, XSpline)>) {
+        let a = contour(&[
+            (0., 0., 0.5),
+            (300., 0., -0.5),
+            (320., 250., 1.),
+            (60., 300., 0.3),
+        ]);
+        let b = contour(&[
+            (-20., -30., 0.),
+            (340., -20., 0.4),
+            (350., 290., 0.2),
+            (40., 340., -0.8),
+        ]);
+        let blends = [0.1, 0.3, 0.7, 0.9]
+            .iter()
+            .map(|&l| {
+                let weights = vec![1.0 - l, l];
+                let spline = blend(&[&a, &b], &weights).unwrap();
+                (weights, spline)
+            })
+            .collect();
+        (a, b, blends)
+    }
+
+    #[test]
+    fn the_goal_at_a_blend_is_the_same_with_the_short_cut() {
+        let (a, b, blends) = different_shapes();
+        let masters = [&a, &b];
+        // A small tolerance (the blend gap exceeds the goal: Newton decides) and a large one
+        // (the distance at the same parameter settles it).
+        let (mut newton, mut short) = (0, 0);
+        for tolerance in [0.05, 1.0, 50.0] {
+            let fitter = Fitter::new(&masters, blends.clone(), tolerance);
+            for k in masters.len()..fitter.probes.len() {
+                let probe = &fitter.probes[k];
+                let same = blend_gap(&masters, probe, 0);
+                let nearest = blend_gap(&masters, probe, BLEND_GAP_STEPS);
+                assert!(nearest > 0.0 && nearest <= same, "{nearest} {same}");
+                let expected = fitter.goal.max(VERTEX_MARGIN * nearest);
+                assert_eq!(fitter.goal_at(k), expected);
+                if VERTEX_MARGIN * same <= fitter.goal {
+                    short += 1;
+                } else {
+                    newton += 1;
+                }
+            }
+        }
+        assert!(newton > 0 && short > 0, "{newton} {short}");
+    }
+
+    #[test]
+    fn gap_tables_filled_segment_by_segment_agree_in_any_order() {
+        let (a, b, blends) = different_shapes();
+        let masters = [&a, &b];
+        let forward = Fitter::new(&masters, blends.clone(), 1.0);
+        let backward = Fitter::new(&masters, blends, 1.0);
+        assert_eq!(forward.middle, Some(2));
+        let n = a.segment_count();
+        let steps = forward.gap_steps();
+        for k in 3..forward.probes.len() {
+            let ahead: Vec<f64> = (0..n)
+                .map(|j| forward.gap(k, j as f64, (j + 1) as f64))
+                .collect();
+            let behind: Vec<f64> = (0..n)
+                .rev()
+                .map(|j| backward.gap(k, j as f64, (j + 1) as f64))
+                .collect();
+            assert!(ahead.iter().eq(behind.iter().rev()));
+            // Around the contour's start, and the whole contour.
+            let around = forward.gap(k, n as f64 - 0.5, n as f64 + 0.5);
+            assert_eq!(around, backward.gap(k, -0.5, 0.5));
+            let whole = forward.gap(k, 0.0, n as f64);
+            assert_eq!(whole, ahead.iter().copied().fold(0.0, f64::max));
+            // Each segment's value bounds the difference from the quadratic interpolant at
+            // its grid points (the hull's end points), computed here directly.
+            let [wa, wb, wm] = quadratic_weights(forward.probes[k].weights[1]);
+            let middle = &forward.probes[2].spline;
+            for (j, value) in ahead.iter().enumerate() {
+                let mut worst: f64 = 0.0;
+                for i in 0..=steps {
+                    let t = j as f64 + i as f64 / steps as f64;
+                    let t = if i == steps { t - 1e-12 } else { t };
+                    let quadratic = wa * a.eval(t).to_vec2()
+                        + wb * b.eval(t).to_vec2()
+                        + wm * middle.eval(t).to_vec2();
+                    let own = forward.probes[k].spline.eval(t).to_vec2();
+                    worst = worst.max((own - quadratic).hypot());
+                }
+                assert!(worst > 0.0 && worst <= value + 1e-9, "{worst} {value}");
+            }
+        }
     }
 }
