@@ -10,7 +10,7 @@ use xglyph::layout::Layout;
 use xglyph::otf;
 use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::render::{sheet_png_files_reusing, SheetOptions};
-use xglyph::reuse::{font_key, outline_key, OutlineKeys, Reuse, REUSE_FILE};
+use xglyph::reuse::{font_key, outline_key, KeyBuilder, OutlineKeys, Reuse, REUSE_FILE};
 
 use crate::common::fonts::square_ideographs;
 
@@ -263,6 +263,65 @@ fn an_output_changed_in_out_is_rewritten_though_its_length_is_the_same() {
     }
     build(&repo("glyphs"), &out);
     assert_eq!(output_files(&out), built);
+}
+
+#[test]
+fn glyph_data_comes_back_from_the_record_and_bad_bytes_are_made_anew() {
+    use std::cell::Cell;
+    let dir = scratch("data");
+    let key = |n: u64| KeyBuilder::new("test data").u64(n).finish();
+    let encode = |v: &u32| v.to_le_bytes().to_vec();
+    let decode = |b: &[u8]| Some(u32::from_le_bytes(b.try_into().ok()?));
+    let made = Cell::new(0);
+    let make = |v: u32| {
+        made.set(made.get() + 1);
+        Ok::<u32, ()>(v)
+    };
+    let first = load(&dir);
+    assert_eq!(
+        first.data_or_make(key(1), encode, decode, || make(7)),
+        Ok(7)
+    );
+    assert_eq!(
+        first.data_or_make(key(2), encode, decode, || make(8)),
+        Ok(8)
+    );
+    first.save().unwrap();
+    assert_eq!(made.get(), 2);
+    // The next build takes both from the record; its make is not called.
+    let second = load(&dir);
+    assert_eq!(
+        second.data_or_make(key(1), encode, decode, || make(0)),
+        Ok(7)
+    );
+    // Bytes the decoder refuses are made anew; a key the record lacks too.
+    let refuse = |_: &[u8]| None;
+    assert_eq!(
+        second.data_or_make(key(2), encode, refuse, || make(9)),
+        Ok(9)
+    );
+    assert_eq!(
+        second.data_or_make(key(3), encode, decode, || make(10)),
+        Ok(10)
+    );
+    assert_eq!(made.get(), 4);
+    second.save().unwrap();
+    // What the second build kept, taken or made, comes back.
+    let third = load(&dir);
+    for (k, v) in [(1, 7), (2, 9), (3, 10)] {
+        assert_eq!(
+            third.data_or_make(key(k), encode, decode, || make(0)),
+            Ok(v)
+        );
+    }
+    assert_eq!(made.get(), 4);
+    // Without an output folder: always made, nothing kept.
+    let off = Reuse::off();
+    assert_eq!(
+        off.data_or_make(key(1), encode, decode, || make(11)),
+        Ok(11)
+    );
+    assert_eq!(made.get(), 5);
 }
 
 #[test]
