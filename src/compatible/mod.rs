@@ -1326,9 +1326,12 @@ const PROJECT_STEPS: usize = 4;
 /// 143 contours.
 struct JointSamples {
     t: Vec<f64>,
-    /// Per master: the curve point, derivative and cubic parameter at each sample.
-    p: Vec<Vec<Point>>,
-    d: Vec<Vec<Vec2>>,
+    /// Masters.
+    count: usize,
+    /// Per sample, then per master: the curve point and derivative (one row of `count`
+    /// per sample, pushed as it is evaluated; [`JointSamples::at`]).
+    rows: Vec<(Point, Vec2)>,
+    /// Per master: the cubic parameter at each sample.
     u: Vec<Vec<f64>>,
     /// The middle position's curve point and derivative at each sample, when the fit has
     /// one ([`Fitter::middle`]).
@@ -1351,9 +1354,9 @@ impl JointSamples {
         let room = n + 1 + n / 2;
         let mut out = JointSamples {
             t: Vec::with_capacity(room),
-            p: vec![Vec::with_capacity(room); count],
-            d: vec![Vec::with_capacity(room); count],
-            u: vec![Vec::with_capacity(room); count],
+            count,
+            rows: Vec::with_capacity(room * count),
+            u: (0..count).map(|_| Vec::with_capacity(room)).collect(),
             middle: None,
         };
         let mut runs: Vec<Run> = masters.iter().map(|m| Run::new(m)).collect();
@@ -1388,7 +1391,7 @@ impl JointSamples {
                         (u[i - 1] + slope * (t[i] - t[i - 1])).clamp(0.0, 1.0)
                     }
                 };
-                let point = out.p[j][i].to_vec2();
+                let point = out.rows[i * count + j].0.to_vec2();
                 let (near, far) = power.project(point, guess, PROJECT_STEPS);
                 let next = if far <= goal {
                     near
@@ -1431,10 +1434,12 @@ impl JointSamples {
 
     fn push(&mut self, t: f64, row: &[(Point, Vec2)]) {
         self.t.push(t);
-        for (j, (p, d)) in row.iter().enumerate() {
-            self.p[j].push(*p);
-            self.d[j].push(*d);
-        }
+        self.rows.extend_from_slice(row);
+    }
+
+    /// Master `j`'s curve point and derivative at sample `i`.
+    fn at(&self, j: usize, i: usize) -> (Point, Vec2) {
+        self.rows[i * self.count + j]
     }
 
     /// Adds the samples strictly between the last pushed and the row on top of `stack`
@@ -1446,7 +1451,8 @@ impl JointSamples {
         let end = &stack[stack.len() - count..];
         let fast = (0..count).any(|j| {
             let (p1, d1) = end[j];
-            turns_fast(self.p[j][last], self.d[j][last], p1, d1)
+            let (p0, d0) = self.at(j, last);
+            turns_fast(p0, d0, p1, d1)
         });
         if depth == 0 || !fast {
             return;
@@ -1487,7 +1493,7 @@ impl JointSamples {
                 if i == 0 || i == n - 1 {
                     mean
                 } else {
-                    let points: Vec<Point> = self.p.iter().map(|p| p[i]).collect();
+                    let points: Vec<Point> = (0..count).map(|j| self.at(j, i).0).collect();
                     project_jointly(cubics, &points, mean)
                 }
             })
@@ -1496,8 +1502,8 @@ impl JointSamples {
         for i in 0..n - 1 {
             let pieces: Vec<[Vec2; 4]> = (0..count)
                 .map(|j| {
-                    let points = [self.p[j][i], self.p[j][i + 1]];
-                    let derivs = [self.d[j][i], self.d[j][i + 1]];
+                    let ((p0, d0), (p1, d1)) = (self.at(j, i), self.at(j, i + 1));
+                    let (points, derivs) = ([p0, p1], [d0, d1]);
                     self.hermite(i, points, derivs)
                 })
                 .collect();
@@ -1530,8 +1536,8 @@ impl JointSamples {
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
             let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
-                let points = [self.p[j][i], self.p[j][i + 1]];
-                let derivs = [self.d[j][i], self.d[j][i + 1]];
+                let ((p0, d0), (p1, d1)) = (self.at(j, i), self.at(j, i + 1));
+                let (points, derivs) = ([p0, p1], [d0, d1]);
                 self.hermite(i, points, derivs)
             });
             let ends = |j: usize| (self.u[j][i], self.u[j][i + 1]);
@@ -1629,8 +1635,9 @@ impl JointSamples {
                     let mut p = Vec2::ZERO;
                     let mut d = Vec2::ZERO;
                     for (j, wj) in w.iter().enumerate() {
-                        p += *wj * self.p[j][i].to_vec2();
-                        d += *wj * self.d[j][i];
+                        let (pj, dj) = self.at(j, i);
+                        p += *wj * pj.to_vec2();
+                        d += *wj * dj;
                     }
                     (p.to_point(), d)
                 }
