@@ -1442,6 +1442,13 @@ impl JointSamples {
         self.rows[i * self.count + j]
     }
 
+    /// Master `j`'s curve between samples `i` and `i + 1` as a Hermite piece
+    /// ([`JointSamples::hermite`]).
+    fn piece(&self, j: usize, i: usize) -> [Vec2; 4] {
+        let ((p0, d0), (p1, d1)) = (self.at(j, i), self.at(j, i + 1));
+        self.hermite(i, [p0, p1], [d0, d1])
+    }
+
     /// Adds the samples strictly between the last pushed and the row on top of `stack`
     /// (at `t`) that keep every master's turn between neighbours below [`fit::MAX_TURN`],
     /// bisecting at most `depth` times. The stack is as it was on return.
@@ -1500,13 +1507,7 @@ impl JointSamples {
             .collect();
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
-            let pieces: Vec<[Vec2; 4]> = (0..count)
-                .map(|j| {
-                    let ((p0, d0), (p1, d1)) = (self.at(j, i), self.at(j, i + 1));
-                    let (points, derivs) = ([p0, p1], [d0, d1]);
-                    self.hermite(i, points, derivs)
-                })
-                .collect();
+            let pieces: Vec<[Vec2; 4]> = (0..count).map(|j| self.piece(j, i)).collect();
             let bound = paired_bound(&pieces, cubics, (u[i], u[i + 1]), goal, PAIR_SPLITS);
             worst = worst.max(bound);
             if worst > goal {
@@ -1535,11 +1536,7 @@ impl JointSamples {
             .map(|_| [(0.0, 0.5), (0.5, 1.0)].map(|range| along_axis(&powers, range)));
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
-            let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| {
-                let ((p0, d0), (p1, d1)) = (self.at(j, i), self.at(j, i + 1));
-                let (points, derivs) = ([p0, p1], [d0, d1]);
-                self.hermite(i, points, derivs)
-            });
+            let pieces: [[Vec2; 4]; 2] = std::array::from_fn(|j| self.piece(j, i));
             let ends = |j: usize| (self.u[j][i], self.u[j][i + 1]);
             let bound = match &self.middle {
                 None => {
