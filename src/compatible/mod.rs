@@ -1551,6 +1551,7 @@ impl JointSamples {
                         whole_axis,
                         (0.0, 1.0),
                         ends,
+                        [None, None],
                         goal,
                         PAIR_SPLITS,
                     )
@@ -1559,41 +1560,56 @@ impl JointSamples {
                     // The whole axis paired linearly between the masters' projections;
                     // where that misses the goal, two halves of the axis, each paired
                     // linearly between its ends' projections (the middle's own at λ = 1/2).
+                    // The nets' columns at λ = 0 and 1 (the same pairing in the whole axis
+                    // and its half) and at λ = 1/2 (in both halves) are computed once.
                     let middle = Some(self.hermite(i, [p[i], p[i + 1]], [d[i], d[i + 1]]));
                     let curve = Curve { pieces, middle };
                     let whole = [ends(0), ends(1)];
-                    let once =
-                        interval_net_bound(curve, cubics, whole_axis, (0.0, 1.0), whole, goal, 0);
-                    let centre = (u[i], u[i + 1]);
-                    let low = [ends(0), centre];
-                    let high = [centre, ends(1)];
-                    let [low_axis, high_axis] = halves.as_ref().expect("with the middle");
-                    let first = if once <= WHOLE_AXIS * goal {
+                    let first_column = net_column(&curve, &whole_axis[0], 0.0, ends(0));
+                    let last_column = net_column(&curve, &whole_axis[4], 1.0, ends(1));
+                    let once = interval_net_bound(
+                        curve,
+                        cubics,
+                        whole_axis,
+                        (0.0, 1.0),
+                        whole,
+                        [Some(first_column), Some(last_column)],
+                        goal,
+                        0,
+                    );
+                    if once <= WHOLE_AXIS * goal {
                         once
                     } else {
-                        interval_net_bound(
+                        let centre = (u[i], u[i + 1]);
+                        let low = [ends(0), centre];
+                        let high = [centre, ends(1)];
+                        let [low_axis, high_axis] = halves.as_ref().expect("with the middle");
+                        let centre_column = net_column(&curve, &low_axis[4], 0.5, centre);
+                        let first = interval_net_bound(
                             curve,
                             cubics,
                             low_axis,
                             (0.0, 0.5),
                             low,
-                            goal,
-                            PAIR_SPLITS,
-                        )
-                    };
-                    if first > goal || once <= WHOLE_AXIS * goal {
-                        first
-                    } else {
-                        let second = interval_net_bound(
-                            curve,
-                            cubics,
-                            high_axis,
-                            (0.5, 1.0),
-                            high,
+                            [Some(first_column), Some(centre_column)],
                             goal,
                             PAIR_SPLITS,
                         );
-                        first.max(second)
+                        if first > goal {
+                            first
+                        } else {
+                            let second = interval_net_bound(
+                                curve,
+                                cubics,
+                                high_axis,
+                                (0.5, 1.0),
+                                high,
+                                [Some(centre_column), Some(last_column)],
+                                goal,
+                                PAIR_SPLITS,
+                            );
+                            first.max(second)
+                        }
                     }
                 }
             };
@@ -1734,26 +1750,35 @@ fn paired_bound(
 /// master) paired with `cubics` from `ends[j].0` to `ends[j].1` in master `j`, the pairing
 /// blended with the position. Over `goal`, the interval is halved and its midpoint paired
 /// with each master's nearest cubic parameter, at most `splits` times (as [`paired_bound`]).
+/// `known`: the net's columns at `l0` and `l1` ([`net_column`]) when the caller has them.
+#[allow(clippy::too_many_arguments)]
 fn interval_net_bound(
     curve: Curve,
     cubics: [&CubicBez; 2],
     blends: &[Power; 5],
     (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
+    known: [Option<[Vec2; 4]>; 2],
     goal: f64,
     splits: usize,
 ) -> f64 {
     // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)).
     let mut values = [[Vec2::ZERO; 5]; 4];
     for m in 0..5 {
-        let mu = m as f64 / 4.0;
-        let lambda = l0 + mu * (l1 - l0);
-        let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
-        let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
-        let paired = blends[m].subsegment(u0, u1);
-        let at = curve.at(lambda);
+        let given = match m {
+            0 => known[0],
+            4 => known[1],
+            _ => None,
+        };
+        let column = given.unwrap_or_else(|| {
+            let mu = m as f64 / 4.0;
+            let lambda = l0 + mu * (l1 - l0);
+            let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
+            let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
+            net_column(&curve, &blends[m], lambda, (u0, u1))
+        });
         for (k, row) in values.iter_mut().enumerate() {
-            row[m] = at[k] - paired[k];
+            row[m] = column[k];
         }
     }
     let mut net = [[Vec2::ZERO; 5]; 4];
@@ -1787,6 +1812,7 @@ fn interval_net_bound(
         blends,
         (l0, l1),
         [(ends[0].0, m0), (ends[1].0, m1)],
+        [None, None],
         goal,
         splits - 1,
     );
@@ -1799,10 +1825,20 @@ fn interval_net_bound(
         blends,
         (l0, l1),
         [(m0, ends[0].1), (m1, ends[1].1)],
+        [None, None],
         goal,
         splits - 1,
     );
     left.max(right)
+}
+
+/// One column of [`interval_net_bound`]'s values: the gap's control points in `s` at
+/// position `lambda` between the curve there and `blend` (the cubics blended there) run
+/// from `u0` to `u1`.
+fn net_column(curve: &Curve, blend: &Power, lambda: f64, (u0, u1): (f64, f64)) -> [Vec2; 4] {
+    let paired = blend.subsegment(u0, u1);
+    let at = curve.at(lambda);
+    std::array::from_fn(|k| at[k] - paired[k])
 }
 
 /// The blend of two masters' cubics (power form) at the five positions
@@ -1848,6 +1884,7 @@ impl Curve {
     }
 
     /// The piece at position `λ` (weights `(1 - λ, λ)`).
+    #[inline]
     fn at(&self, lambda: f64) -> [Vec2; 4] {
         let [a, b] = &self.pieces;
         // Where the weights are 1 and 0, the piece as it is (the same values, without the
