@@ -713,10 +713,7 @@ impl<'a> Fitter<'a> {
         for (i, hull) in out.iter_mut().enumerate() {
             let (p0, d0) = diff[i];
             let (p1, d1) = diff[i + 1];
-            *hull = [p0, p0 + d0 * third, p1 - d1 * third, p1]
-                .iter()
-                .map(|v| v.hypot())
-                .fold(0.0, f64::max);
+            *hull = longest(&[p0, p0 + d0 * third, p1 - d1 * third, p1]);
         }
     }
 
@@ -1924,7 +1921,7 @@ fn lambda_bernstein(v: &[Vec2; 5]) -> [Vec2; 5] {
 /// `λ`), which bounds it on the unit square; halved in both directions up to `halvings`
 /// times while it exceeds `goal`, unless it exceeds [`NET_HOPELESS`] times the goal.
 fn net_bound(net: &[[Vec2; 5]; 4], goal: f64, halvings: usize) -> f64 {
-    let bound = net.iter().flatten().map(|c| c.hypot()).fold(0.0, f64::max);
+    let bound = longest(net.iter().flatten());
     if bound <= goal || halvings == 0 || bound > NET_HOPELESS * goal {
         return bound;
     }
@@ -1955,6 +1952,16 @@ fn net_bound(net: &[[Vec2; 5]; 4], goal: f64, halvings: usize) -> f64 {
     worst
 }
 
+/// The largest length of `vectors` (0 for none): one square root, of the largest squared
+/// length (the same value as the largest of the lengths: the root is monotone and
+/// correctly rounded).
+fn longest<'v>(vectors: impl IntoIterator<Item = &'v Vec2>) -> f64 {
+    vectors
+        .into_iter()
+        .fold(0.0, |m: f64, v| m.max(v.hypot2()))
+        .sqrt()
+}
+
 /// De Casteljau at one half, degree 4.
 fn halve_quartic(c: &[Vec2; 5]) -> ([Vec2; 5], [Vec2; 5]) {
     let mut rows = *c;
@@ -1974,7 +1981,7 @@ fn halve_quartic(c: &[Vec2; 5]) -> ([Vec2; 5], [Vec2; 5]) {
 /// combination of them, at every parameter), halved by de Casteljau up to `halvings` times
 /// while it exceeds `goal`.
 fn hull_of_gaps(gaps: &[[Vec2; 4]], goal: f64, halvings: usize) -> f64 {
-    let bound = gaps.iter().flatten().map(|c| c.hypot()).fold(0.0, f64::max);
+    let bound = longest(gaps.iter().flatten());
     if bound <= goal || halvings == 0 {
         return bound;
     }
@@ -1987,14 +1994,20 @@ fn hull_of_gaps(gaps: &[[Vec2; 4]], goal: f64, halvings: usize) -> f64 {
 /// every point).
 struct Run<'a> {
     spline: &'a XSpline,
-    current: Option<(usize, Segment)>,
+    /// The segment last evaluated and its index (`usize::MAX` before the first).
+    current: (usize, Segment),
 }
 
 impl<'a> Run<'a> {
     fn new(spline: &'a XSpline) -> Run<'a> {
+        let none = Segment {
+            q: [Point::ZERO; 4],
+            s1: 0.0,
+            s2: 0.0,
+        };
         Run {
             spline,
-            current: None,
+            current: (usize::MAX, none),
         }
     }
 
@@ -2010,16 +2023,12 @@ impl<'a> Run<'a> {
         } else {
             big_t.rem_euclid(n)
         };
-        let j = (wrapped as usize).min(count - 1);
-        let segment = match self.current {
-            Some((k, segment)) if k == j => segment,
-            _ => {
-                let segment = self.spline.segment(j);
-                self.current = Some((j, segment));
-                segment
-            }
-        };
-        segment.eval_deriv(wrapped - j as f64)
+        // `wrapped` lies in `[0, n)`: through `i64` the same index, more cheaply.
+        let j = (wrapped as i64 as usize).min(count - 1);
+        if self.current.0 != j {
+            self.current = (j, self.spline.segment(j));
+        }
+        self.current.1.eval_deriv(wrapped - j as f64)
     }
 }
 
