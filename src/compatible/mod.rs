@@ -2256,4 +2256,67 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn longest_and_a_run_give_the_values_they_replace() {
+        // One root of the largest squared length: the largest length, bit for bit.
+        let vectors: Vec<Vec2> = (0..210)
+            .map(|i| {
+                let x = (i as f64 * 0.37).sin() * 10f64.powi(i % 7 - 3);
+                let y = (i as f64 * 1.91).cos() * 10f64.powi(i % 5 - 2);
+                Vec2::new(x, y)
+            })
+            .collect();
+        for chunk in vectors.chunks(7) {
+            let expected = chunk.iter().map(|v| v.hypot()).fold(0.0, f64::max);
+            assert_eq!(longest(chunk).to_bits(), expected.to_bits());
+        }
+        assert_eq!(longest(&[] as &[Vec2]), 0.0);
+        // A run over the contour and around it again, forwards and back: the values of
+        // `XSpline::eval_deriv`.
+        let (a, _, _) = different_shapes();
+        let n = a.segment_count() as f64;
+        let mut run = Run::new(&a);
+        for i in (0..=80).chain((0..=80).rev()) {
+            let t = -1.0 + i as f64 * (2.0 * n + 1.0) / 80.0;
+            assert_eq!(run.eval_deriv(t), a.eval_deriv(t), "{t}");
+        }
+    }
+
+    #[test]
+    fn a_net_with_its_end_columns_given_is_the_net_without() {
+        let c0 = CubicBez::new((0., 0.), (40., 90.), (160., 110.), (200., 0.));
+        let c1 = CubicBez::new((10., -20.), (30., 120.), (190., 150.), (230., -10.));
+        let powers = [Power::new(&c0), Power::new(&c1)];
+        let piece = |dx: f64, dy: f64| -> [Vec2; 4] {
+            [
+                Vec2::new(dx, dy),
+                Vec2::new(20.0 + dx, 50.0 - dy),
+                Vec2::new(60.0 - dx, 70.0 + dy),
+                Vec2::new(95.0 + dx, 85.0),
+            ]
+        };
+        let curve = Curve {
+            pieces: [piece(0.3, -0.2), piece(7.0, -19.0)],
+            middle: Some(piece(4.0, -10.0)),
+        };
+        let ends = [(0.0, 0.41), (0.02, 0.45)];
+        let mut seen = (false, false);
+        for (range, goal) in [((0.0, 0.5), 0.5), ((0.5, 1.0), 2.0), ((0.0, 1.0), 40.0)] {
+            let blends = along_axis(&powers, range);
+            let known = [
+                Some(net_column(&curve, &blends[0], range.0, ends[0])),
+                Some(net_column(&curve, &blends[4], range.1, ends[1])),
+            ];
+            let cubics = [&c0, &c1];
+            let args = (curve, cubics, &blends, range, ends);
+            let without =
+                interval_net_bound(args.0, args.1, args.2, args.3, args.4, [None; 2], goal, 3);
+            let with = interval_net_bound(args.0, args.1, args.2, args.3, args.4, known, goal, 3);
+            assert_eq!(with.to_bits(), without.to_bits());
+            seen = (seen.0 || with <= goal, seen.1 || with > goal);
+        }
+        // Both a net within the goal and one over it (halved with fresh pairings).
+        assert_eq!(seen, (true, true));
+    }
 }
