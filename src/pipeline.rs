@@ -422,7 +422,12 @@ fn instance_fonts(
     let ot = ot.as_ref();
     let (ttf, (otf, svg)) = rayon::join(
         || otf::ttf_reusing(ot, reuse, &ot_keys),
-        || rayon::join(|| otf::otf(ot), || svg_font(font).into_bytes()),
+        || {
+            rayon::join(
+                || otf::otf_reusing(ot, reuse, &ot_keys),
+                || svg_font(font).into_bytes(),
+            )
+        },
     );
     let ttf = ttf?;
     Ok(InstanceFonts {
@@ -675,7 +680,7 @@ fn opentype_and_images(
         || {
             rayon::join(
                 || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
-                || otf::otf(ot),
+                || otf::otf_reusing(ot, reuse, &ot_keys),
             )
         },
     );

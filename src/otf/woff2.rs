@@ -397,7 +397,9 @@ mod tests {
 
     #[test]
     fn a_large_font_in_slices_decodes_to_its_tables_and_only_edited_slices_change() {
-        let sfnt = large_sfnt(3000);
+        // Two whole slices of glyphs and half of one.
+        let g = GLYPHS_PER_SLICE;
+        let sfnt = large_sfnt(2 * g + g / 2);
         assert!(sfnt.len() > LARGE_SFNT);
         let w = woff2(&sfnt).expect("woff2");
         // The header and table directory are those ttf2woff2 writes, but for the stream's
@@ -436,11 +438,11 @@ mod tests {
         assert_eq!(tags, [b"glyf", b"loca", b"head", b"maxp", b"zzzz"]);
         let joined: Vec<u8> = tables.iter().flat_map(|t| t.data.iter().copied()).collect();
         assert_eq!(stream, joined);
-        // Cut before glyphs 1024 and 2048 and after glyf: 4 slices.
+        // Cut before glyphs g and 2g and after glyf: 4 slices.
         let before = slices(&sfnt);
         assert_eq!(before.len(), 4);
-        let glyph_1024 = be32(tables[1].data, 4 * 1024).unwrap() as usize;
-        assert_eq!(before[0].len(), glyph_1024);
+        let glyph_g = be32(tables[1].data, 4 * g).unwrap() as usize;
+        assert_eq!(before[0].len(), glyph_g);
         let glyf_len: usize = before[..3].iter().map(Vec::len).sum();
         assert_eq!(glyf_len, tables[0].data.len());
         assert_eq!(before[3].len(), joined.len() - glyf_len);
@@ -461,11 +463,11 @@ mod tests {
         assert!(stored.iter().zip(&before).all(|(c, s)| slice_holds(c, s)));
         assert!(!slice_holds(&stored[0], &before[1]));
         assert!(!slice_holds(b"not brotli", &before[1]));
-        // An edit of glyph 1500 (same length) changes its slice alone.
+        // An edit of glyph g + g/2 (same length) changes its slice alone.
         let glyf_offset = be32(&sfnt, 12 + 16 * 4 + 8).unwrap() as usize;
-        let glyph_1500 = be32(tables[1].data, 4 * 1500).unwrap() as usize;
+        let edit = be32(tables[1].data, 4 * (g + g / 2)).unwrap() as usize;
         let mut edited = sfnt.clone();
-        edited[glyf_offset + glyph_1500 + 10] ^= 0x55;
+        edited[glyf_offset + edit + 10] ^= 0x55;
         let after = slices(&edited);
         let changed: Vec<bool> = before.iter().zip(&after).map(|(a, b)| a != b).collect();
         assert_eq!(changed, [false, true, false, false]);
