@@ -48,7 +48,7 @@ mod tables;
 mod truetype;
 mod variable;
 mod woff2;
-pub use woff2::{compress_slice, slice_holds, LARGE_SFNT};
+pub use woff2::{compress_slice, slice_holds, CompressSlice, LARGE_SFNT};
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -258,10 +258,7 @@ pub fn woff2_from_ttf(ttf: &[u8]) -> Result<Vec<u8>, OtfError> {
 
 /// [`woff2_from_ttf`], a large font's slices compressed by `slice(bytes, quality)`, which
 /// must give what [`compress_slice`] gives (see `woff2.rs`).
-pub fn woff2_from_ttf_with(
-    ttf: &[u8],
-    slice: &(dyn Fn(&[u8], u32) -> Result<Vec<u8>, OtfError> + Sync),
-) -> Result<Vec<u8>, OtfError> {
+pub fn woff2_from_ttf_with(ttf: &[u8], slice: &CompressSlice<'_>) -> Result<Vec<u8>, OtfError> {
     woff2::woff2_with(ttf, slice)
 }
 
