@@ -7,7 +7,13 @@
 //! Hand-written: no maintained Rust crate encodes CFF charstrings (write-fonts 0.55 reads
 //! but does not write CFF).
 
-use kurbo::{BezPath, PathEl, Point};
+use kurbo::{BezPath, PathEl, Point, Shape};
+use rayon::prelude::*;
+
+use super::grid::round_path;
+use super::tables::GridBox;
+use super::{OtGlyph, OtfError};
+use crate::reuse::{Key, KeyBuilder, Reuse};
 
 const RLINETO: u8 = 5;
 const RRCURVETO: u8 = 8;
@@ -35,6 +41,110 @@ pub fn encode_charstring_int(v: i32, out: &mut Vec<u8>) {
             out.extend(w.to_be_bytes());
         }
     }
+}
+
+/// One glyph for `CFF `: its charstring without the width, and its tight box on the grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CffGlyph {
+    /// The box of the curves' extrema (what CFF consumers compute), `None` when empty.
+    pub bbox: Option<GridBox>,
+    /// [`charstring`] with a width of 0: a width is a leading operand ([`Self::charstring`]).
+    pub body: Vec<u8>,
+}
+
+impl CffGlyph {
+    /// The glyph of `path`, which must be on the integer grid.
+    pub fn new(path: &BezPath) -> Self {
+        let bbox = (!path.elements().is_empty()).then(|| {
+            let r = path.bounding_box();
+            (
+                r.x0.floor() as i16,
+                r.y0.floor() as i16,
+                r.x1.ceil() as i16,
+                r.y1.ceil() as i16,
+            )
+        });
+        CffGlyph {
+            bbox,
+            body: charstring(path, 0),
+        }
+    }
+
+    /// The whole charstring with `width` (see [`charstring`]).
+    pub fn charstring(&self, width: i32) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.body.len() + 5);
+        // The width is the first operand of the first stack-clearing operator, which in
+        // `body` is the first `rmoveto` or the `endchar`: it goes in front.
+        if width != 0 {
+            encode_charstring_int(width, &mut out);
+        }
+        out.extend_from_slice(&self.body);
+        out
+    }
+}
+
+/// Every glyph rounded to the grid and as a [`CffGlyph`], on every core (the first error in
+/// glyph order reported). Each glyph comes from the last build's record when it was made
+/// under the same key ([`Reuse::data_or_make`]); `outlines[i]`, when there is one, must
+/// determine glyph `i`'s path (see [`super::truetype::glyphs_reusing`]).
+pub fn glyphs_reusing(
+    glyphs: &[OtGlyph],
+    reuse: &Reuse,
+    outlines: &[Option<Key>],
+) -> Result<Vec<CffGlyph>, OtfError> {
+    let each: Vec<Result<CffGlyph, OtfError>> = glyphs
+        .par_iter()
+        .enumerate()
+        .map(|(i, g)| {
+            let make = || Ok(CffGlyph::new(&round_path(&g.path, &g.model_name)?));
+            match outlines.get(i).copied().flatten() {
+                Some(outline) => {
+                    let key = KeyBuilder::new("cff glyph").key(&outline).finish();
+                    reuse.data_or_make(key, encode, decode, make)
+                }
+                None => make(),
+            }
+        })
+        .collect();
+    each.into_iter().collect()
+}
+
+/// The record's bytes of a [`CffGlyph`]: 0 for no box, or 1 and the box as four big-endian
+/// `i16`; then the body.
+fn encode(glyph: &CffGlyph) -> Vec<u8> {
+    let mut out = Vec::with_capacity(glyph.body.len() + 9);
+    match glyph.bbox {
+        None => out.push(0),
+        Some((x0, y0, x1, y1)) => {
+            out.push(1);
+            for v in [x0, y0, x1, y1] {
+                out.extend(v.to_be_bytes());
+            }
+        }
+    }
+    out.extend_from_slice(&glyph.body);
+    out
+}
+
+/// [`encode`]'s inverse; `None` unless the bytes are a box and a body that ends the glyph.
+fn decode(bytes: &[u8]) -> Option<CffGlyph> {
+    let (bbox, body) = match *bytes.first()? {
+        0 => (None, &bytes[1..]),
+        1 => {
+            let v = |i: usize| -> Option<i16> {
+                Some(i16::from_be_bytes(
+                    bytes.get(1 + 2 * i..3 + 2 * i)?.try_into().ok()?,
+                ))
+            };
+            let bbox = (v(0)?, v(1)?, v(2)?, v(3)?);
+            (Some(bbox), bytes.get(9..)?)
+        }
+        _ => return None,
+    };
+    (body.last() == Some(&ENDCHAR)).then(|| CffGlyph {
+        bbox,
+        body: body.to_vec(),
+    })
 }
 
 /// The charstring of one glyph: `width` is written as the first operand (relative to a
@@ -189,6 +299,43 @@ mod tests {
     fn empty_glyph_is_width_and_endchar() {
         assert_eq!(charstring(&BezPath::new(), 260), [0xf7, 0x98, ENDCHAR]);
         assert_eq!(charstring(&BezPath::new(), 0), [ENDCHAR]);
+    }
+
+    #[test]
+    fn a_glyph_is_its_body_after_the_width_and_its_record_bytes_round_trip() {
+        let mut path = BezPath::new();
+        path.move_to((10.0, 0.0));
+        path.line_to((110.0, 0.0));
+        path.curve_to((110.0, 200.0), (10.0, 200.0), (10.0, 100.0));
+        path.close_path();
+        for p in [path, BezPath::new()] {
+            let glyph = CffGlyph::new(&p);
+            for width in [0, 500, -20, 2000] {
+                assert_eq!(glyph.charstring(width), charstring(&p, width));
+            }
+            assert_eq!(decode(&encode(&glyph)), Some(glyph.clone()));
+            let bytes = encode(&glyph);
+            // Truncated, or a box flag that is neither 0 nor 1: refused.
+            assert_eq!(decode(&bytes[..bytes.len() - 1]), None);
+            let mut flag = bytes.clone();
+            flag[0] = 2;
+            assert_eq!(decode(&flag), None);
+        }
+        // The tight box: the curve peaks at y = 175, its controls at 200.
+        let mut arc = BezPath::new();
+        arc.move_to((0.0, 100.0));
+        arc.curve_to((0.0, 200.0), (100.0, 200.0), (100.0, 100.0));
+        arc.close_path();
+        assert_eq!(CffGlyph::new(&arc).bbox, Some((0, 100, 100, 175)));
+        assert_eq!(decode(&[0]), None);
+        assert_eq!(decode(&[1, 0, 0, 0, 0, 0, 0, 0, ENDCHAR]), None);
+        assert_eq!(
+            decode(&[1, 0, 0, 0, 0, 0, 1, 0, 1, ENDCHAR]),
+            Some(CffGlyph {
+                bbox: Some((0, 0, 1, 1)),
+                body: vec![ENDCHAR]
+            })
+        );
     }
 
     #[test]

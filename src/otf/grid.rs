@@ -5,9 +5,8 @@
 //! after rounding are dropped; a contour that collapses entirely is dropped.
 
 use kurbo::{BezPath, PathEl, Point};
-use rayon::prelude::*;
 
-use super::{OtGlyph, OtfError};
+use super::OtfError;
 
 /// A value as a signed 16-bit table field, or an error naming it.
 pub fn to_i16(value: f64, what: impl FnOnce() -> String) -> Result<i16, OtfError> {
@@ -108,15 +107,6 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
     }
     flush(&mut contour, &mut out);
     Ok(out)
-}
-
-/// Every glyph's outline on the grid, in glyph order (cubic, for CFF).
-pub fn round_glyph_paths(glyphs: &[OtGlyph]) -> Result<Vec<BezPath>, OtfError> {
-    let each: Vec<Result<BezPath, OtfError>> = glyphs
-        .par_iter()
-        .map(|g| round_path(&g.path, &g.model_name))
-        .collect();
-    each.into_iter().collect()
 }
 
 #[cfg(test)]

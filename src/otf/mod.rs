@@ -48,6 +48,7 @@ mod tables;
 mod truetype;
 mod variable;
 mod woff2;
+pub use woff2::{compress_slice, slice_holds, CompressSlice, LARGE_SFNT};
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -203,25 +204,45 @@ pub fn ttf_reusing(
     outlines: &OutlineKeys,
 ) -> Result<Vec<u8>, OtfError> {
     let set = GlyphSet::new(font)?;
-    // The set's glyphs are the font's, after a synthesised `.notdef` (not kept).
-    let keys: Vec<Option<Key>> = if reuse.is_on() {
-        let synthesised = set.glyphs.len() - font.glyphs.len();
-        let own = font.glyphs.iter().enumerate();
-        std::iter::repeat_n(None, synthesised)
-            .chain(own.map(|(i, g)| Some(outlines.get(i, &g.path))))
-            .collect()
-    } else {
-        Vec::new()
-    };
+    let keys = glyph_keys(font, &set, reuse, outlines);
     let glyphs = truetype::glyphs_reusing(&set.glyphs, font.tolerance, reuse, &keys)?;
     tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
 }
 
 /// The font as OpenType/CFF (cubic outlines, points rounded to the integer grid).
 pub fn otf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
+    otf_reusing(font, &Reuse::off(), &OutlineKeys::default())
+}
+
+/// [`otf`], taking each glyph's charstring and box from the last build when it was made
+/// from the same outline ([`Reuse::data_or_make`]), as [`ttf_reusing`] does.
+pub fn otf_reusing(
+    font: &OutlinedFont,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Result<Vec<u8>, OtfError> {
     let set = GlyphSet::new(font)?;
-    let glyphs = grid::round_glyph_paths(&set.glyphs)?;
+    let keys = glyph_keys(font, &set, reuse, outlines);
+    let glyphs = charstring::glyphs_reusing(&set.glyphs, reuse, &keys)?;
     tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
+}
+
+/// Per glyph of `set`, the key of its outline when `reuse` is on (none for a synthesised
+/// `.notdef`, which `set` puts first).
+fn glyph_keys(
+    font: &OutlinedFont,
+    set: &GlyphSet,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Vec<Option<Key>> {
+    if !reuse.is_on() {
+        return Vec::new();
+    }
+    let synthesised = set.glyphs.len() - font.glyphs.len();
+    let own = font.glyphs.iter().enumerate();
+    std::iter::repeat_n(None, synthesised)
+        .chain(own.map(|(i, g)| Some(outlines.get(i, &g.path))))
+        .collect()
 }
 
 /// The font as WOFF2 for the web: the TTF of [`ttf`], Brotli-compressed (tables
@@ -233,6 +254,12 @@ pub fn woff2(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
 /// [`woff2`] from the TTF bytes already built by [`ttf`] (saves building it twice).
 pub fn woff2_from_ttf(ttf: &[u8]) -> Result<Vec<u8>, OtfError> {
     woff2::woff2(ttf)
+}
+
+/// [`woff2_from_ttf`], a large font's slices compressed by `slice(bytes, quality)`, which
+/// must give what [`compress_slice`] gives (see `woff2.rs`).
+pub fn woff2_from_ttf_with(ttf: &[u8], slice: &CompressSlice<'_>) -> Result<Vec<u8>, OtfError> {
+    woff2::woff2_with(ttf, slice)
 }
 
 /// One glyph as both fonts hold it (for external checks and reports).

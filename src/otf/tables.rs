@@ -12,14 +12,12 @@
 //! Glyph boxes: the control box of the points for `glyf` (what TrueType stores), the tight
 //! box for CFF (what CFF consumers compute); `hmtx` side bearings are their x minimum.
 
-use kurbo::{BezPath, Shape};
-use rayon::prelude::*;
 use write_fonts::tables::name::NameRecord;
 use write_fonts::types::{NameId, Tag};
 use write_fonts::{BuilderError, FontBuilder};
 
 use super::cff::{cff_table, CffInfo};
-use super::charstring::charstring;
+use super::charstring::CffGlyph;
 use super::cmap::cmap;
 use super::features::{layout_tables, LayoutSource, LayoutTables};
 use super::gasp::gasp;
@@ -41,8 +39,8 @@ use crate::outline::OutlinedFont;
 pub enum Outlines {
     /// Quadratic glyphs on the grid, for `glyf`.
     TrueType(Vec<TtGlyph>),
-    /// Cubic paths already on the grid.
-    Cff(Vec<BezPath>),
+    /// Charstrings of cubic paths on the grid, with their boxes.
+    Cff(Vec<CffGlyph>),
 }
 
 /// Vertical metrics on the grid and the union of the glyph boxes (head, hhea, OS/2).
@@ -97,22 +95,7 @@ fn glyph_boxes(outlines: &Outlines) -> Vec<Option<GridBox>> {
             .iter()
             .map(|g| g.bbox().map(|b| (b.x_min, b.y_min, b.x_max, b.y_max)))
             .collect(),
-        Outlines::Cff(paths) => paths
-            .par_iter()
-            .map(|p| {
-                if p.elements().is_empty() {
-                    return None;
-                }
-                // Tight bounds (curve extrema), as CFF consumers compute them.
-                let r = p.bounding_box();
-                Some((
-                    r.x0.floor() as i16,
-                    r.y0.floor() as i16,
-                    r.x1.ceil() as i16,
-                    r.y1.ceil() as i16,
-                ))
-            })
-            .collect(),
+        Outlines::Cff(glyphs) => glyphs.iter().map(|g| g.bbox).collect(),
     }
 }
 
@@ -121,14 +104,14 @@ fn cff(
     info: &FontInfo,
     naming: &Naming,
     set: &GlyphSet,
-    paths: &[BezPath],
+    glyphs: &[CffGlyph],
     bbox: GridBox,
 ) -> Vec<u8> {
     let names: Vec<&str> = set.glyphs.iter().map(|g| g.ps_name.as_str()).collect();
-    let charstrings: Vec<Vec<u8>> = paths
-        .par_iter()
+    let charstrings: Vec<Vec<u8>> = glyphs
+        .iter()
         .zip(&set.glyphs)
-        .map(|(p, g)| charstring(p, i32::from(g.advance)))
+        .map(|(c, g)| c.charstring(i32::from(g.advance)))
         .collect();
     let version = format!("{:.3}", naming.revision);
     cff_table(
@@ -206,8 +189,8 @@ pub(crate) fn font_builder(
             builder.add_table(&gasp()).map_err(table_err)?;
             format
         }
-        Outlines::Cff(paths) => {
-            let table = cff(info, &naming, set, paths, metrics.bbox);
+        Outlines::Cff(glyphs) => {
+            let table = cff(info, &naming, set, glyphs, metrics.bbox);
             builder.add_raw(Tag::new(b"CFF "), table);
             // At most 65535 glyphs: the glyph set checks it.
             builder
@@ -268,6 +251,7 @@ pub(crate) fn font_builder(
 pub(crate) mod tests {
     use super::*;
     use crate::otf::OtGlyph;
+    use kurbo::BezPath;
 
     pub(crate) use crate::model::test_info as info;
 
@@ -330,7 +314,10 @@ pub(crate) mod tests {
         arc.curve_to((0.0, 100.0), (100.0, 100.0), (100.0, 0.0));
         arc.close_path();
         // The curve peaks at y = 75; its control points reach 100.
-        let boxes = glyph_boxes(&Outlines::Cff(vec![arc.clone(), BezPath::new()]));
+        let boxes = glyph_boxes(&Outlines::Cff(vec![
+            CffGlyph::new(&arc),
+            CffGlyph::new(&BezPath::new()),
+        ]));
         assert_eq!(boxes, [Some((0, 0, 100, 75)), None]);
     }
 }

@@ -42,5 +42,6 @@ mod svg;
 mod terminal;
 mod ufo;
 mod variable;
+mod woff2;
 mod writes;
 mod xspline;
