@@ -50,15 +50,17 @@ pub fn reversals(contours: &[BezPath]) -> Vec<bool> {
 /// The contours joined into one path, each flagged in `reversed` turned around (a contour
 /// without a flag is kept as it is).
 pub fn join_reversed(contours: &[BezPath], reversed: &[bool]) -> BezPath {
-    let mut out = BezPath::new();
+    // One allocation of the final length: a CJK font joins 20,902 glyphs on every build.
+    let len = contours.iter().map(|c| c.elements().len()).sum();
+    let mut out = Vec::with_capacity(len);
     for (k, contour) in contours.iter().enumerate() {
         if reversed.get(k).copied().unwrap_or(false) {
-            out.extend(contour.reverse_subpaths().iter());
+            out.extend_from_slice(contour.reverse_subpaths().elements());
         } else {
-            out.extend(contour.iter());
+            out.extend_from_slice(contour.elements());
         }
     }
-    out
+    BezPath::from_vec(out)
 }
 
 /// For each contour, how many of the others contain it wholly: a nonzero winding number
