@@ -190,7 +190,6 @@ fn take_varint(bytes: &mut &[u8]) -> Option<u64> {
     None
 }
 
-/// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).
 /// Removes, around the closed contour, points that make zero-length segments on the grid
 /// without changing its shape: an on-curve point equal to the on-curve point before it,
 /// an off-curve point between two on-curve points that equals one of them (the quadratic
@@ -220,6 +219,7 @@ fn drop_degenerate(points: &mut Vec<CurvePoint>) {
     }
 }
 
+/// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).
 pub fn glyf_loca(
     glyphs: &[TtGlyph],
 ) -> Result<
