@@ -177,8 +177,8 @@ pub(crate) fn font_builder(
     let table_err = |e: BuilderError| OtfError::Table(e.to_string());
     let index_to_loc_format = match &outlines {
         Outlines::TrueType(glyphs) => {
-            let (glyf, loca, format) = glyf_loca(glyphs)?;
-            builder.add_table(&glyf).map_err(table_err)?;
+            let (glyf, loca, format) = glyf_loca(glyphs);
+            builder.add_raw(Tag::new(b"glyf"), glyf);
             builder.add_table(&loca).map_err(table_err)?;
             builder
                 .add_table(&truetype_maxp(glyphs))

@@ -2,31 +2,81 @@
 
 use rayon::prelude::*;
 use read_fonts::tables::glyf::CurvePoint;
-use write_fonts::tables::glyf::{Bbox, Contour, GlyfLocaBuilder, Glyph, SimpleGlyph};
+use write_fonts::tables::glyf::{Bbox, Contour, GlyfLocaBuilder, SimpleGlyph};
+use write_fonts::tables::loca::Loca;
 
 use super::quadratic::truetype_contours;
 use super::{grid, OtGlyph, OtfError};
 use crate::reuse::{Key, KeyBuilder, Reuse};
 
-/// One glyph ready for `glyf`: no outline (`None`) or a simple glyph with its box.
+/// One glyph ready for `glyf`: its bytes as the table holds them (none for an empty glyph),
+/// so that a rebuild copies a kept glyph instead of encoding it again.
 pub struct TtGlyph {
-    pub glyph: Option<SimpleGlyph>,
+    bytes: Vec<u8>,
 }
 
 impl TtGlyph {
+    /// A glyph without outline.
+    pub fn empty() -> Self {
+        TtGlyph { bytes: Vec::new() }
+    }
+
+    /// `glyph` as `glyf` bytes, encoded by write-fonts (flags, coordinates, padding).
+    pub fn new(glyph: &SimpleGlyph) -> Result<Self, OtfError> {
+        let mut builder = GlyfLocaBuilder::new();
+        builder
+            .add_glyph(glyph)
+            .map_err(|e| OtfError::Table(format!("glyf: {e}")))?;
+        let (glyf, _, _) = builder.build();
+        let bytes =
+            write_fonts::dump_table(&glyf).map_err(|e| OtfError::Table(format!("glyf: {e}")))?;
+        Ok(TtGlyph { bytes })
+    }
+
+    /// The glyph's bytes when they are a simple glyph's that `glyf` can hold: a header with
+    /// contours, ascending contour ends, and an even length.
+    fn from_bytes(bytes: Vec<u8>) -> Option<Self> {
+        if bytes.is_empty() {
+            return Some(TtGlyph::empty());
+        }
+        let glyph = TtGlyph { bytes };
+        let contours = glyph.num_contours();
+        let header = 10 + 2 * contours;
+        let ends: Option<Vec<u16>> = (0..contours).map(|i| glyph.be16(10 + 2 * i)).collect();
+        let ascending = ends?.windows(2).all(|w| w[0] < w[1]);
+        (contours > 0 && ascending && glyph.bytes.len() > header && glyph.bytes.len() % 2 == 0)
+            .then_some(glyph)
+    }
+
+    fn be16(&self, at: usize) -> Option<u16> {
+        Some(u16::from_be_bytes(
+            self.bytes.get(at..at + 2)?.try_into().ok()?,
+        ))
+    }
+
+    fn be16_or_0(&self, at: usize) -> i16 {
+        self.be16(at).unwrap_or(0) as i16
+    }
+
     /// Control-point bounding box (what `glyf` stores), `None` for an empty glyph.
     pub fn bbox(&self) -> Option<Bbox> {
-        self.glyph.as_ref().map(|g| g.bbox)
+        (!self.bytes.is_empty()).then(|| Bbox {
+            x_min: self.be16_or_0(2),
+            y_min: self.be16_or_0(4),
+            x_max: self.be16_or_0(6),
+            y_max: self.be16_or_0(8),
+        })
     }
 
     pub fn num_points(&self) -> usize {
-        self.glyph
-            .as_ref()
-            .map_or(0, |g| g.contours.iter().map(|c| c.len()).sum())
+        match self.num_contours() {
+            0 => 0,
+            n => usize::from(self.be16(10 + 2 * (n - 1)).unwrap_or(0)) + 1,
+        }
     }
 
     pub fn num_contours(&self) -> usize {
-        self.glyph.as_ref().map_or(0, |g| g.contours.len())
+        self.be16(0).map_or(0, |n| n.min(i16::MAX as u16) as usize)
     }
 }
 
@@ -45,46 +95,56 @@ pub fn glyphs_reusing(
         .par_iter()
         .enumerate()
         .map(|(i, g)| {
-            let make = || on_grid(g, accuracy);
-            let contours = match outlines.get(i).copied().flatten() {
+            let make = || truetype_glyph(g, accuracy);
+            match outlines.get(i).copied().flatten() {
                 Some(outline) => {
-                    let key = KeyBuilder::new("truetype contours")
+                    let key = KeyBuilder::new("truetype glyph")
                         .f64(accuracy)
                         .key(&outline)
+                        .u64(u64::from(g.from_components))
                         .finish();
-                    reuse.data_or_make(key, encode, decode, make)?
+                    let encode = |g: &TtGlyph| g.bytes.clone();
+                    let decode = |bytes: &[u8]| TtGlyph::from_bytes(bytes.to_vec());
+                    reuse.data_or_make(key, encode, decode, make)
                 }
-                None => make()?,
-            };
-            let contours: Vec<Contour> = contours.into_iter().map(Contour::from).collect();
-            if contours.is_empty() {
-                return Ok(TtGlyph { glyph: None });
+                None => make(),
             }
-            // The source checks bound control points and contours; fitting can add points.
-            let points: usize = contours.iter().map(|c: &Contour| c.len()).sum();
-            if points > usize::from(u16::MAX) || contours.len() >= i16::MAX as usize {
-                return Err(OtfError::OutOfRange {
-                    what: format!(
-                        "glyph '{}' as TrueType ({} contours): its point count",
-                        g.model_name,
-                        contours.len()
-                    ),
-                    value: points as f64,
-                    range: "0..=65535 points, at most 32766 contours",
-                });
-            }
-            // Resolved components may overlap each other: set OVERLAP_SIMPLE so rasterizers
-            // that need the hint (macOS) fill the overlap without dropouts.
-            let mut glyph = SimpleGlyph {
-                contours,
-                overlaps: g.from_components,
-                ..Default::default()
-            };
-            glyph.recompute_bounding_box();
-            Ok(TtGlyph { glyph: Some(glyph) })
         })
         .collect();
     each.into_iter().collect()
+}
+
+/// Glyph `g` for `glyf`: [`on_grid`]'s contours as a simple glyph (or an empty one).
+fn truetype_glyph(g: &OtGlyph, accuracy: f64) -> Result<TtGlyph, OtfError> {
+    let contours: Vec<Contour> = on_grid(g, accuracy)?
+        .into_iter()
+        .map(Contour::from)
+        .collect();
+    if contours.is_empty() {
+        return Ok(TtGlyph::empty());
+    }
+    // The source checks bound control points and contours; fitting can add points.
+    let points: usize = contours.iter().map(|c: &Contour| c.len()).sum();
+    if points > usize::from(u16::MAX) || contours.len() >= i16::MAX as usize {
+        return Err(OtfError::OutOfRange {
+            what: format!(
+                "glyph '{}' as TrueType ({} contours): its point count",
+                g.model_name,
+                contours.len()
+            ),
+            value: points as f64,
+            range: "0..=65535 points, at most 32766 contours",
+        });
+    }
+    // Resolved components may overlap each other: set OVERLAP_SIMPLE so rasterizers
+    // that need the hint (macOS) fill the overlap without dropouts.
+    let mut glyph = SimpleGlyph {
+        contours,
+        overlaps: g.from_components,
+        ..Default::default()
+    };
+    glyph.recompute_bounding_box();
+    TtGlyph::new(&glyph)
 }
 
 /// The contours of `g` as TrueType: quadratics within `accuracy`, points on the grid,
@@ -113,81 +173,6 @@ fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError>
         }
     }
     Ok(contours)
-}
-
-/// The record's bytes of [`on_grid`]'s contours (about 2 bytes a point, where a plain
-/// list would take 5: a CJK font's record holds 2 million points). Per contour its point
-/// count, then per point its step from the last point (the first from the origin) as
-/// LEB128 numbers: `zigzag(dx) * 2 + on_curve`, then `zigzag(dy)`.
-fn encode(contours: &Vec<Vec<CurvePoint>>) -> Vec<u8> {
-    let points: usize = contours.iter().map(Vec::len).sum();
-    let mut out = Vec::with_capacity(2 * contours.len() + 3 * points);
-    let (mut x, mut y) = (0i32, 0i32);
-    for contour in contours {
-        put_varint(&mut out, contour.len() as u64);
-        for p in contour {
-            let (dx, dy) = (i32::from(p.x) - x, i32::from(p.y) - y);
-            (x, y) = (i32::from(p.x), i32::from(p.y));
-            put_varint(&mut out, zigzag(dx) << 1 | u64::from(p.on_curve));
-            put_varint(&mut out, zigzag(dy));
-        }
-    }
-    out
-}
-
-/// [`encode`]'s contours back, or `None` when `bytes` are not such a list (each contour of
-/// at least 3 points, every coordinate an `i16`, every byte used).
-fn decode(mut bytes: &[u8]) -> Option<Vec<Vec<CurvePoint>>> {
-    let mut contours = Vec::new();
-    let (mut x, mut y) = (0i64, 0i64);
-    while !bytes.is_empty() {
-        let n = take_varint(&mut bytes)?;
-        // Each point takes at least 2 bytes.
-        if n < 3 || n > bytes.len() as u64 / 2 {
-            return None;
-        }
-        let mut contour = Vec::with_capacity(n as usize);
-        for _ in 0..n {
-            let first = take_varint(&mut bytes)?;
-            x += unzigzag(first >> 1);
-            y += unzigzag(take_varint(&mut bytes)?);
-            let (px, py) = (i16::try_from(x).ok()?, i16::try_from(y).ok()?);
-            contour.push(CurvePoint::new(px, py, first & 1 == 1));
-        }
-        contours.push(contour);
-    }
-    Some(contours)
-}
-
-fn zigzag(v: i32) -> u64 {
-    u64::from(((v << 1) ^ (v >> 31)) as u32)
-}
-
-fn unzigzag(v: u64) -> i64 {
-    (v >> 1) as i64 ^ -((v & 1) as i64)
-}
-
-/// Appends `v` as LEB128 (7 bits a byte, low first).
-fn put_varint(out: &mut Vec<u8>, mut v: u64) {
-    while v >= 0x80 {
-        out.push((v as u8) | 0x80);
-        v >>= 7;
-    }
-    out.push(v as u8);
-}
-
-/// Reads a LEB128 number of at most 5 bytes (enough for [`encode`]'s numbers).
-fn take_varint(bytes: &mut &[u8]) -> Option<u64> {
-    let mut v = 0u64;
-    for shift in (0..35).step_by(7) {
-        let (&b, rest) = bytes.split_first()?;
-        *bytes = rest;
-        v |= u64::from(b & 0x7f) << shift;
-        if b < 0x80 {
-            return Some(v);
-        }
-    }
-    None
 }
 
 /// Removes, around the closed contour, points that make zero-length segments on the grid
@@ -220,26 +205,19 @@ fn drop_degenerate(points: &mut Vec<CurvePoint>) {
 }
 
 /// The `glyf` and `loca` tables, and `head.indexToLocFormat` (0 short, 1 long).
-pub fn glyf_loca(
-    glyphs: &[TtGlyph],
-) -> Result<
-    (
-        write_fonts::tables::glyf::Glyf,
-        write_fonts::tables::loca::Loca,
-        i16,
-    ),
-    OtfError,
-> {
-    let mut builder = GlyfLocaBuilder::new();
+pub fn glyf_loca(glyphs: &[TtGlyph]) -> (Vec<u8>, Loca, i16) {
+    // What write-fonts' `GlyfLocaBuilder` writes: the glyphs one after another (each
+    // already padded to 2 bytes), `loca` their offsets, short when they allow it.
+    let mut glyf = Vec::with_capacity(glyphs.iter().map(|g| g.bytes.len()).sum());
+    let mut offsets = Vec::with_capacity(glyphs.len() + 1);
+    offsets.push(0);
     for g in glyphs {
-        let result = match &g.glyph {
-            Some(simple) => builder.add_glyph(simple),
-            None => builder.add_glyph(&Glyph::Empty),
-        };
-        result.map_err(|e| OtfError::Table(format!("glyf: {e}")))?;
+        glyf.extend_from_slice(&g.bytes);
+        offsets.push(glyf.len() as u32);
     }
-    let (glyf, loca, format) = builder.build();
-    Ok((glyf, loca, format as i16))
+    let loca = Loca::new(offsets);
+    let format = loca.format() as i16;
+    (glyf, loca, format)
 }
 
 #[cfg(test)]
@@ -247,14 +225,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn recorded_contours_read_back_exactly_and_bad_bytes_are_refused() {
+    fn glyphs_are_glyf_bytes_as_write_fonts_builds_them_and_bad_bytes_are_refused() {
         let pt = |x, y, on| CurvePoint::new(x, y, on);
-        let contours = vec![
-            vec![
-                pt(0, 0, true),
-                pt(-32768, 32767, false),
-                pt(32767, -32768, true),
-            ],
+        let contours = [
+            vec![pt(0, 0, true), pt(-300, 700, false), pt(500, -20, true)],
             vec![
                 pt(5, 5, false),
                 pt(6, 4, false),
@@ -262,21 +236,60 @@ mod tests {
                 pt(5, 5, true),
             ],
         ];
-        let bytes = encode(&contours);
-        assert_eq!(decode(&bytes), Some(contours.clone()));
-        // Small steps take one byte per number: 2 per point plus the counts.
-        let small = vec![vec![pt(10, 10, true), pt(40, 10, true), pt(40, 40, false)]];
-        assert_eq!(encode(&small).len(), 1 + 3 * 2);
-        // Truncated, extended, too few points, a coordinate off the i16 range: refused.
-        assert_eq!(decode(&bytes[..bytes.len() - 1]), None);
-        assert_eq!(decode(&[bytes.as_slice(), &[0]].concat()), None);
+        let mut simple = SimpleGlyph {
+            contours: contours.iter().cloned().map(Contour::from).collect(),
+            overlaps: true,
+            ..Default::default()
+        };
+        simple.recompute_bounding_box();
+        let glyph = TtGlyph::new(&simple).unwrap();
+        assert_eq!(glyph.num_contours(), 2);
+        assert_eq!(glyph.num_points(), 7);
+        assert_eq!(glyph.bbox(), Some(simple.bbox));
         assert_eq!(
-            decode(&encode(&[vec![pt(1, 1, true), pt(2, 2, true)]].to_vec())),
-            None
+            (TtGlyph::empty().bbox(), TtGlyph::empty().num_points()),
+            (None, 0)
         );
-        let mut far = encode(&contours);
-        far.extend_from_slice(&encode(&vec![vec![pt(32767, 0, true); 3]]));
-        assert_eq!(decode(&far), None);
+        // glyf and loca as write-fonts' builder makes them, empty glyphs included.
+        let glyphs = [
+            TtGlyph::empty(),
+            glyph,
+            TtGlyph::empty(),
+            TtGlyph::new(&simple).unwrap(),
+        ];
+        let (glyf, loca, format) = glyf_loca(&glyphs);
+        let mut builder = GlyfLocaBuilder::new();
+        for g in [None, Some(&simple), None, Some(&simple)] {
+            match g {
+                Some(simple) => builder.add_glyph(simple).unwrap(),
+                None => builder
+                    .add_glyph(&write_fonts::tables::glyf::Glyph::Empty)
+                    .unwrap(),
+            };
+        }
+        let (their_glyf, their_loca, their_format) = builder.build();
+        assert_eq!(glyf, write_fonts::dump_table(&their_glyf).unwrap());
+        assert_eq!(
+            write_fonts::dump_table(&loca).unwrap(),
+            write_fonts::dump_table(&their_loca).unwrap()
+        );
+        assert_eq!(format, their_format as i16);
+        // A kept glyph's bytes back; truncated, odd or without contours: refused.
+        let bytes = glyphs[1].bytes.clone();
+        let back = TtGlyph::from_bytes(bytes.clone()).expect("its own bytes");
+        assert_eq!(back.bytes, bytes);
+        assert!(TtGlyph::from_bytes(bytes[..12].to_vec()).is_none());
+        assert!(TtGlyph::from_bytes(bytes[..bytes.len() - 1].to_vec()).is_none());
+        let mut none = bytes.clone();
+        none[..2].copy_from_slice(&0u16.to_be_bytes());
+        assert!(TtGlyph::from_bytes(none).is_none());
+        let mut descending = bytes;
+        descending[10..12].copy_from_slice(&9u16.to_be_bytes());
+        assert!(TtGlyph::from_bytes(descending).is_none());
+        assert_eq!(
+            TtGlyph::from_bytes(Vec::new()).map(|g| g.bytes),
+            Some(Vec::new())
+        );
     }
 
     #[test]

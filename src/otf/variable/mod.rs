@@ -301,7 +301,7 @@ fn glyph_variations(
         })
         .collect();
     let tt = if points == 0 {
-        TtGlyph { glyph: None }
+        TtGlyph::empty()
     } else {
         let contours: Vec<Contour> = default.iter().map(|c| c.clone().into()).collect();
         let mut simple = SimpleGlyph {
@@ -310,9 +310,7 @@ fn glyph_variations(
             ..Default::default()
         };
         simple.recompute_bounding_box();
-        TtGlyph {
-            glyph: Some(simple),
-        }
+        TtGlyph::new(&simple)?
     };
     Ok((tt, deltas))
 }
