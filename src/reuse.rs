@@ -20,8 +20,9 @@
 //! contours ([`crate::overlap`]), keyed by its input outline and the union's setting, so
 //! that a rebuild unions only the glyphs that changed. A union equal to its input (a glyph
 //! without overlaps) is recorded as such, not stored again. It holds, the same way, data
-//! made from one glyph's outline for a font's tables: its TrueType contours
-//! ([`crate::otf`]), so that a rebuild converts one glyph to quadratics, not 20,000.
+//! made from one glyph's outline for a font's tables: its `glyf` bytes and its CFF
+//! charstring ([`crate::otf`]), so that a rebuild converts one glyph, not 20,000; and the
+//! Brotli slices of a large font's WOFF2.
 //!
 //! It also holds each output file's [`FileStamp`] after the commit (its metadata and the
 //! SHA-256 of its bytes), so that the next commit need not read back the ~42,000 files of a

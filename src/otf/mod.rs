@@ -195,7 +195,7 @@ pub fn ttf(font: &OutlinedFont) -> Result<Vec<u8>, OtfError> {
     ttf_reusing(font, &Reuse::off(), &OutlineKeys::default())
 }
 
-/// [`ttf`], taking each glyph's TrueType contours from the last build when it converted
+/// [`ttf`], taking each glyph's `glyf` bytes from the last build when it converted
 /// the same outline ([`Reuse::data_or_make`]): a rebuild after one edit converts one glyph.
 /// `outlines` are `font`'s [`OutlineKeys`] (keys that determine each glyph's path).
 pub fn ttf_reusing(

@@ -16,9 +16,9 @@
 //! [`woff2_with`]'s caller can take the other slices' bytes from the last build. The slices
 //! run on every core; the bytes depend on the cuts alone, never on the cores or on what was
 //! reused. The cost of the cuts: on the 20,902-glyph CJK font, 2.2 % more bytes than one
-//! stream (6.45 MB against 6.31 MB). The container (header and table directory) is written here because `ttf2woff2`
-//! takes only a whole font, not a stream made elsewhere; a test compares it with the
-//! crate's.
+//! stream (6.45 MB against 6.31 MB). The container (header and table directory) is written
+//! here because `ttf2woff2` takes only a whole font, not a stream made elsewhere; a test
+//! compares it with the crate's.
 
 use brotli::concat::{BroCatli, BroCatliResult};
 use brotli::enc::backward_references::BrotliEncoderMode;
