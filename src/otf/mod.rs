@@ -262,6 +262,16 @@ pub fn woff2_from_ttf_with(ttf: &[u8], slice: &CompressSlice<'_>) -> Result<Vec<
     woff2::woff2_with(ttf, slice)
 }
 
+/// The big-endian `u16` at `at` in a font's bytes, if they reach that far.
+fn be16(bytes: &[u8], at: usize) -> Option<u16> {
+    Some(u16::from_be_bytes(bytes.get(at..at + 2)?.try_into().ok()?))
+}
+
+/// The big-endian `u32` at `at` in a font's bytes, if they reach that far.
+fn be32(bytes: &[u8], at: usize) -> Option<u32> {
+    Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+}
+
 /// One glyph as both fonts hold it (for external checks and reports).
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrderedGlyph {

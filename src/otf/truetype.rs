@@ -49,9 +49,7 @@ impl TtGlyph {
     }
 
     fn be16(&self, at: usize) -> Option<u16> {
-        Some(u16::from_be_bytes(
-            self.bytes.get(at..at + 2)?.try_into().ok()?,
-        ))
+        super::be16(&self.bytes, at)
     }
 
     fn be16_or_0(&self, at: usize) -> i16 {

@@ -26,7 +26,7 @@ use brotli::enc::BrotliEncoderParams;
 use rayon::prelude::*;
 use ttf2woff2::{encode_with_options, BrotliQuality, EncodeOptions};
 
-use super::OtfError;
+use super::{be16, be32, OtfError};
 
 /// Fonts larger than this (bytes) are compressed at Brotli quality 9 instead of 11, in
 /// slices.
@@ -265,14 +265,6 @@ fn push_base128(out: &mut Vec<u8>, value: u32) {
     for i in (0..n).rev() {
         out.push(bytes[i] | if i > 0 { 0x80 } else { 0 });
     }
-}
-
-fn be16(bytes: &[u8], at: usize) -> Option<u16> {
-    Some(u16::from_be_bytes(bytes.get(at..at + 2)?.try_into().ok()?))
-}
-
-fn be32(bytes: &[u8], at: usize) -> Option<u32> {
-    Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
 }
 
 /// The tags a WOFF2 directory writes as an index (WOFF2 § 5.1, table 1).
