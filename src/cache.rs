@@ -46,7 +46,7 @@
 //!
 //! [`FitCache::fit`] may be called from many threads at once.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::fs;
 use std::io;
 use std::path::Path;
@@ -54,6 +54,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
 use kurbo::{Affine, BezPath, PathEl};
+use rustc_hash::FxHashMap;
 use sha2::{Digest, Sha256};
 
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
@@ -202,6 +203,14 @@ struct Entries {
     orient: BTreeMap<GlyphKey, Vec<bool>>,
 }
 
+/// The entries of a cache file or delta file as loaded, by key, none used yet.
+#[derive(Debug, Default)]
+struct Loaded {
+    fits: FxHashMap<Key, FromFile<ContourFit>>,
+    compatible: FxHashMap<CompatibleKey, FromFile<CompatibleFit>>,
+    orient: FxHashMap<GlyphKey, FromFile<Vec<bool>>>,
+}
+
 /// What happened to the cache file when it was loaded.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LoadOutcome {
@@ -237,9 +246,9 @@ impl<T> FromFile<T> {
 #[derive(Debug, Default)]
 pub struct FitCache {
     /// From the file, read-only while fitting (but for the flags).
-    loaded: HashMap<Key, FromFile<ContourFit>>,
-    loaded_compatible: HashMap<CompatibleKey, FromFile<CompatibleFit>>,
-    loaded_orient: HashMap<GlyphKey, FromFile<Vec<bool>>>,
+    loaded: FxHashMap<Key, FromFile<ContourFit>>,
+    loaded_compatible: FxHashMap<CompatibleKey, FromFile<CompatibleFit>>,
+    loaded_orient: FxHashMap<GlyphKey, FromFile<Vec<bool>>>,
     /// The file they came from.
     source: Option<std::path::PathBuf>,
     /// That file's binding and entry count, and the entries its delta file added.
@@ -277,9 +286,9 @@ impl FitCache {
                 drop(bytes);
                 let all = entries.fits.len() + entries.compatible.len() + entries.orient.len();
                 let mut cache = FitCache {
-                    loaded: from_file(entries.fits),
-                    loaded_compatible: from_file(entries.compatible),
-                    loaded_orient: from_file(entries.orient),
+                    loaded: entries.fits,
+                    loaded_compatible: entries.compatible,
+                    loaded_orient: entries.orient,
                     source: Some(path.to_path_buf()),
                     base: Some((base, all)),
                     ..FitCache::default()
@@ -304,15 +313,15 @@ impl FitCache {
             return;
         };
         fn merge<K: std::hash::Hash + Eq, T>(
-            into: &mut HashMap<K, FromFile<T>>,
-            from: BTreeMap<K, T>,
+            into: &mut FxHashMap<K, FromFile<T>>,
+            from: FxHashMap<K, FromFile<T>>,
         ) -> usize {
             let mut added = 0;
-            for (k, fit) in from {
+            for (k, entry) in from {
                 if let std::collections::hash_map::Entry::Vacant(v) = into.entry(k) {
                     v.insert(FromFile {
                         in_delta: true,
-                        ..FromFile::new(fit)
+                        ..entry
                     });
                     added += 1;
                 }
@@ -611,7 +620,7 @@ fn fitter_key() -> [u32; 6] {
 /// The loaded entries this run used and those it made, sorted by key (no key is in both:
 /// a fit is made only when the file lacks it).
 fn used_and_made<'a, K: Ord + std::hash::Hash, T>(
-    loaded: &'a HashMap<K, FromFile<T>>,
+    loaded: &'a FxHashMap<K, FromFile<T>>,
     made: &'a BTreeMap<K, T>,
 ) -> Vec<(&'a K, &'a T)> {
     let mut all: Vec<(&K, &T)> = loaded
@@ -626,7 +635,7 @@ fn used_and_made<'a, K: Ord + std::hash::Hash, T>(
 
 /// Of `loaded`: the cache file's entries this run did not use, and the delta file's it
 /// used.
-fn usage<K, T>(loaded: &HashMap<K, FromFile<T>>) -> (usize, usize) {
+fn usage<K, T>(loaded: &FxHashMap<K, FromFile<T>>) -> (usize, usize) {
     loaded.values().fold((0, 0), |(unused, delta), e| {
         let used = e.used.load(Ordering::Relaxed);
         (
@@ -638,7 +647,7 @@ fn usage<K, T>(loaded: &HashMap<K, FromFile<T>>) -> (usize, usize) {
 
 /// The delta file's entries this run used and the entries it made, sorted by key.
 fn used_and_made_delta<'a, K: Ord + std::hash::Hash, T>(
-    loaded: &'a HashMap<K, FromFile<T>>,
+    loaded: &'a FxHashMap<K, FromFile<T>>,
     made: &'a BTreeMap<K, T>,
 ) -> Vec<(&'a K, &'a T)> {
     let mut all: Vec<(&K, &T)> = loaded
@@ -649,14 +658,6 @@ fn used_and_made_delta<'a, K: Ord + std::hash::Hash, T>(
         .collect();
     all.sort_unstable_by(|a, b| a.0.cmp(b.0));
     all
-}
-
-/// Loaded entries, none used yet.
-fn from_file<K: std::hash::Hash + Eq, T>(entries: BTreeMap<K, T>) -> HashMap<K, FromFile<T>> {
-    entries
-        .into_iter()
-        .map(|(k, fit)| (k, FromFile::new(fit)))
-        .collect()
 }
 
 /// The cache file's bytes holding these entries.
@@ -774,13 +775,13 @@ impl Reader<'_> {
     }
 }
 
-fn decode(bytes: &[u8]) -> Result<Entries, &'static str> {
+fn decode(bytes: &[u8]) -> Result<Loaded, &'static str> {
     let mut r = HEADER.open(bytes)?;
     decode_body(&mut r)
 }
 
 /// The entries of a delta file, if it is bound to the cache file `base`.
-fn decode_delta(bytes: &[u8], base: BaseFile) -> Result<Entries, &'static str> {
+fn decode_delta(bytes: &[u8], base: BaseFile) -> Result<Loaded, &'static str> {
     let mut r = DELTA_HEADER.open(bytes)?;
     if (r.u64()?, r.u32()?) != (base.len, base.crc) {
         return Err("it belongs to another cache file");
@@ -789,7 +790,7 @@ fn decode_delta(bytes: &[u8], base: BaseFile) -> Result<Entries, &'static str> {
 }
 
 /// The fitters' key (checked) and the entries, to the last byte.
-fn decode_body(r: &mut Reader<'_>) -> Result<Entries, &'static str> {
+fn decode_body(r: &mut Reader<'_>) -> Result<Loaded, &'static str> {
     let key = fitter_key();
     if [r.u32()?, r.u32()?] != [key[0], key[1]] {
         return Err("it was written by another version of the fitter");
@@ -800,10 +801,11 @@ fn decode_body(r: &mut Reader<'_>) -> Result<Entries, &'static str> {
     if [r.u32()?, r.u32()?] != [key[4], key[5]] {
         return Err("it was written by another version of the orientation");
     }
-    let mut entries = Entries::default();
+    let mut entries = Loaded::default();
     let n = r.u64()?;
     // An orientation entry is at least 32 + 4 bytes.
     let n = r.count(n, 36)?;
+    entries.orient.reserve(n);
     for _ in 0..n {
         let key = GlyphKey(r.array()?);
         let count = r.u32()?;
@@ -817,13 +819,14 @@ fn decode_body(r: &mut Reader<'_>) -> Result<Entries, &'static str> {
                 _ => Err("an orientation is malformed"),
             })
             .collect::<Result<Vec<bool>, _>>()?;
-        if entries.orient.insert(key, flags).is_some() {
+        if entries.orient.insert(key, FromFile::new(flags)).is_some() {
             return Err("a glyph's orientation is stored twice");
         }
     }
     let n = r.u64()?;
     // A static entry is at least 8 + 4 + 8 + 4 bytes.
     let n = r.count(n, 24)?;
+    entries.fits.reserve(n);
     for _ in 0..n {
         let tolerance = r.u64()?;
         let count = r.u32()?;
@@ -834,7 +837,7 @@ fn decode_body(r: &mut Reader<'_>) -> Result<Entries, &'static str> {
         let fit = ContourFit { path, max_error };
         if entries
             .fits
-            .insert(Key { tolerance, points }, fit)
+            .insert(Key { tolerance, points }, FromFile::new(fit))
             .is_some()
         {
             return Err("a contour is stored twice");
@@ -845,7 +848,7 @@ fn decode_body(r: &mut Reader<'_>) -> Result<Entries, &'static str> {
     let n = r.count(n, 25)?;
     for _ in 0..n {
         let (key, fit) = read_compatible(r)?;
-        if entries.compatible.insert(key, fit).is_some() {
+        if entries.compatible.insert(key, FromFile::new(fit)).is_some() {
             return Err("a contour is stored twice");
         }
     }
@@ -953,12 +956,12 @@ mod tests {
         let bytes = cache.to_bytes();
         let loaded = decode(&bytes).unwrap();
         assert_eq!((loaded.fits.len(), loaded.compatible.len()), (1, 0));
-        let back = loaded.fits.values().next().unwrap();
+        let back = &loaded.fits.values().next().unwrap().fit;
         assert_eq!(back.max_error.to_bits(), fit.max_error.to_bits());
         assert_eq!(back.path, fit.path);
         // Encoding is deterministic.
         let again = FitCache {
-            loaded: from_file(loaded.fits),
+            loaded: loaded.fits,
             ..FitCache::default()
         };
         again.fit(&square(), 0.5);
@@ -1060,7 +1063,7 @@ mod tests {
         let entries = decode(&bytes).unwrap();
         assert_eq!(entries.orient.len(), 1);
         let loaded = FitCache {
-            loaded_orient: from_file(entries.orient),
+            loaded_orient: entries.orient,
             ..FitCache::default()
         };
         assert_eq!(loaded.orient_placed(&placed, 0.5, fitted.clone()), expected);
@@ -1092,7 +1095,7 @@ mod tests {
         ] {
             let forged = encode(&[], &[], &[(&key, &flags)]);
             let cache = FitCache {
-                loaded_orient: from_file(decode(&forged).unwrap().orient),
+                loaded_orient: decode(&forged).unwrap().orient,
                 ..FitCache::default()
             };
             assert_eq!(cache.orient_placed(&placed, 0.5, fitted.clone()), want);

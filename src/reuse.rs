@@ -39,6 +39,8 @@
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
 use std::collections::{BTreeMap, HashMap};
+
+use rustc_hash::FxHashMap;
 use std::fs;
 use std::io;
 use std::path::{Component, Path, PathBuf};
@@ -171,23 +173,23 @@ pub struct Reuse {
     /// The output folder (`None`: reuse nothing, record nothing).
     out: Option<PathBuf>,
     /// The last build's records, by path relative to `out`.
-    earlier: HashMap<PathBuf, Record>,
-    /// This build's records.
-    now: Mutex<BTreeMap<PathBuf, Record>>,
+    earlier: FxHashMap<PathBuf, Record>,
+    /// This build's records (sorted when saved).
+    now: Mutex<FxHashMap<PathBuf, Record>>,
     reused: AtomicUsize,
     /// Outlines made from outlines (a glyph's contours unioned) by the last build, by key;
     /// `None` when the outline was its input unchanged (most glyphs: no overlap).
-    earlier_paths: HashMap<Key, Option<BezPath>>,
+    earlier_paths: FxHashMap<Key, Option<BezPath>>,
     /// Those of this build.
     now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
     /// Glyph data made by the last build ([`Reuse::data_or_make`]), by key.
-    earlier_data: HashMap<Key, Vec<u8>>,
+    earlier_data: FxHashMap<Key, Vec<u8>>,
     /// Those of this build; `None`: the last build's, unchanged (not copied).
     now_data: Mutex<BTreeMap<Key, Option<Vec<u8>>>>,
     /// The output files as the last build's commit left them, by path relative to `out`.
-    earlier_files: HashMap<PathBuf, FileStamp>,
-    /// As this build's commit left them.
-    now_files: Mutex<BTreeMap<PathBuf, FileStamp>>,
+    earlier_files: FxHashMap<PathBuf, FileStamp>,
+    /// As this build's commit left them (sorted when saved).
+    now_files: Mutex<FxHashMap<PathBuf, FileStamp>>,
     /// Outputs left in OUT unmade ([`Reuse::kept_or_make`]), by path relative to `out`.
     kept: Mutex<Vec<PathBuf>>,
 }
@@ -425,7 +427,7 @@ impl Reuse {
             .map_err(|_| io::Error::other("a build thread panicked"))?;
         let mut body = HEADER.start();
         body.extend_from_slice(&(now.len() as u32).to_le_bytes());
-        for (path, record) in now.iter() {
+        for (path, record) in by_name(&now) {
             let Some(name) = path.to_str() else { continue };
             body.extend_from_slice(&(name.len() as u32).to_le_bytes());
             body.extend_from_slice(name.as_bytes());
@@ -467,8 +469,8 @@ impl Reuse {
             .lock()
             .map_err(|_| io::Error::other("a build thread panicked"))?;
         // A name that is not UTF-8 is left out (its file is compared next time).
-        let named: Vec<(&str, &FileStamp)> = files
-            .iter()
+        let named: Vec<(&str, &FileStamp)> = by_name(&files)
+            .into_iter()
             .filter_map(|(path, stamp)| Some((path.to_str()?, stamp)))
             .collect();
         body.extend_from_slice(&(named.len() as u32).to_le_bytes());
@@ -485,19 +487,28 @@ impl Reuse {
     }
 }
 
+/// The entries of `map` in the order of their paths' bytes (a plain byte comparison: the
+/// order of `Path`'s own, component by component, costs several times more on 40,000 names).
+fn by_name<T>(map: &FxHashMap<PathBuf, T>) -> Vec<(&PathBuf, &T)> {
+    let mut entries: Vec<_> = map.iter().collect();
+    entries.sort_unstable_by(|a, b| a.0.as_os_str().cmp(b.0.as_os_str()));
+    entries
+}
+
 /// What a record file holds.
 struct Parsed {
-    records: HashMap<PathBuf, Record>,
-    paths: HashMap<Key, Option<BezPath>>,
-    data: HashMap<Key, Vec<u8>>,
-    files: HashMap<PathBuf, FileStamp>,
+    records: FxHashMap<PathBuf, Record>,
+    paths: FxHashMap<Key, Option<BezPath>>,
+    data: FxHashMap<Key, Vec<u8>>,
+    files: FxHashMap<PathBuf, FileStamp>,
 }
 
 /// The records of a record file, or what is wrong with it.
 fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     let mut r = HEADER.open(bytes)?;
-    let count = r.u32()? as usize;
-    let mut records = HashMap::new();
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 4 + 32 + 32)?;
+    let mut records = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let path = relative_path(&mut r)?;
         let key = Key(r.array()?);
@@ -506,8 +517,9 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
             return Err("a path is recorded twice");
         }
     }
-    let count = r.u32()? as usize;
-    let mut paths = HashMap::new();
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 32 + 1)?;
+    let mut paths = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let key = Key(r.array()?);
         let path = match r.array::<1>()?[0] {
@@ -521,7 +533,7 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     }
     let count = r.u32()?;
     let count = r.count(u64::from(count), 32 + 4)?;
-    let mut data = HashMap::with_capacity(count);
+    let mut data = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let key = Key(r.array()?);
         let len = r.u32()? as usize;
@@ -531,7 +543,7 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     }
     let count = r.u32()?;
     let count = r.count(u64::from(count), 4 + 48 + 32)?;
-    let mut files = HashMap::with_capacity(count);
+    let mut files = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let path = relative_path(&mut r)?;
         let mut meta = [0; 6];

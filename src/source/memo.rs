@@ -23,7 +23,7 @@
 //! the same with and without it. Limit: as with the fit cache, a forged file with a valid
 //! checksum is trusted.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 use std::fs;
 use std::io;
 use std::ops::Range;
@@ -88,7 +88,7 @@ pub struct SourceMemo {
     base: Option<(u64, u32, usize)>,
     /// Entries the delta file added.
     delta_entries: usize,
-    earlier: HashMap<[u8; 32], Slot>,
+    earlier: FxHashMap<[u8; 32], Slot>,
     made: Mutex<Vec<([u8; 32], Vec<u8>)>>,
     taken: AtomicUsize,
 }
@@ -324,7 +324,7 @@ fn decode(
     bytes: &[u8],
     bound: Option<(u64, u32)>,
     in_delta: bool,
-) -> Result<HashMap<[u8; 32], Slot>, &'static str> {
+) -> Result<FxHashMap<[u8; 32], Slot>, &'static str> {
     let mut r = header.open(bytes)?;
     if let Some(binding) = bound {
         if (r.u64()?, r.u32()?) != binding {
@@ -333,7 +333,7 @@ fn decode(
     }
     let count = r.u32()?;
     let count = r.count(u64::from(count), 36)?;
-    let mut earlier = HashMap::with_capacity(count);
+    let mut earlier = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let key = r.array()?;
         let len = r.u32()? as usize;

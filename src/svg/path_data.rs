@@ -10,10 +10,11 @@ use super::xml::push_num;
 
 /// Path data of `path` after `transform` (e.g. a y flip), like `M20 0L280 700C…Z`.
 pub fn path_data(path: &BezPath, transform: Affine) -> String {
-    let mut d = String::new();
+    let elements = path.elements();
+    // A cubic takes about 36 bytes, a line 12.
+    let mut d = String::with_capacity(elements.len() * 32);
     let mut current = Point::ORIGIN;
     let mut start = Point::ORIGIN;
-    let elements = path.elements();
     let pt = |d: &mut String, p: Point| {
         let p = transform * p;
         if !d.is_empty() && !d.ends_with(char::is_alphabetic) {

@@ -3,8 +3,6 @@
 //! Hand-written rather than taken from an XML writer crate: we need only escaping, and the
 //! number format (1/100 unit, no trailing zeros, no `-0`) is ours to fix for stable diffs.
 
-use std::fmt::Write;
-
 /// Whether XML 1.0 allows `c` at all (even as a character reference).
 pub fn is_xml_char(c: char) -> bool {
     matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}' | '\u{10000}'..)
@@ -68,8 +66,20 @@ pub fn push_num(out: &mut String, v: f64) {
     }
     let k = k.unsigned_abs();
     let (int, frac) = (k / 100, k % 100);
-    // Integers print without the float machinery.
-    let _ = write!(out, "{int}");
+    // The integer part's digits, last first: `write!` costs several times more through
+    // `core::fmt`, and a large font writes millions of numbers.
+    let mut digits = [0u8; 20];
+    let mut n = int;
+    let mut start = digits.len();
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend(digits[start..].iter().map(|&b| char::from(b)));
     if frac != 0 {
         out.push('.');
         out.push(char::from(b'0' + (frac / 10) as u8));
