@@ -26,9 +26,9 @@ use crate::render::{
     encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
 };
-use crate::reuse::{font_key, KeyBuilder, OutlineKeys, Reuse};
+use crate::reuse::{font_key, glyph_key, KeyBuilder, OutlineKeys, Reuse};
 use crate::source::{check_tolerance_flag, load_family_with, Diagnostic, Severity, SourceMemo};
-use crate::svg::{glyph_svg, output_stem, svg_font, svg_glyph_key};
+use crate::svg::{glyph_elements, glyph_svg, output_stem, svg_font, svg_font_with, svg_glyph_key};
 use crate::write::{OutputSet, WriteError};
 
 /// A font directory loaded and outlined, and the warnings of its sources.
@@ -752,7 +752,28 @@ pub fn svg_outputs_reusing(
     outlines: &OutlineKeys,
 ) -> Vec<OutputFile> {
     let (font_svg, glyphs) = rayon::join(
-        || svg_font(font).into_bytes(),
+        || {
+            // Each glyph's elements kept in the record, as the TTF's and CFF's glyphs are:
+            // writing the path data of 20,000 glyphs was a twelfth of an edited build.
+            svg_font_with(font, |i, g| {
+                if !reuse.is_on() {
+                    return glyph_elements(g);
+                }
+                let outline = outlines.get(i, &g.path);
+                let key = KeyBuilder::new("svg font glyph")
+                    .key(&glyph_key(g, &outline, false))
+                    .finish();
+                let kept = reuse.data_or_make(
+                    key,
+                    |s: &String| s.as_bytes().to_vec(),
+                    |bytes| String::from_utf8(bytes.to_vec()).ok(),
+                    || Ok::<_, Infallible>(glyph_elements(g)),
+                );
+                let Ok(elements) = kept;
+                elements
+            })
+            .into_bytes()
+        },
         || {
             let stems = file_stems(font.glyphs.iter().map(|g| g.name.as_str()));
             font.glyphs

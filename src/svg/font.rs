@@ -16,11 +16,12 @@
 //! consumers (the XML stays valid).
 
 use kurbo::Affine;
+use rayon::prelude::*;
 
 use super::path_data::path_data;
 use super::xml::{escape, is_xml_char, num};
 use crate::model::FontInfo;
-use crate::outline::OutlinedFont;
+use crate::outline::{OutlinedFont, OutlinedGlyph};
 
 /// `(ascent, descent)` as positive integers with `ascent + descent = units_per_em`.
 pub fn ascent_descent(info: &FontInfo) -> (i64, i64) {
@@ -68,8 +69,40 @@ fn glyph_element(
     out.push_str(&format!(" horiz-adv-x=\"{}\" d=\"{d}\"/>\n", num(adv)));
 }
 
+/// The `<glyph>` elements of `g` (not `.notdef`): one per code point XML can hold, in
+/// order, or one without `unicode`.
+pub fn glyph_elements(g: &OutlinedGlyph) -> String {
+    let d = path_data(&g.path, Affine::IDENTITY);
+    let mut cps: Vec<char> = g
+        .unicodes
+        .iter()
+        .copied()
+        .filter(|&c| is_xml_char(c))
+        .collect();
+    cps.sort_unstable();
+    cps.dedup();
+    let mut s = String::with_capacity((d.len() + 80) * cps.len().max(1));
+    if cps.is_empty() {
+        glyph_element(&mut s, "glyph", Some(&g.name), None, g.advance, &d);
+    }
+    for c in cps {
+        glyph_element(&mut s, "glyph", Some(&g.name), Some(c), g.advance, &d);
+    }
+    s
+}
+
 /// The SVG font document for `font`.
 pub fn svg_font(font: &OutlinedFont) -> String {
+    svg_font_with(font, |_, g| glyph_elements(g))
+}
+
+/// [`svg_font`], with each glyph's elements from `elements(index, glyph)`: [`glyph_elements`]
+/// or a copy of it kept from an earlier build. Called on every core, for every glyph but
+/// `.notdef`.
+pub fn svg_font_with(
+    font: &OutlinedFont,
+    elements: impl Fn(usize, &OutlinedGlyph) -> String + Sync,
+) -> String {
     let info = &font.info;
     let (ascent, descent) = ascent_descent(info);
     let (weight, slant) = weight_and_style(&info.style);
@@ -106,22 +139,16 @@ pub fn svg_font(font: &OutlinedFont) -> String {
     ));
     let d = path_data(&missing.path, Affine::IDENTITY);
     glyph_element(&mut s, "missing-glyph", None, None, missing_adv, &d);
-    for g in font.glyphs.iter().filter(|g| g.name != ".notdef") {
-        let d = path_data(&g.path, Affine::IDENTITY);
-        let mut cps: Vec<char> = g
-            .unicodes
-            .iter()
-            .copied()
-            .filter(|&c| is_xml_char(c))
-            .collect();
-        cps.sort_unstable();
-        cps.dedup();
-        if cps.is_empty() {
-            glyph_element(&mut s, "glyph", Some(&g.name), None, g.advance, &d);
-        }
-        for c in cps {
-            glyph_element(&mut s, "glyph", Some(&g.name), Some(c), g.advance, &d);
-        }
+    let elements: Vec<String> = font
+        .glyphs
+        .par_iter()
+        .enumerate()
+        .filter(|(_, g)| g.name != ".notdef")
+        .map(|(i, g)| elements(i, g))
+        .collect();
+    s.reserve(elements.iter().map(String::len).sum());
+    for e in &elements {
+        s.push_str(e);
     }
     for k in &font.kerning {
         let known = |n: &str| n != ".notdef" && font.glyph(n).is_some();

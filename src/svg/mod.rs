@@ -9,7 +9,7 @@ pub mod glyph_set;
 pub mod path_data;
 pub mod xml;
 
-pub use font::svg_font;
+pub use font::{glyph_elements, svg_font, svg_font_with};
 pub use glyph_set::{glyph_set, glyph_svg, svg_glyph_key, GlyphSvg};
 
 use crate::model::FontInfo;
