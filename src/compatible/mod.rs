@@ -1761,29 +1761,24 @@ fn interval_net_bound(
     goal: f64,
     splits: usize,
 ) -> f64 {
-    // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)).
-    let mut values = [[Vec2::ZERO; 5]; 4];
-    for m in 0..5 {
+    // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)), one
+    // column per μ (built in place: zeroed arrays cost a `memset` per call).
+    let columns: [[Vec2; 4]; 5] = std::array::from_fn(|m| {
         let given = match m {
             0 => known[0],
             4 => known[1],
             _ => None,
         };
-        let column = given.unwrap_or_else(|| {
+        given.unwrap_or_else(|| {
             let mu = m as f64 / 4.0;
             let lambda = l0 + mu * (l1 - l0);
             let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
             let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
             net_column(&curve, &blends[m], lambda, (u0, u1))
-        });
-        for (k, row) in values.iter_mut().enumerate() {
-            row[m] = column[k];
-        }
-    }
-    let mut net = [[Vec2::ZERO; 5]; 4];
-    for (coefficients, row) in net.iter_mut().zip(&values) {
-        *coefficients = lambda_bernstein(row);
-    }
+        })
+    });
+    let net: [[Vec2; 5]; 4] =
+        std::array::from_fn(|k| lambda_bernstein(&std::array::from_fn(|m| columns[m][k])));
     let bound = net_bound(&net, goal, GAP_HALVINGS);
     if bound <= goal || splits == 0 {
         return bound;
