@@ -64,9 +64,11 @@ use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 
 use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER_SEGMENT};
 
+mod prepared;
 mod span;
 
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
+use prepared::Prepared;
 use span::{Handle, Part, Power, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
@@ -687,7 +689,7 @@ impl<'a> Fitter<'a> {
             let middle = self.middle.map(|m| &self.probes[m].spline);
             grid.reserve_exact((self.masters.len() + 1) * (steps + 1));
             for m in self.masters.iter().copied().chain(middle) {
-                let segment = m.segment(j);
+                let segment = Prepared::new(&m.segment(j));
                 grid.extend((0..=steps).map(|i| segment.eval_deriv(i as f64 / steps as f64)));
             }
         }
@@ -697,7 +699,7 @@ impl<'a> Fitter<'a> {
             Some(weights) => weights,
             None => &probe.weights,
         };
-        let segment = probe.spline.segment(j);
+        let segment = Prepared::new(&probe.spline.segment(j));
         let mut diff = [(Vec2::ZERO, Vec2::ZERO); GAP_GRID_PER_SEGMENT + 1];
         for (i, slot) in diff.iter_mut().enumerate().take(steps + 1) {
             let (p, d) = segment.eval_deriv(i as f64 / steps as f64);
@@ -1759,29 +1761,24 @@ fn interval_net_bound(
     goal: f64,
     splits: usize,
 ) -> f64 {
-    // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)).
-    let mut values = [[Vec2::ZERO; 5]; 4];
-    for m in 0..5 {
+    // The gap's control points in `s` at μ = 0, 1/4, ..., 1 (λ = l0 + μ (l1 - l0)), one
+    // column per μ (built in place: zeroed arrays cost a `memset` per call).
+    let columns: [[Vec2; 4]; 5] = std::array::from_fn(|m| {
         let given = match m {
             0 => known[0],
             4 => known[1],
             _ => None,
         };
-        let column = given.unwrap_or_else(|| {
+        given.unwrap_or_else(|| {
             let mu = m as f64 / 4.0;
             let lambda = l0 + mu * (l1 - l0);
             let u0 = (1.0 - mu) * ends[0].0 + mu * ends[1].0;
             let u1 = (1.0 - mu) * ends[0].1 + mu * ends[1].1;
             net_column(&curve, &blends[m], lambda, (u0, u1))
-        });
-        for (k, row) in values.iter_mut().enumerate() {
-            row[m] = column[k];
-        }
-    }
-    let mut net = [[Vec2::ZERO; 5]; 4];
-    for (coefficients, row) in net.iter_mut().zip(&values) {
-        *coefficients = lambda_bernstein(row);
-    }
+        })
+    });
+    let net: [[Vec2; 5]; 4] =
+        std::array::from_fn(|k| lambda_bernstein(&std::array::from_fn(|m| columns[m][k])));
     let bound = net_bound(&net, goal, GAP_HALVINGS);
     if bound <= goal || splits == 0 {
         return bound;
@@ -1994,8 +1991,9 @@ fn hull_of_gaps(gaps: &[[Vec2; 4]], goal: f64, halvings: usize) -> f64 {
 /// every point).
 struct Run<'a> {
     spline: &'a XSpline,
-    /// The segment last evaluated and its index (`usize::MAX` before the first).
-    current: (usize, Segment),
+    /// The segment last evaluated, prepared ([`Prepared`]), and its index (`usize::MAX`
+    /// before the first).
+    current: (usize, Prepared),
 }
 
 impl<'a> Run<'a> {
@@ -2007,7 +2005,7 @@ impl<'a> Run<'a> {
         };
         Run {
             spline,
-            current: (usize::MAX, none),
+            current: (usize::MAX, Prepared::new(&none)),
         }
     }
 
@@ -2026,7 +2024,7 @@ impl<'a> Run<'a> {
         // `wrapped` lies in `[0, n)`: through `i64` the same index, more cheaply.
         let j = (wrapped as i64 as usize).min(count - 1);
         if self.current.0 != j {
-            self.current = (j, self.spline.segment(j));
+            self.current = (j, Prepared::new(&self.spline.segment(j)));
         }
         self.current.1.eval_deriv(wrapped - j as f64)
     }
@@ -2097,11 +2095,11 @@ fn blend_gap(masters: &[&XSpline], probe: &Probe, steps: usize) -> f64 {
     // Segment by segment (the masters' segments assembled once each, the probe's kept by
     // a `Run`): the same values as `XSpline::eval` and `fit::distance_to_curve`.
     let mut run = Run::new(spline);
-    let mut segments: Vec<Segment> = Vec::with_capacity(masters.len());
+    let mut segments: Vec<Prepared> = Vec::with_capacity(masters.len());
     let mut gap: f64 = 0.0;
     for j in 0..spline.segment_count() {
         segments.clear();
-        segments.extend(masters.iter().map(|m| m.segment(j)));
+        segments.extend(masters.iter().map(|m| Prepared::new(&m.segment(j))));
         for i in 0..GAP_SAMPLES_PER_SEGMENT {
             let t = (j * GAP_SAMPLES_PER_SEGMENT + i) as f64 / GAP_SAMPLES_PER_SEGMENT as f64;
             let local = t - j as f64;
