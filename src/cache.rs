@@ -769,9 +769,12 @@ impl Reader<'_> {
     }
     /// `count` control points (x, y, s as bits).
     fn points(&mut self, count: usize) -> Result<Vec<[u64; 3]>, &'static str> {
-        (0..count)
-            .map(|_| Ok([self.u64()?, self.u64()?, self.u64()?]))
-            .collect()
+        // Pushed: collecting through `Result` would grow the vector step by step.
+        let mut points = Vec::with_capacity(count);
+        for _ in 0..count {
+            points.push([self.u64()?, self.u64()?, self.u64()?]);
+        }
+        Ok(points)
     }
 }
 

@@ -155,24 +155,26 @@ impl<'a> Reader<'a> {
     pub(crate) fn path(&mut self) -> Result<BezPath, &'static str> {
         let count = self.u32()?;
         let count = self.count(u64::from(count), 1)?;
-        let mut path = BezPath::new();
+        // The elements go into a vector of the right size (pushing onto a `BezPath` grows
+        // it step by step); each subpath starts with a move, as `BezPath` expects.
+        let mut elements = Vec::with_capacity(count);
         let mut open = false;
         for _ in 0..count {
             let tag = self.u8()?;
-            match (tag, open) {
-                (TAG_MOVE, false) => path.move_to(self.point()?),
-                (TAG_LINE, true) => path.line_to(self.point()?),
-                (TAG_QUAD, true) => path.quad_to(self.point()?, self.point()?),
-                (TAG_CUBIC, true) => path.curve_to(self.point()?, self.point()?, self.point()?),
-                (TAG_CLOSE, true) => path.close_path(),
+            elements.push(match (tag, open) {
+                (TAG_MOVE, false) => PathEl::MoveTo(self.point()?),
+                (TAG_LINE, true) => PathEl::LineTo(self.point()?),
+                (TAG_QUAD, true) => PathEl::QuadTo(self.point()?, self.point()?),
+                (TAG_CUBIC, true) => PathEl::CurveTo(self.point()?, self.point()?, self.point()?),
+                (TAG_CLOSE, true) => PathEl::ClosePath,
                 _ => return Err("an outline is not closed subpaths"),
-            }
+            });
             open = tag != TAG_CLOSE;
         }
         if open {
             return Err("an outline is not closed subpaths");
         }
-        Ok(path)
+        Ok(BezPath::from_vec(elements))
     }
 }
 

@@ -39,6 +39,7 @@
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
 use std::collections::{BTreeMap, HashMap};
+use std::ops::Range;
 
 use rustc_hash::FxHashMap;
 use std::fs;
@@ -183,7 +184,10 @@ pub struct Reuse {
     /// Those of this build.
     now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
     /// Glyph data made by the last build ([`Reuse::data_or_make`]), by key.
-    earlier_data: FxHashMap<Key, Vec<u8>>,
+    earlier_data: FxHashMap<Key, Range<usize>>,
+    /// The last build's record file, which those ranges index (the data is not copied out:
+    /// a CJK font keeps 85 MB of it).
+    earlier_bytes: Vec<u8>,
     /// Those of this build; `None`: the last build's, unchanged (not copied).
     now_data: Mutex<BTreeMap<Key, Option<Vec<u8>>>>,
     /// The output files as the last build's commit left them, by path relative to `out`.
@@ -222,6 +226,7 @@ impl Reuse {
                 reuse.earlier_paths = parsed.paths;
                 reuse.earlier_data = parsed.data;
                 reuse.earlier_files = parsed.files;
+                reuse.earlier_bytes = bytes;
                 (reuse, None)
             }
             Err(why) => (reuse, Some(why.to_string())),
@@ -347,7 +352,10 @@ impl Reuse {
         if self.out.is_none() {
             return make();
         }
-        let earlier = self.earlier_data.get(&key).and_then(|bytes| decode(bytes));
+        let earlier = self
+            .earlier_data
+            .get(&key)
+            .and_then(|range| decode(self.earlier_bytes.get(range.clone())?));
         let (value, bytes) = match earlier {
             Some(value) => (value, None),
             None => {
@@ -409,7 +417,9 @@ impl Reuse {
             return Ok(());
         };
         let path = out.join(REUSE_FILE);
-        if fs::read(&path).is_ok_and(|old| old == body) {
+        // The file held `earlier_bytes` when this build loaded it: when the body differs
+        // from them, it is written without reading the file again (90 MB for a CJK font).
+        if body == self.earlier_bytes && fs::read(&path).is_ok_and(|old| old == body) {
             return Ok(());
         }
         crate::write::write_atomic(&path, &body)
@@ -426,6 +436,8 @@ impl Reuse {
             .lock()
             .map_err(|_| io::Error::other("a build thread panicked"))?;
         let mut body = HEADER.start();
+        // About the last record's size: growing a 90 MB vector by doubling copies it.
+        body.reserve(self.earlier_bytes.len() + self.earlier_bytes.len() / 16);
         body.extend_from_slice(&(now.len() as u32).to_le_bytes());
         for (path, record) in by_name(&now) {
             let Some(name) = path.to_str() else { continue };
@@ -454,9 +466,12 @@ impl Reuse {
             .lock()
             .map_err(|_| io::Error::other("a build thread panicked"))?;
         // `None` was taken from `earlier_data`, so it is there.
-        let data: Vec<(&Key, &Vec<u8>)> = data
+        let data: Vec<(&Key, &[u8])> = data
             .iter()
-            .filter_map(|(key, bytes)| Some((key, bytes.as_ref().or(self.earlier_data.get(key))?)))
+            .filter_map(|(key, bytes)| {
+                let earlier = || self.earlier_bytes.get(self.earlier_data.get(key)?.clone());
+                Some((key, bytes.as_deref().or_else(earlier)?))
+            })
             .collect();
         body.extend_from_slice(&(data.len() as u32).to_le_bytes());
         for (key, bytes) in data {
@@ -499,7 +514,8 @@ fn by_name<T>(map: &FxHashMap<PathBuf, T>) -> Vec<(&PathBuf, &T)> {
 struct Parsed {
     records: FxHashMap<PathBuf, Record>,
     paths: FxHashMap<Key, Option<BezPath>>,
-    data: FxHashMap<Key, Vec<u8>>,
+    /// Where each glyph datum lies in the file's bytes.
+    data: FxHashMap<Key, Range<usize>>,
     files: FxHashMap<PathBuf, FileStamp>,
 }
 
@@ -537,7 +553,9 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     for _ in 0..count {
         let key = Key(r.array()?);
         let len = r.u32()? as usize;
-        if data.insert(key, r.take(len)?.to_vec()).is_some() {
+        let datum = r.take(len)?;
+        let start = datum.as_ptr() as usize - bytes.as_ptr() as usize;
+        if data.insert(key, start..start + len).is_some() {
             return Err("glyph data is recorded twice");
         }
     }

@@ -443,9 +443,13 @@ fn read_count(r: &mut Reader<'_>, min_size: usize) -> Result<usize, &'static str
 
 fn read_offsets(r: &mut Reader<'_>) -> Result<Vec<usize>, &'static str> {
     let n = read_count(r, 8)?;
-    (0..n)
-        .map(|_| usize::try_from(r.u64()?).map_err(|_| "an offset is too large"))
-        .collect()
+    // Pushed into a vector of the right size: collecting through `Result` would grow it
+    // step by step (its size hint is lost).
+    let mut offsets = Vec::with_capacity(n);
+    for _ in 0..n {
+        offsets.push(usize::try_from(r.u64()?).map_err(|_| "an offset is too large")?);
+    }
+    Ok(offsets)
 }
 
 fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
@@ -458,10 +462,11 @@ fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
     let n = read_count(r, 4)?;
     let mut contours = Vec::with_capacity(n);
     for _ in 0..n {
-        let points = read_count(r, 24)?;
-        let points = (0..points)
-            .map(|_| Ok(ControlPoint::new(r.f64()?, r.f64()?, r.f64()?)))
-            .collect::<Result<Vec<_>, &'static str>>()?;
+        let count = read_count(r, 24)?;
+        let mut points = Vec::with_capacity(count);
+        for _ in 0..count {
+            points.push(ControlPoint::new(r.f64()?, r.f64()?, r.f64()?));
+        }
         contours.push(Contour::new(points).map_err(|_| "a contour is not a valid X-spline")?);
     }
     let n = read_count(r, 20)?;
@@ -495,9 +500,10 @@ fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
     }
     let span_anchors = read_offsets(r)?;
     let n = read_count(r, 4)?;
-    let points = (0..n)
-        .map(|_| read_offsets(r))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut points = Vec::with_capacity(n);
+    for _ in 0..n {
+        points.push(read_offsets(r)?);
+    }
     let glyph = Glyph {
         name,
         unicodes,
