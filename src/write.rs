@@ -342,12 +342,7 @@ impl Transaction {
         let changed: Vec<bool> = files
             .par_iter()
             .enumerate()
-            .map(|(k, (path, bytes))| {
-                let stamp = earlier
-                    .get(path)
-                    .filter(|s| hashes.get(k) == Some(&s.sha256));
-                !unchanged(path, bytes, stamp)
-            })
+            .map(|(k, (path, bytes))| !unchanged(path, bytes, earlier.get(path), hashes.get(k)))
             .collect();
         let mut cleaned = std::collections::HashSet::new();
         let mut to_stage = Vec::new();
@@ -680,14 +675,22 @@ fn process_alive(pid: u32) -> bool {
 
 /// Whether `path` is a regular file (not a link) holding exactly `bytes` already: then the
 /// commit leaves it alone (no staging, no rename, no flush), so a rebuild that changes one
-/// glyph rewrites only the files that glyph is in. A `stamp` of these bytes whose metadata
-/// the file still has answers without reading it; otherwise the file is read and compared.
-/// Any doubt (unreadable, a link, another length) counts as changed.
-fn unchanged(path: &Path, bytes: &[u8], stamp: Option<&FileStamp>) -> bool {
+/// glyph rewrites only the files that glyph is in. The file's `stamp` from the last commit,
+/// when the file still has its metadata, answers without reading it: the file holds the
+/// bytes the stamp hashed, so it holds `bytes` when their hash `sha256` is the stamp's
+/// (a 14 MB TTF of the same length is not read to find it changed). Otherwise the file is
+/// read and compared. Any doubt (unreadable, a link, another length) counts as changed.
+fn unchanged(
+    path: &Path,
+    bytes: &[u8],
+    stamp: Option<&FileStamp>,
+    sha256: Option<&[u8; 32]>,
+) -> bool {
     match fs::symlink_metadata(path) {
         Ok(meta) if meta.is_file() && meta.len() == bytes.len() as u64 => {
-            if stamp.is_some_and(|s| stamp_meta(&meta) == Some(s.meta)) {
-                return true;
+            let stamp = stamp.filter(|s| stamp_meta(&meta) == Some(s.meta));
+            if let (Some(stamp), Some(sha256)) = (stamp, sha256) {
+                return stamp.sha256 == *sha256;
             }
             fs::read(path).is_ok_and(|old| old == bytes)
         }
@@ -852,13 +855,29 @@ mod tests {
             .commit()
             .unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), b"YYYY");
-        // A stamp of other bytes is not used: the file is compared and rewritten.
+        // A stamp of other bytes answers too, unread: the file is rewritten.
         let other = FileStamp::of(&a, sha256(b"new2")).unwrap();
         set("new1")
             .trusting(HashMap::from([(a.clone(), other)]))
             .commit()
             .unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), b"new1");
+        // Even when the file holds the new bytes already (the stamp forged again): it is
+        // replaced (another inode) rather than read and compared.
+        std::thread::sleep(SETTLED * 2);
+        use std::os::unix::fs::MetadataExt;
+        let inode = std::fs::metadata(&a).unwrap().ino();
+        let forged = FileStamp::of(&a, sha256(b"new2")).unwrap();
+        set("new1")
+            .trusting(HashMap::from([(a.clone(), forged)]))
+            .commit()
+            .unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"new1");
+        assert_ne!(std::fs::metadata(&a).unwrap().ino(), inode);
+        // Without a stamp it is read, found the same and left alone.
+        let inode = std::fs::metadata(&a).unwrap().ino();
+        set("new1").commit().unwrap();
+        assert_eq!(std::fs::metadata(&a).unwrap().ino(), inode);
     }
 
     #[cfg(unix)]
