@@ -293,6 +293,34 @@ pub struct Segment {
     pub s2: f64,
 }
 
+/// The point the raw weights `w` (with their derivatives, unused here) make of `q`: the
+/// weights are normalised before they are summed (see [`Segment::eval`]).
+#[inline]
+pub(crate) fn blend_point(q: &[Point; 4], w: [(f64, f64); 4]) -> Point {
+    let total: f64 = w.iter().map(|(a, _)| a).sum();
+    let mut sum = Vec2::ZERO;
+    for (q, (a, _)) in q.iter().zip(w) {
+        sum += (a / total) * q.to_vec2();
+    }
+    sum.to_point()
+}
+
+/// Point and first derivative the raw weights and their derivatives `w` make of `q`
+/// (quotient rule).
+#[inline]
+pub(crate) fn blend_deriv(q: &[Point; 4], w: [(f64, f64); 4]) -> (Point, Vec2) {
+    let den: f64 = w.iter().map(|(a, _)| a).sum();
+    let (mut p, mut dnum, mut dden) = (Vec2::ZERO, Vec2::ZERO, 0.0);
+    for (q, (a, da)) in q.iter().zip(w) {
+        // Normalised first, as in `eval`: exact at interpolated control points.
+        p += (a / den) * q.to_vec2();
+        dnum += da * q.to_vec2();
+        dden += da;
+    }
+    let d = (dnum - p * dden) / den;
+    (p.to_point(), d)
+}
+
 impl Segment {
     /// Raw (unnormalised) blending weights `A0..A3` at `t ∈ [0, 1]`.
     pub fn weights(&self, t: f64) -> [f64; 4] {
@@ -306,28 +334,12 @@ impl Segment {
     /// through a control point (one weight alone) the result is that point exactly, not a
     /// rounding away from it (a sharp point must be an exact vertex of every output).
     pub fn eval(&self, t: f64) -> Point {
-        let w = weights_with_deriv(t, self.s1, self.s2);
-        let total: f64 = w.iter().map(|(a, _)| a).sum();
-        let mut sum = Vec2::ZERO;
-        for (q, (a, _)) in self.q.iter().zip(w) {
-            sum += (a / total) * q.to_vec2();
-        }
-        sum.to_point()
+        blend_point(&self.q, weights_with_deriv(t, self.s1, self.s2))
     }
 
     /// Point and exact first derivative at `t` (quotient rule on the weights).
     pub fn eval_deriv(&self, t: f64) -> (Point, Vec2) {
-        let w = weights_with_deriv(t, self.s1, self.s2);
-        let den: f64 = w.iter().map(|(a, _)| a).sum();
-        let (mut p, mut dnum, mut dden) = (Vec2::ZERO, Vec2::ZERO, 0.0);
-        for (q, (a, da)) in self.q.iter().zip(w) {
-            // Normalised first, as in `eval`: exact at interpolated control points.
-            p += (a / den) * q.to_vec2();
-            dnum += da * q.to_vec2();
-            dden += da;
-        }
-        let d = (dnum - p * dden) / den;
-        (p.to_point(), d)
+        blend_deriv(&self.q, weights_with_deriv(t, self.s1, self.s2))
     }
 
     /// Unit direction in which the curve leaves `Q1` (t = 0+), exact also at a sharp point.

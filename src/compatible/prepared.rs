@@ -13,7 +13,7 @@
 
 use kurbo::{Point, Vec2};
 
-use crate::xspline::Segment;
+use crate::xspline::{blend_deriv, blend_point, Segment};
 
 /// The shape-dependent part of one end's two blending functions.
 #[derive(Clone, Copy, Debug)]
@@ -141,28 +141,13 @@ impl Prepared {
     /// The point at `t`, as [`Segment::eval`] computes it.
     #[inline]
     pub(super) fn eval(&self, t: f64) -> Point {
-        let w = self.weights(t);
-        let total: f64 = w.iter().map(|(a, _)| a).sum();
-        let mut sum = Vec2::ZERO;
-        for (q, (a, _)) in self.q.iter().zip(w) {
-            sum += (a / total) * q.to_vec2();
-        }
-        sum.to_point()
+        blend_point(&self.q, self.weights(t))
     }
 
     /// Point and first derivative at `t`, as [`Segment::eval_deriv`] computes them.
     #[inline]
     pub(super) fn eval_deriv(&self, t: f64) -> (Point, Vec2) {
-        let w = self.weights(t);
-        let den: f64 = w.iter().map(|(a, _)| a).sum();
-        let (mut p, mut dnum, mut dden) = (Vec2::ZERO, Vec2::ZERO, 0.0);
-        for (q, (a, da)) in self.q.iter().zip(w) {
-            p += (a / den) * q.to_vec2();
-            dnum += da * q.to_vec2();
-            dden += da;
-        }
-        let d = (dnum - p * dden) / den;
-        (p.to_point(), d)
+        blend_deriv(&self.q, self.weights(t))
     }
 }
 
