@@ -39,16 +39,15 @@
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
 use std::collections::{BTreeMap, HashMap};
-use std::ops::Range;
-
-use rustc_hash::FxHashMap;
 use std::fs;
 use std::io;
+use std::ops::Range;
 use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
 use kurbo::BezPath;
+use rustc_hash::FxHashMap;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
 use crate::record::{put_path, Header, Reader};

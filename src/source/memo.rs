@@ -23,13 +23,14 @@
 //! the same with and without it. Limit: as with the fit cache, a forged file with a valid
 //! checksum is trusted.
 
-use rustc_hash::FxHashMap;
 use std::fs;
 use std::io;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+
+use rustc_hash::FxHashMap;
 
 use super::glyph::GlyphSpans;
 use crate::model::{Anchor, Component, Contour, Glyph};
