@@ -9,8 +9,19 @@
 //! After a successful build, [`Reuse::save`] records in [`REUSE_FILE`] (in OUT, beside the fit
 //! cache) each output's path, key and the SHA-256 of the bytes written.
 //!
+//! A rebuild that changed few entries writes only a delta file beside the record
+//! ([`DELTA_FILE`]: the entries the record file lacks as they are now, bound to it by its
+//! length and checksum), so that an edit of one glyph does not rewrite a CJK font's 90 MB;
+//! the record file is written whole again when the delta and the record file's unused
+//! entries pass an eighth of its entries ([`Reuse::files_to_save`]). Limit: until then the
+//! record file keeps the entries of edited glyphs, and the two files depend on the order
+//! of the edits, not only on the sources.
+//!
 //! Nothing is trusted. The record file is checked whole (magic, version, CRC-32, counts,
-//! paths, no duplicate, no trailing byte) or ignored. A file is reused only when the
+//! paths, no duplicate, no trailing byte) or ignored; so is the delta file, which is also
+//! ignored when it is bound to another record file (the one a whole rewrite leaves
+//! behind). A union's outline is decoded when a build uses it, and one that does not
+//! decode whole is made anew. A file is reused only when the
 //! record's key equals the new key *and* the file in OUT still holds the recorded bytes
 //! (read and hashed again): a file edited, truncated or replaced since is made anew. The
 //! sources stay the only source of truth; no modification time is read. Outputs are
@@ -38,9 +49,9 @@
 //! Limit: a key is as complete as the code that builds it; an output depends only on what
 //! its key lists (see the callers: [`crate::pipeline`], [`crate::render::sheet`]).
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::fs;
-use std::io;
+use std::io::{self, Read};
 use std::ops::Range;
 use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -50,7 +61,7 @@ use kurbo::BezPath;
 use rustc_hash::FxHashMap;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::record::{put_path, Header, Reader};
+use crate::record::{put_path, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE, TAG_QUAD};
 use crate::write::FileStamp;
 use sha2::{Digest, Sha256};
 
@@ -65,6 +76,22 @@ const HEADER: Header = Header {
 };
 /// Layout of the record file.
 const FORMAT_VERSION: u32 = 3;
+
+/// Name of the delta file beside it: the entries of the builds since the record file was
+/// last written whole ([`Reuse::files_to_save`]).
+pub const DELTA_FILE: &str = ".xglyph-outputs-delta";
+
+/// The frame of a delta file.
+const DELTA_HEADER: Header = Header {
+    magic: b"XGLYPHOD",
+    version: FORMAT_VERSION,
+    not_ours: "it is not an xglyph output record delta",
+};
+
+/// The delta file may hold at most this fraction (1 / n) of the record file's entry count,
+/// counting with it the record file's entries no longer used; beyond, the record file is
+/// written whole again.
+const DELTA_SHARE: usize = 8;
 
 /// What an output's bytes are made from, hashed (SHA-256).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -167,34 +194,73 @@ struct Record {
     bytes: [u8; 32],
 }
 
+/// An entry of the last build's record, and whether it came from the delta file.
+#[derive(Clone, Debug)]
+struct Earlier<T> {
+    value: T,
+    in_delta: bool,
+}
+
+impl<T> Earlier<T> {
+    fn new(value: T, in_delta: bool) -> Self {
+        Earlier { value, in_delta }
+    }
+}
+
+/// What binds a delta file to its record file: the record file's length and checksum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Binding {
+    len: u64,
+    crc: u32,
+}
+
+impl Binding {
+    /// The binding of a record file's `bytes` (its last four bytes are its checksum).
+    fn of(bytes: &[u8]) -> Binding {
+        let crc = bytes
+            .split_last_chunk::<4>()
+            .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
+        Binding {
+            len: bytes.len() as u64,
+            crc,
+        }
+    }
+}
+
 /// The outputs of the last build of an output folder, and those of this one.
 #[derive(Debug, Default)]
 pub struct Reuse {
     /// The output folder (`None`: reuse nothing, record nothing).
     out: Option<PathBuf>,
     /// The last build's records, by path relative to `out`.
-    earlier: FxHashMap<PathBuf, Record>,
+    earlier: FxHashMap<PathBuf, Earlier<Record>>,
     /// This build's records (sorted when saved).
     now: Mutex<FxHashMap<PathBuf, Record>>,
     reused: AtomicUsize,
-    /// Outlines made from outlines (a glyph's contours unioned) by the last build, by key;
-    /// `None` when the outline was its input unchanged (most glyphs: no overlap).
-    earlier_paths: FxHashMap<Key, Option<BezPath>>,
-    /// Those of this build.
-    now_paths: Mutex<BTreeMap<Key, Option<BezPath>>>,
-    /// Glyph data made by the last build ([`Reuse::data_or_make`]), by key.
-    earlier_data: FxHashMap<Key, Range<usize>>,
-    /// The last build's record file, which those ranges index (the data is not copied out:
-    /// a CJK font keeps 85 MB of it).
+    /// Outlines made from outlines (a glyph's contours unioned) by the last build, by key:
+    /// where each entry (a tag, then the outline unless it was its input unchanged, as for
+    /// most glyphs: no overlap) lies in `earlier_bytes`. Decoded only when used.
+    earlier_paths: FxHashMap<Key, Earlier<Range<usize>>>,
+    /// Those of this build, as entries; `None`: the last build's, unchanged (not copied).
+    now_paths: Mutex<FxHashMap<Key, Option<Vec<u8>>>>,
+    /// Glyph data made by the last build ([`Reuse::data_or_make`]), by key: where it lies
+    /// in `earlier_bytes`.
+    earlier_data: FxHashMap<Key, Earlier<Range<usize>>>,
+    /// The last build's record file, then its delta file, which those ranges index (the
+    /// data is not copied out: a CJK font keeps 85 MB of it).
     earlier_bytes: Vec<u8>,
     /// Those of this build; `None`: the last build's, unchanged (not copied).
-    now_data: Mutex<BTreeMap<Key, Option<Vec<u8>>>>,
+    now_data: Mutex<FxHashMap<Key, Option<Vec<u8>>>>,
     /// The output files as the last build's commit left them, by path relative to `out`.
-    earlier_files: FxHashMap<PathBuf, FileStamp>,
+    earlier_files: FxHashMap<PathBuf, Earlier<FileStamp>>,
     /// As this build's commit left them (sorted when saved).
     now_files: Mutex<FxHashMap<PathBuf, FileStamp>>,
     /// Outputs left in OUT unmade ([`Reuse::kept_or_make`]), by path relative to `out`.
     kept: Mutex<Vec<PathBuf>>,
+    /// The record file loaded: its binding and entry count; and where the delta file loaded
+    /// with it lies in `earlier_bytes`.
+    base: Option<(Binding, usize)>,
+    delta: Option<Range<usize>>,
 }
 
 impl Reuse {
@@ -203,8 +269,10 @@ impl Reuse {
         Reuse::default()
     }
 
-    /// The records of the output folder `out`, and why they were ignored, if they were
-    /// (a missing file is not a reason: a first build has none).
+    /// The records of the output folder `out` (the record file and its delta file), and why
+    /// they were ignored, if they were (a missing file is not a reason: a first build has
+    /// none; a delta file that is damaged or bound to another record file is ignored
+    /// silently, as the one a whole rewrite leaves behind is).
     pub fn load(out: &Path) -> (Self, Option<String>) {
         let mut reuse = Reuse {
             out: Some(out.to_path_buf()),
@@ -214,22 +282,49 @@ impl Reuse {
             reuse.out = None;
             return (reuse, Some("the program's own file cannot be read".into()));
         }
-        let bytes = match fs::read(out.join(REUSE_FILE)) {
-            Ok(bytes) => bytes,
+        let (path, delta_path) = (out.join(REUSE_FILE), out.join(DELTA_FILE));
+        // Both files in one buffer, so that every range indexes it: room for the delta is
+        // made first (growing a 90 MB vector copies it).
+        let delta_len = fs::metadata(&delta_path).map_or(0, |m| m.len() as usize);
+        let mut bytes = Vec::new();
+        let read = fs::File::open(&path).and_then(|mut f| {
+            let len = f.metadata()?.len() as usize;
+            bytes.reserve_exact(len.saturating_add(delta_len));
+            f.read_to_end(&mut bytes)
+        });
+        match read {
+            Ok(_) => {}
             Err(e) if e.kind() == io::ErrorKind::NotFound => return (reuse, None),
             Err(e) => return (reuse, Some(crate::write::reason(&e))),
-        };
-        match parse(&bytes) {
-            Ok(parsed) => {
-                reuse.earlier = parsed.records;
-                reuse.earlier_paths = parsed.paths;
-                reuse.earlier_data = parsed.data;
-                reuse.earlier_files = parsed.files;
-                reuse.earlier_bytes = bytes;
-                (reuse, None)
-            }
-            Err(why) => (reuse, Some(why.to_string())),
         }
+        let base = Binding::of(&bytes);
+        let mut parsed = match HEADER
+            .open(&bytes)
+            .and_then(|mut r| parse(&mut r, &bytes, false))
+        {
+            Ok(parsed) => parsed,
+            Err(why) => return (reuse, Some(why.to_string())),
+        };
+        reuse.base = Some((base, parsed.entries()));
+        let base_len = bytes.len();
+        if fs::File::open(&delta_path)
+            .and_then(|mut f| f.read_to_end(&mut bytes))
+            .is_ok()
+        {
+            match parse_delta(&bytes, base_len, base) {
+                Ok(delta) => {
+                    parsed.merge(delta);
+                    reuse.delta = Some(base_len..bytes.len());
+                }
+                Err(_) => bytes.truncate(base_len),
+            }
+        }
+        reuse.earlier = parsed.records;
+        reuse.earlier_paths = parsed.paths;
+        reuse.earlier_data = parsed.data;
+        reuse.earlier_files = parsed.files;
+        reuse.earlier_bytes = bytes;
+        (reuse, None)
     }
 
     /// The bytes of the output `path` (relative to OUT): the file in OUT when the last build
@@ -243,7 +338,8 @@ impl Reuse {
         let Some(out) = &self.out else {
             return make();
         };
-        if let Some(earlier) = self.earlier.get(path).filter(|r| r.key == key) {
+        let earlier = self.earlier.get(path).map(|e| &e.value);
+        if let Some(earlier) = earlier.filter(|r| r.key == key) {
             if let Ok(bytes) = fs::read(out.join(path)) {
                 if digest(&bytes) == earlier.bytes {
                     self.reused.fetch_add(1, Ordering::Relaxed);
@@ -275,11 +371,12 @@ impl Reuse {
         let Some(out) = &self.out else {
             return make().map(Some);
         };
-        let earlier = self.earlier.get(path).filter(|r| r.key == key);
-        if let Some(earlier) = earlier {
+        let earlier = self.earlier.get(path).map(|e| &e.value);
+        if let Some(earlier) = earlier.filter(|r| r.key == key) {
             let stamp = self
                 .earlier_files
                 .get(path)
+                .map(|e| &e.value)
                 .filter(|s| s.sha256 == earlier.bytes);
             if let Some(stamp) = stamp.filter(|s| s.matches(&out.join(path))) {
                 self.record(path, *earlier);
@@ -322,17 +419,20 @@ impl Reuse {
         if self.out.is_none() {
             return make();
         }
-        let (path, stored) = match self.earlier_paths.get(&key) {
-            Some(None) => (input.clone(), None),
-            Some(Some(path)) => (path.clone(), Some(path.clone())),
+        let earlier = self.earlier_paths.get(&key).and_then(|e| {
+            let entry = self.earlier_bytes.get(e.value.clone())?;
+            union_from_entry(entry, input)
+        });
+        let (path, entry) = match earlier {
+            Some(path) => (path, None),
             None => {
                 let path = make();
-                let stored = (path != *input).then(|| path.clone());
-                (path, stored)
+                let entry = union_entry(&path, input);
+                (path, Some(entry))
             }
         };
         if let Ok(mut now) = self.now_paths.lock() {
-            now.insert(key, stored);
+            now.insert(key, entry);
         }
         path
     }
@@ -354,7 +454,7 @@ impl Reuse {
         let earlier = self
             .earlier_data
             .get(&key)
-            .and_then(|range| decode(self.earlier_bytes.get(range.clone())?));
+            .and_then(|e| decode(self.earlier_bytes.get(e.value.clone())?));
         let (value, bytes) = match earlier {
             Some(value) => (value, None),
             None => {
@@ -382,7 +482,7 @@ impl Reuse {
             Some(out) => self
                 .earlier_files
                 .iter()
-                .map(|(path, stamp)| (out.join(path), *stamp))
+                .map(|(path, stamp)| (out.join(path), stamp.value))
                 .collect(),
             None => HashMap::new(),
         }
@@ -409,86 +509,157 @@ impl Reuse {
         self.reused.load(Ordering::Relaxed)
     }
 
-    /// Writes this build's records into OUT (atomically); call it once every output is
-    /// written. Nothing without an output folder.
+    /// Writes this build's records into OUT (atomically; [`Reuse::files_to_save`]); call it
+    /// once every output is written. Nothing without an output folder.
     pub fn save(&self) -> io::Result<()> {
-        let (Some(out), Some(body)) = (&self.out, self.bytes_to_save()?) else {
-            return Ok(());
-        };
-        let path = out.join(REUSE_FILE);
-        // The file held `earlier_bytes` when this build loaded it: when the body differs
-        // from them, it is written without reading the file again (90 MB for a CJK font).
-        if body == self.earlier_bytes && fs::read(&path).is_ok_and(|old| old == body) {
-            return Ok(());
+        for (path, bytes) in self.files_to_save()? {
+            crate::write::write_atomic(&path, &bytes)?;
         }
-        crate::write::write_atomic(&path, &body)
+        Ok(())
     }
 
-    /// The bytes [`Reuse::save`] writes into OUT's [`REUSE_FILE`] (`None` without an output
-    /// folder).
-    pub fn bytes_to_save(&self) -> io::Result<Option<Vec<u8>>> {
-        if self.out.is_none() {
-            return Ok(None);
+    /// What [`Reuse::save`] writes into OUT (none without an output folder): nothing when
+    /// the files there hold this build's records already; only the delta file
+    /// ([`DELTA_FILE`]: the entries not in the record file as they are now, bound to it by
+    /// its length and checksum) when the record file is the one loaded and the delta's
+    /// entries with the record file's unused ones are at most 1/8 of its entries, so that an
+    /// edit of one glyph does not rewrite a CJK font's 90 MB; else [`REUSE_FILE`] whole,
+    /// which leaves any delta file bound to the old one.
+    pub fn files_to_save(&self) -> io::Result<Vec<(PathBuf, Vec<u8>)>> {
+        let Some(out) = &self.out else {
+            return Ok(Vec::new());
+        };
+        let poisoned = || io::Error::other("a build thread panicked");
+        let now = self.now.lock().map_err(|_| poisoned())?;
+        let paths = self.now_paths.lock().map_err(|_| poisoned())?;
+        let data = self.now_data.lock().map_err(|_| poisoned())?;
+        let files = self.now_files.lock().map_err(|_| poisoned())?;
+        // Each entry with whether the record file holds it as it is now.
+        let records: Vec<(&str, Record, bool)> = by_name(&now)
+            .into_iter()
+            .map(|(name, r)| {
+                let e = self.earlier.get(Path::new(name));
+                (name, *r, e.is_some_and(|e| !e.in_delta && e.value == *r))
+            })
+            .collect();
+        let stamps: Vec<(&str, FileStamp, bool)> = by_name(&files)
+            .into_iter()
+            .map(|(name, s)| {
+                let e = self.earlier_files.get(Path::new(name));
+                (name, *s, e.is_some_and(|e| !e.in_delta && e.value == *s))
+            })
+            .collect();
+        let whole = Sections {
+            records,
+            paths: self.entries(&paths, &self.earlier_paths),
+            data: self.entries(&data, &self.earlier_data),
+            files: stamps,
+        };
+        if let Some((binding, base_entries)) = self.base {
+            let delta = whole.not_in_base();
+            let unused = base_entries.saturating_sub(whole.len() - delta.len());
+            if (unused + delta.len()) * DELTA_SHARE <= base_entries {
+                if delta.len() == 0 && self.delta.is_none() {
+                    return Ok(Vec::new());
+                }
+                let mut bytes = DELTA_HEADER.start();
+                bytes.extend_from_slice(&binding.len.to_le_bytes());
+                bytes.extend_from_slice(&binding.crc.to_le_bytes());
+                delta.encode(&mut bytes);
+                Header::seal(&mut bytes);
+                let loaded = self
+                    .delta
+                    .as_ref()
+                    .and_then(|r| self.earlier_bytes.get(r.clone()));
+                if loaded == Some(&bytes[..]) {
+                    return Ok(Vec::new());
+                }
+                return Ok(vec![(out.join(DELTA_FILE), bytes)]);
+            }
         }
-        let now = self
-            .now
-            .lock()
-            .map_err(|_| io::Error::other("a build thread panicked"))?;
         let mut body = HEADER.start();
         // About the last record's size: growing a 90 MB vector by doubling copies it.
         body.reserve(self.earlier_bytes.len() + self.earlier_bytes.len() / 16);
-        body.extend_from_slice(&(now.len() as u32).to_le_bytes());
-        for (path, record) in by_name(&now) {
-            let Some(name) = path.to_str() else { continue };
+        whole.encode(&mut body);
+        Header::seal(&mut body);
+        Ok(vec![(out.join(REUSE_FILE), body)])
+    }
+
+    /// This build's entries of one kind (`now`; `None` stands for the last build's entry in
+    /// `before`), sorted by key, each with whether the record file holds it.
+    fn entries<'a>(
+        &'a self,
+        now: &'a FxHashMap<Key, Option<Vec<u8>>>,
+        before: &FxHashMap<Key, Earlier<Range<usize>>>,
+    ) -> Vec<(Key, &'a [u8], bool)> {
+        let mut entries = Vec::with_capacity(now.len());
+        for (key, bytes) in now {
+            match (bytes, before.get(key)) {
+                (Some(bytes), _) => entries.push((*key, bytes.as_slice(), false)),
+                (None, Some(e)) => {
+                    if let Some(bytes) = self.earlier_bytes.get(e.value.clone()) {
+                        entries.push((*key, bytes, !e.in_delta));
+                    }
+                }
+                (None, None) => {}
+            }
+        }
+        entries.sort_unstable_by_key(|e| e.0);
+        entries
+    }
+}
+
+/// A record's four kinds of entries, each sorted (by name or by key), with whether the
+/// record file holds it as it is.
+struct Sections<'a> {
+    records: Vec<(&'a str, Record, bool)>,
+    paths: Vec<(Key, &'a [u8], bool)>,
+    data: Vec<(Key, &'a [u8], bool)>,
+    files: Vec<(&'a str, FileStamp, bool)>,
+}
+
+impl Sections<'_> {
+    fn len(&self) -> usize {
+        self.records.len() + self.paths.len() + self.data.len() + self.files.len()
+    }
+
+    /// The entries the record file does not hold as they are (a delta file's).
+    fn not_in_base(&self) -> Sections<'_> {
+        fn new<T: Copy>(entries: &[T], in_base: impl Fn(&T) -> bool) -> Vec<T> {
+            entries.iter().filter(|e| !in_base(e)).copied().collect()
+        }
+        Sections {
+            records: new(&self.records, |e| e.2),
+            paths: new(&self.paths, |e| e.2),
+            data: new(&self.data, |e| e.2),
+            files: new(&self.files, |e| e.2),
+        }
+    }
+
+    /// Appends the four sections, as [`parse`] reads them.
+    fn encode(&self, body: &mut Vec<u8>) {
+        body.extend_from_slice(&(self.records.len() as u32).to_le_bytes());
+        for (name, record, _) in &self.records {
             body.extend_from_slice(&(name.len() as u32).to_le_bytes());
             body.extend_from_slice(name.as_bytes());
             body.extend_from_slice(&record.key.0);
             body.extend_from_slice(&record.bytes);
         }
-        let paths = self
-            .now_paths
-            .lock()
-            .map_err(|_| io::Error::other("a build thread panicked"))?;
-        body.extend_from_slice(&(paths.len() as u32).to_le_bytes());
-        for (key, path) in paths.iter() {
+        // A union's entry is its tag and outline ([`union_entry`]); a datum's is its length
+        // and bytes.
+        body.extend_from_slice(&(self.paths.len() as u32).to_le_bytes());
+        for (key, entry, _) in &self.paths {
             body.extend_from_slice(&key.0);
-            match path {
-                None => body.push(0),
-                Some(path) => {
-                    body.push(1);
-                    put_path(&mut body, path);
-                }
-            }
+            body.extend_from_slice(entry);
         }
-        let data = self
-            .now_data
-            .lock()
-            .map_err(|_| io::Error::other("a build thread panicked"))?;
-        // `None` was taken from `earlier_data`, so it is there.
-        let data: Vec<(&Key, &[u8])> = data
-            .iter()
-            .filter_map(|(key, bytes)| {
-                let earlier = || self.earlier_bytes.get(self.earlier_data.get(key)?.clone());
-                Some((key, bytes.as_deref().or_else(earlier)?))
-            })
-            .collect();
-        body.extend_from_slice(&(data.len() as u32).to_le_bytes());
-        for (key, bytes) in data {
+        body.extend_from_slice(&(self.data.len() as u32).to_le_bytes());
+        for (key, bytes, _) in &self.data {
             body.extend_from_slice(&key.0);
             body.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
             body.extend_from_slice(bytes);
         }
-        let files = self
-            .now_files
-            .lock()
-            .map_err(|_| io::Error::other("a build thread panicked"))?;
-        // A name that is not UTF-8 is left out (its file is compared next time).
-        let named: Vec<(&str, &FileStamp)> = by_name(&files)
-            .into_iter()
-            .filter_map(|(path, stamp)| Some((path.to_str()?, stamp)))
-            .collect();
-        body.extend_from_slice(&(named.len() as u32).to_le_bytes());
-        for (name, stamp) in named {
+        body.extend_from_slice(&(self.files.len() as u32).to_le_bytes());
+        for (name, stamp, _) in &self.files {
             body.extend_from_slice(&(name.len() as u32).to_le_bytes());
             body.extend_from_slice(name.as_bytes());
             for v in stamp.meta {
@@ -496,39 +667,95 @@ impl Reuse {
             }
             body.extend_from_slice(&stamp.sha256);
         }
-        Header::seal(&mut body);
-        Ok(Some(body))
     }
 }
 
 /// The entries of `map` in the order of their paths' bytes (a plain byte comparison: the
-/// order of `Path`'s own, component by component, costs several times more on 40,000 names).
-fn by_name<T>(map: &FxHashMap<PathBuf, T>) -> Vec<(&PathBuf, &T)> {
-    let mut entries: Vec<_> = map.iter().collect();
-    entries.sort_unstable_by(|a, b| a.0.as_os_str().cmp(b.0.as_os_str()));
+/// order of `Path`'s own, component by component, costs several times more on 40,000
+/// names). A name that is not UTF-8 is left out (its file is made or compared next time).
+fn by_name<T>(map: &FxHashMap<PathBuf, T>) -> Vec<(&str, &T)> {
+    let mut entries: Vec<_> = map
+        .iter()
+        .filter_map(|(path, v)| Some((path.to_str()?, v)))
+        .collect();
+    entries.sort_unstable_by(|a, b| a.0.cmp(b.0));
     entries
 }
 
-/// What a record file holds.
-struct Parsed {
-    records: FxHashMap<PathBuf, Record>,
-    paths: FxHashMap<Key, Option<BezPath>>,
-    /// Where each glyph datum lies in the file's bytes.
-    data: FxHashMap<Key, Range<usize>>,
-    files: FxHashMap<PathBuf, FileStamp>,
+/// A union's entry: 0 when it is its input unchanged (a glyph without overlaps), else 1
+/// and the outline.
+fn union_entry(path: &BezPath, input: &BezPath) -> Vec<u8> {
+    if path == input {
+        return vec![0];
+    }
+    let mut entry = Vec::with_capacity(5 + path.elements().len() * 40);
+    entry.push(1);
+    put_path(&mut entry, path);
+    entry
 }
 
-/// The records of a record file, or what is wrong with it.
-fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
-    let mut r = HEADER.open(bytes)?;
+/// The union an entry holds (`input` for 0); `None` when it does not decode whole.
+fn union_from_entry(entry: &[u8], input: &BezPath) -> Option<BezPath> {
+    let mut r = Reader::new(entry);
+    let union = match r.u8().ok()? {
+        0 => input.clone(),
+        1 => r.path().ok()?,
+        _ => return None,
+    };
+    r.is_empty().then_some(union)
+}
+
+/// What a record file (or its delta file) holds; the ranges index the buffer it was read
+/// into.
+struct Parsed {
+    records: FxHashMap<PathBuf, Earlier<Record>>,
+    paths: FxHashMap<Key, Earlier<Range<usize>>>,
+    data: FxHashMap<Key, Earlier<Range<usize>>>,
+    files: FxHashMap<PathBuf, Earlier<FileStamp>>,
+}
+
+impl Parsed {
+    fn entries(&self) -> usize {
+        self.records.len() + self.paths.len() + self.data.len() + self.files.len()
+    }
+
+    /// Adds a delta file's entries, which replace those of the same name or key.
+    fn merge(&mut self, delta: Parsed) {
+        self.records.extend(delta.records);
+        self.paths.extend(delta.paths);
+        self.data.extend(delta.data);
+        self.files.extend(delta.files);
+    }
+}
+
+/// The delta file at `all[start..]`, when it is whole and bound to the record file `base`.
+fn parse_delta(all: &[u8], start: usize, base: Binding) -> Result<Parsed, &'static str> {
+    let mut r = DELTA_HEADER.open(&all[start..])?;
+    let bound = Binding {
+        len: r.u64()?,
+        crc: r.u32()?,
+    };
+    if bound != base {
+        return Err("the delta file belongs to another record file");
+    }
+    parse(&mut r, all, true)
+}
+
+/// The four sections at `r`, which reads from `all`, to its end, or what is wrong with
+/// them. Unions are stepped over, not decoded ([`union_range`]).
+fn parse(r: &mut Reader<'_>, all: &[u8], in_delta: bool) -> Result<Parsed, &'static str> {
+    let offset = |part: &[u8]| part.as_ptr() as usize - all.as_ptr() as usize;
     let count = r.u32()?;
     let count = r.count(u64::from(count), 4 + 32 + 32)?;
     let mut records = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
-        let path = relative_path(&mut r)?;
+        let path = relative_path(r)?;
         let key = Key(r.array()?);
         let bytes = r.array()?;
-        if records.insert(path, Record { key, bytes }).is_some() {
+        if records
+            .insert(path, Earlier::new(Record { key, bytes }, in_delta))
+            .is_some()
+        {
             return Err("a path is recorded twice");
         }
     }
@@ -537,12 +764,8 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     let mut paths = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
         let key = Key(r.array()?);
-        let path = match r.array::<1>()?[0] {
-            0 => None,
-            1 => Some(r.path()?),
-            _ => return Err("an outline record is malformed"),
-        };
-        if paths.insert(key, path).is_some() {
+        let entry = union_range(r, offset)?;
+        if paths.insert(key, Earlier::new(entry, in_delta)).is_some() {
             return Err("an outline is recorded twice");
         }
     }
@@ -552,9 +775,11 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     for _ in 0..count {
         let key = Key(r.array()?);
         let len = r.u32()? as usize;
-        let datum = r.take(len)?;
-        let start = datum.as_ptr() as usize - bytes.as_ptr() as usize;
-        if data.insert(key, start..start + len).is_some() {
+        let start = offset(r.take(len)?);
+        if data
+            .insert(key, Earlier::new(start..start + len, in_delta))
+            .is_some()
+        {
             return Err("glyph data is recorded twice");
         }
     }
@@ -562,13 +787,16 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
     let count = r.count(u64::from(count), 4 + 48 + 32)?;
     let mut files = FxHashMap::with_capacity_and_hasher(count, Default::default());
     for _ in 0..count {
-        let path = relative_path(&mut r)?;
+        let path = relative_path(r)?;
         let mut meta = [0; 6];
         for v in &mut meta {
             *v = r.u64()?;
         }
         let sha256 = r.array()?;
-        if files.insert(path, FileStamp { meta, sha256 }).is_some() {
+        if files
+            .insert(path, Earlier::new(FileStamp { meta, sha256 }, in_delta))
+            .is_some()
+        {
             return Err("a file is recorded twice");
         }
     }
@@ -581,6 +809,38 @@ fn parse(bytes: &[u8]) -> Result<Parsed, &'static str> {
         data,
         files,
     })
+}
+
+/// Steps over a union's entry ([`union_entry`]): its tag, and unless 0 the outline's
+/// elements, each tag checked and its points skipped (decoded only when a build uses it:
+/// [`union_from_entry`]). Its range, from `offset` of the parts read.
+fn union_range(
+    r: &mut Reader<'_>,
+    offset: impl Fn(&[u8]) -> usize,
+) -> Result<Range<usize>, &'static str> {
+    const MALFORMED: &str = "an outline record is malformed";
+    let tag = r.take(1)?;
+    let start = offset(tag);
+    match tag[0] {
+        0 => return Ok(start..start + 1),
+        1 => {}
+        _ => return Err(MALFORMED),
+    }
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 1)?;
+    for _ in 0..count {
+        let points = match r.u8()? {
+            TAG_MOVE | TAG_LINE => 1,
+            TAG_QUAD => 2,
+            TAG_CUBIC => 3,
+            TAG_CLOSE => 0,
+            _ => return Err(MALFORMED),
+        };
+        r.take(16 * points)?;
+    }
+    // The end: where the next read starts.
+    let end = offset(r.take(0)?);
+    Ok(start..end)
 }
 
 /// A path relative to OUT (its length, then UTF-8): plain names only, never leaving OUT.

@@ -429,9 +429,12 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     // The outputs are written. The records for the next build go in one transaction (one
     // flush to disk); a record that cannot be written only costs the next build time.
     let mut records = crate::write::OutputSet::new();
-    match reuse.bytes_to_save() {
-        Ok(Some(bytes)) => records.add(args.font.out.join(REUSE_FILE), bytes),
-        Ok(None) => {}
+    match reuse.files_to_save() {
+        Ok(files) => {
+            for (path, bytes) in files {
+                records.add(path, bytes);
+            }
+        }
         Err(e) => errln!(
             "warning: cannot write {}: {}",
             args.font.out.join(REUSE_FILE).display(),

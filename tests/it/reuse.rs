@@ -325,6 +325,76 @@ fn glyph_data_comes_back_from_the_record_and_bad_bytes_are_made_anew() {
 }
 
 #[test]
+fn a_few_changes_go_into_a_delta_file_bound_to_the_record_file() {
+    use std::cell::Cell;
+    use xglyph::reuse::DELTA_FILE;
+    let dir = scratch("delta");
+    // Entry k holds the value v under a key of both (a key determines its value).
+    let key = |k: usize, v: u64| KeyBuilder::new("test delta").u64(k as u64).u64(v).finish();
+    let encode = |v: &u64| v.to_le_bytes().to_vec();
+    let decode = |b: &[u8]| Some(u64::from_le_bytes(b.try_into().ok()?));
+    let made = Cell::new(0);
+    // One build keeping `values`: the files its save would write (names), then saved.
+    let build = |values: &[u64]| -> Vec<String> {
+        let reuse = load(&dir);
+        for (k, &v) in values.iter().enumerate() {
+            let make = || {
+                made.set(made.get() + 1);
+                Ok::<_, ()>(v)
+            };
+            assert_eq!(reuse.data_or_make(key(k, v), encode, decode, make), Ok(v));
+        }
+        let files = reuse.files_to_save().unwrap();
+        reuse.save().unwrap();
+        files
+            .iter()
+            .map(|(p, _)| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect()
+    };
+    let read = |name: &str| std::fs::read(dir.join(name)).ok();
+    let mut values = vec![0; 100];
+    assert_eq!(build(&values), [REUSE_FILE]);
+    assert_eq!(made.replace(0), 100);
+    let record = read(REUSE_FILE).unwrap();
+
+    // Two entries changed: only they are made, and only the delta file is written; the
+    // record file keeps its bytes.
+    values[5] = 1;
+    values[60] = 1;
+    assert_eq!(build(&values), [DELTA_FILE]);
+    assert_eq!(made.replace(0), 2);
+    assert_eq!(read(REUSE_FILE).unwrap(), record);
+    let delta = read(DELTA_FILE).unwrap();
+    assert!(delta.len() < record.len() / 10, "{} bytes", delta.len());
+    // Unchanged: everything from the two files, nothing written.
+    assert_eq!(build(&values), Vec::<String>::new());
+    assert_eq!(made.replace(0), 0);
+
+    // A damaged delta is ignored: the two entries it held are made again.
+    let mut flipped = delta.clone();
+    flipped[30] ^= 0x10;
+    std::fs::write(dir.join(DELTA_FILE), &flipped).unwrap();
+    build(&values);
+    assert_eq!(made.replace(0), 2);
+    assert_eq!(read(DELTA_FILE).unwrap(), delta);
+
+    // Twenty entries changed (more than an eighth): the record file whole again.
+    for v in &mut values[..20] {
+        *v = 2;
+    }
+    assert_eq!(build(&values), [REUSE_FILE]);
+    assert_eq!(made.replace(0), 20);
+    assert_ne!(read(REUSE_FILE).unwrap(), record);
+    // The delta file left behind is bound to the old record file and ignored: entry 60's
+    // value 1 comes from the new record file, entry 5's value 1 (only in the old delta)
+    // is made again.
+    assert_eq!(read(DELTA_FILE).unwrap(), delta);
+    values[5] = 1;
+    build(&values);
+    assert_eq!(made.replace(0), 1);
+}
+
+#[test]
 fn outline_keys_are_each_outlines_own_and_tell_an_edit() {
     let dir = scratch("outline-keys");
     let mut font = cjk_like();
