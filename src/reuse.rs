@@ -534,29 +534,38 @@ impl Reuse {
         let paths = self.now_paths.lock().map_err(|_| poisoned())?;
         let data = self.now_data.lock().map_err(|_| poisoned())?;
         let files = self.now_files.lock().map_err(|_| poisoned())?;
-        // Each entry with whether the record file holds it as it is now.
-        let records: Vec<(&str, Record, bool)> = by_name(&now)
-            .into_iter()
-            .map(|(name, r)| {
-                let e = self.earlier.get(Path::new(name));
-                (name, *r, e.is_some_and(|e| !e.in_delta && e.value == *r))
+        // Each entry with whether the record file holds it as it is now; sorted only when
+        // it is written (a delta's few entries, or the whole file's).
+        let records: Vec<(&str, Record, bool)> = now
+            .iter()
+            .filter_map(|(path, r)| {
+                let e = self.earlier.get(path);
+                Some((
+                    path.to_str()?,
+                    *r,
+                    e.is_some_and(|e| !e.in_delta && e.value == *r),
+                ))
             })
             .collect();
-        let stamps: Vec<(&str, FileStamp, bool)> = by_name(&files)
-            .into_iter()
-            .map(|(name, s)| {
-                let e = self.earlier_files.get(Path::new(name));
-                (name, *s, e.is_some_and(|e| !e.in_delta && e.value == *s))
+        let stamps: Vec<(&str, FileStamp, bool)> = files
+            .iter()
+            .filter_map(|(path, s)| {
+                let e = self.earlier_files.get(path);
+                Some((
+                    path.to_str()?,
+                    *s,
+                    e.is_some_and(|e| !e.in_delta && e.value == *s),
+                ))
             })
             .collect();
-        let whole = Sections {
+        let mut whole = Sections {
             records,
             paths: self.entries(&paths, &self.earlier_paths),
             data: self.entries(&data, &self.earlier_data),
             files: stamps,
         };
         if let Some((binding, base_entries)) = self.base {
-            let delta = whole.not_in_base();
+            let mut delta = whole.not_in_base();
             let unused = base_entries.saturating_sub(whole.len() - delta.len());
             if (unused + delta.len()) * DELTA_SHARE <= base_entries {
                 if delta.len() == 0 && self.delta.is_none() {
@@ -565,6 +574,7 @@ impl Reuse {
                 let mut bytes = DELTA_HEADER.start();
                 bytes.extend_from_slice(&binding.len.to_le_bytes());
                 bytes.extend_from_slice(&binding.crc.to_le_bytes());
+                delta.sort();
                 delta.encode(&mut bytes);
                 Header::seal(&mut bytes);
                 let loaded = self
@@ -580,13 +590,14 @@ impl Reuse {
         let mut body = HEADER.start();
         // About the last record's size: growing a 90 MB vector by doubling copies it.
         body.reserve(self.earlier_bytes.len() + self.earlier_bytes.len() / 16);
+        whole.sort();
         whole.encode(&mut body);
         Header::seal(&mut body);
         Ok(vec![(out.join(REUSE_FILE), body)])
     }
 
     /// This build's entries of one kind (`now`; `None` stands for the last build's entry in
-    /// `before`), sorted by key, each with whether the record file holds it.
+    /// `before`), each with whether the record file holds it.
     fn entries<'a>(
         &'a self,
         now: &'a FxHashMap<Key, Option<Vec<u8>>>,
@@ -604,13 +615,11 @@ impl Reuse {
                 (None, None) => {}
             }
         }
-        entries.sort_unstable_by_key(|e| e.0);
         entries
     }
 }
 
-/// A record's four kinds of entries, each sorted (by name or by key), with whether the
-/// record file holds it as it is.
+/// A record's four kinds of entries, each with whether the record file holds it as it is.
 struct Sections<'a> {
     records: Vec<(&'a str, Record, bool)>,
     paths: Vec<(Key, &'a [u8], bool)>,
@@ -621,6 +630,16 @@ struct Sections<'a> {
 impl Sections<'_> {
     fn len(&self) -> usize {
         self.records.len() + self.paths.len() + self.data.len() + self.files.len()
+    }
+
+    /// Sorts each kind (by name or by key), as a file holds them.
+    fn sort(&mut self) {
+        // Names by their bytes: the order of `Path`'s own, component by component, costs
+        // several times more on 40,000 names.
+        self.records.sort_unstable_by(|a, b| a.0.cmp(b.0));
+        self.paths.sort_unstable_by_key(|e| e.0);
+        self.data.sort_unstable_by_key(|e| e.0);
+        self.files.sort_unstable_by(|a, b| a.0.cmp(b.0));
     }
 
     /// The entries the record file does not hold as they are (a delta file's).
@@ -668,18 +687,6 @@ impl Sections<'_> {
             body.extend_from_slice(&stamp.sha256);
         }
     }
-}
-
-/// The entries of `map` in the order of their paths' bytes (a plain byte comparison: the
-/// order of `Path`'s own, component by component, costs several times more on 40,000
-/// names). A name that is not UTF-8 is left out (its file is made or compared next time).
-fn by_name<T>(map: &FxHashMap<PathBuf, T>) -> Vec<(&str, &T)> {
-    let mut entries: Vec<_> = map
-        .iter()
-        .filter_map(|(path, v)| Some((path.to_str()?, v)))
-        .collect();
-    entries.sort_unstable_by(|a, b| a.0.cmp(b.0));
-    entries
 }
 
 /// A union's entry: 0 when it is its input unchanged (a glyph without overlaps), else 1
