@@ -420,9 +420,18 @@ impl<T> Slot<T> {
 #[derive(Debug)]
 struct Index<T> {
     slots: Vec<Slot<T>>,
-    /// Per bucket, 1 + the number of a slot, or 0 (empty). Its length is 0 or a power of
-    /// two at least twice the number of slots.
-    table: Vec<usize>,
+    /// Its length is 0 or a power of two at least twice the number of slots.
+    table: Vec<Bucket>,
+}
+
+/// A bucket of an [`Index`]: a slot's hash and key's place, so that a lookup reads the
+/// key's bytes without first reading the slot (one wait for memory fewer per lookup).
+#[derive(Clone, Copy, Debug, Default)]
+struct Bucket {
+    hash: u64,
+    key: (usize, usize),
+    /// 1 + the number of the slot, or 0 (empty).
+    slot: usize,
 }
 
 impl<T> Default for Index<T> {
@@ -439,7 +448,7 @@ impl<T> Index<T> {
     fn with_capacity(n: usize) -> Self {
         Index {
             slots: Vec::with_capacity(n),
-            table: vec![0; (2 * n).next_power_of_two().max(8)],
+            table: vec![Bucket::default(); (2 * n).next_power_of_two().max(8)],
         }
     }
 
@@ -458,10 +467,10 @@ impl<T> Index<T> {
         let mask = self.table.len() - 1;
         let mut at = self.bucket(hash);
         loop {
-            let slot = self.table[at].checked_sub(1)?;
-            let slot = &self.slots[slot];
-            if slot.hash == hash && is_key(slot.key(bytes)) {
-                return Some(slot);
+            let bucket = self.table[at];
+            let slot = bucket.slot.checked_sub(1)?;
+            if bucket.hash == hash && is_key(&bytes[bucket.key.0..bucket.key.1]) {
+                return Some(&self.slots[slot]);
             }
             at = (at + 1) & mask;
         }
@@ -477,7 +486,8 @@ impl<T> Index<T> {
             return false;
         }
         if 2 * (self.slots.len() + 1) > self.table.len() {
-            self.table = vec![0; (4 * (self.slots.len() + 1)).next_power_of_two().max(8)];
+            let size = (4 * (self.slots.len() + 1)).next_power_of_two().max(8);
+            self.table = vec![Bucket::default(); size];
             for k in 0..self.slots.len() {
                 self.place(k);
             }
@@ -490,11 +500,16 @@ impl<T> Index<T> {
     /// Puts slot `k` in the first empty bucket from its own.
     fn place(&mut self, k: usize) {
         let mask = self.table.len() - 1;
-        let mut at = self.bucket(self.slots[k].hash);
-        while self.table[at] != 0 {
+        let slot = &self.slots[k];
+        let mut at = self.bucket(slot.hash);
+        while self.table[at].slot != 0 {
             at = (at + 1) & mask;
         }
-        self.table[at] = k + 1;
+        self.table[at] = Bucket {
+            hash: slot.hash,
+            key: (slot.start, slot.key_end),
+            slot: k + 1,
+        };
     }
 
     fn len(&self) -> usize {
@@ -1441,8 +1456,8 @@ mod tests {
             slot.hash = hash_a;
             assert!(index.insert(&cache.bytes, slot));
         }
-        assert_eq!(index.table.iter().filter(|&&k| k != 0).count(), 2);
-        let first = index.table[index.bucket(hash_a)] - 1;
+        assert_eq!(index.table.iter().filter(|b| b.slot != 0).count(), 2);
+        let first = index.table[index.bucket(hash_a)].slot - 1;
         assert!(!is_static_key(
             index.slots[first].key(&cache.bytes),
             0.5f64.to_bits(),
