@@ -333,41 +333,6 @@ impl Made {
     fn len(&self) -> usize {
         self.fits.len() + self.compatible.len() + self.orient.len()
     }
-
-    /// Each entry's bytes as the file stores them, with its key's length: the
-    /// orientations, the static fits, the compatible fits.
-    fn encode(&self) -> [Vec<(usize, Vec<u8>)>; 3] {
-        let orient = self
-            .orient
-            .iter()
-            .map(|(key, flags)| {
-                let mut out = Vec::with_capacity(36 + flags.len());
-                out.extend_from_slice(&key.0);
-                out.extend_from_slice(&(flags.len() as u32).to_le_bytes());
-                out.extend(flags.iter().map(|&r| u8::from(r)));
-                (key.0.len(), out)
-            })
-            .collect();
-        let fits = self
-            .fits
-            .iter()
-            .map(|(key, fit)| {
-                let mut out = key.clone();
-                put_fit(&mut out, fit);
-                (key.len(), out)
-            })
-            .collect();
-        let compatible = self
-            .compatible
-            .iter()
-            .map(|(key, fit)| {
-                let mut out = key.clone();
-                put_compatible_fit(&mut out, fit);
-                (key.len(), out)
-            })
-            .collect();
-        [orient, fits, compatible]
-    }
 }
 
 /// An entry of the cache file (or its delta file): where its bytes are, and whether this
@@ -809,20 +774,40 @@ impl FitCache {
     /// each kind sorted by key (no key is in both: a fit is made only when the files lack
     /// it, or hold it damaged and so unused).
     fn put_body(&self, out: &mut Vec<u8>, delta_only: bool) {
-        let [orient, fits, compatible] = self.lock_made().encode();
+        let made = self.lock_made();
         for v in fitter_key() {
             out.extend_from_slice(&v.to_le_bytes());
         }
         let (bytes, loaded) = (&self.bytes, &self.loaded);
-        put_section(out, bytes, &loaded.orient, delta_only, &orient, glyph_order);
-        put_section(out, bytes, &loaded.fits, delta_only, &fits, static_order);
+        let orient = made.orient.iter().map(|(k, v)| (&k.0[..], v));
+        put_section(
+            out,
+            bytes,
+            &loaded.orient,
+            delta_only,
+            orient,
+            glyph_order,
+            |out, flags: &Vec<bool>| put_flags(out, flags),
+        );
+        let fits = made.fits.iter().map(|(k, v)| (&k[..], v));
+        put_section(
+            out,
+            bytes,
+            &loaded.fits,
+            delta_only,
+            fits,
+            static_order,
+            put_fit,
+        );
+        let compatible = made.compatible.iter().map(|(k, v)| (&k[..], v));
         put_section(
             out,
             bytes,
             &loaded.compatible,
             delta_only,
-            &compatible,
+            compatible,
             compatible_order,
+            put_compatible_fit,
         );
     }
 
@@ -992,28 +977,57 @@ fn fitter_key() -> [u32; 6] {
 
 /// Appends one section of a file: its entry count (u64), then the entries sorted by
 /// `order` of their keys: the used slots of `index` (only the delta file's when
-/// `delta_only`), copied from `bytes`, and `made` (each with its key's length).
-fn put_section<T>(
+/// `delta_only`), copied from `bytes`, and those `made` in this run (key, value), each
+/// written as its key and what `put` writes of its value.
+fn put_section<'a, T, V: 'a>(
     out: &mut Vec<u8>,
-    bytes: &[u8],
-    index: &Index<T>,
+    bytes: &'a [u8],
+    index: &'a Index<T>,
     delta_only: bool,
-    made: &[(usize, Vec<u8>)],
+    made: impl Iterator<Item = (&'a [u8], &'a V)>,
     order: fn(&[u8], &[u8]) -> Order,
+    put: impl Fn(&mut Vec<u8>, &V),
 ) {
-    let mut all: Vec<(&[u8], &[u8])> = index
+    /// What follows a key: the loaded entry's bytes, or a value made in this run.
+    enum Rest<'a, V> {
+        Copied(&'a [u8]),
+        Made(&'a V),
+    }
+    let mut all: Vec<(&[u8], Rest<V>)> = index
         .slots
         .iter()
         .filter(|s| s.is_used() && (s.in_delta || !delta_only))
-        .map(|s| (s.key(bytes), &bytes[s.start..s.end]))
-        .chain(made.iter().map(|(key, entry)| (&entry[..*key], &entry[..])))
+        .map(|s| (s.key(bytes), Rest::Copied(s.fit(bytes))))
+        .chain(made.map(|(key, value)| (key, Rest::Made(value))))
         .collect();
     all.sort_unstable_by(|a, b| order(a.0, b.0));
     out.extend_from_slice(&(all.len() as u64).to_le_bytes());
-    out.reserve(all.iter().map(|(_, entry)| entry.len()).sum());
-    for (_, entry) in all {
-        out.extend_from_slice(entry);
+    // Room for the copied entries at least (a CJK font's file is 100 MB).
+    out.reserve(
+        all.iter()
+            .map(|(key, rest)| {
+                key.len()
+                    + if let Rest::Copied(r) = rest {
+                        r.len()
+                    } else {
+                        0
+                    }
+            })
+            .sum(),
+    );
+    for (key, rest) in all {
+        out.extend_from_slice(key);
+        match rest {
+            Rest::Copied(rest) => out.extend_from_slice(rest),
+            Rest::Made(value) => put(out, value),
+        }
     }
+}
+
+/// An orientation without its key: the contour count (u32), then one byte per contour.
+fn put_flags(out: &mut Vec<u8>, flags: &[bool]) {
+    out.extend_from_slice(&(flags.len() as u32).to_le_bytes());
+    out.extend(flags.iter().map(|&r| u8::from(r)));
 }
 
 fn put_fit(out: &mut Vec<u8>, fit: &ContourFit) {
