@@ -24,7 +24,7 @@
 //! The file is not trusted, and it is not decoded whole: [`FitCache::load`] keeps its bytes
 //! (and its delta file's after them) and indexes its entries, each by a hash of its key's
 //! bytes, as ranges of those bytes. A static fit or an orientation is decoded when a run
-//! asks for it (a CJK font's rebuild uses all 136,000 of its fits, but decoding them into
+//! asks for it (a CJK font's rebuild uses all 121,000 of its fits, but decoding them into
 //! maps at load, then cloning each hit, cost a tenth of the rebuild and hundreds of MB of
 //! fresh memory). What is checked when:
 //! - at load, before any entry is used, the whole file: magic, format version, fitter key,
