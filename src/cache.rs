@@ -21,16 +21,35 @@
 //! when nobody bumped a version. The cache lives in the output folder ([`CACHE_FILE`] in
 //! OUT), never beside the sources.
 //!
-//! The file is not trusted. It is read whole and checked before any entry is used: magic,
-//! format version, fitter key, a CRC-32 of everything before it, every count against the
-//! bytes that remain, every number finite, every path one closed contour of lines and
-//! cubics, a compatible fit's paths all of the same elements with its segment count and one
-//! error per position of its key, no duplicate key and no trailing byte. If anything is wrong the whole file is
-//! ignored (every contour is refitted) and the next [`FitCache::save`] replaces it. A cached
-//! fit is bit-for-bit the fit it stored, so outputs are the same with and without the cache.
+//! The file is not trusted, and it is not decoded whole: [`FitCache::load`] keeps its bytes
+//! (and its delta file's after them) and indexes its entries, each by a hash of its key's
+//! bytes, as ranges of those bytes. A static fit or an orientation is decoded when a run
+//! asks for it (a CJK font's rebuild uses all 121,000 of its fits, but decoding them into
+//! maps at load, then cloning each hit, cost a tenth of the rebuild and hundreds of MB of
+//! fresh memory). What is checked when:
+//! - at load, before any entry is used, the whole file: magic, format version, fitter key,
+//!   a CRC-32 of everything before it, every count against the bytes that remain, every
+//!   path one closed contour of lines and cubics (its tags: a move, lines and cubics, a
+//!   close), every orientation flag 0 or 1, no duplicate key and no trailing byte; and
+//!   every compatible entry whole (every number finite, errors not negative, paths of the
+//!   same elements, its segment count, one error per position of its key), as it is
+//!   decoded there (fonts with masters have few). If anything is wrong the whole file is
+//!   ignored (every contour is refitted) and the next [`FitCache::save`] replaces it;
+//! - when a static fit is used, its numbers: every one finite and its error not negative
+//!   (with the path's structure again, by the same checked reader). A bad entry is a miss:
+//!   the contour is refitted, the entry is not marked used, so the next whole file drops
+//!   it.
+//!
+//! A hit compares the key's bytes in full, never only their hash, so two contours whose
+//! keys collide each get their own fit. A cached fit is bit-for-bit the fit it stored, so
+//! outputs are the same with and without the cache.
 //!
 //! The file holds the entries used by the last run that wrote it whole (entries of deleted
-//! or edited contours are dropped), sorted by key, so the same input writes the same bytes.
+//! or edited contours are dropped), sorted by key (static keys by tolerance, then the
+//! points' bits in order; compatible keys by tolerance, then weights, then points;
+//! orientations by digest), so the same input writes the same bytes. An entry loaded and
+//! used is written by copying its bytes, not by encoding it again (decoding and encoding
+//! keep every bit, so the bytes are the same).
 //! A run that used every entry of the files it loaded and fitted nothing new leaves them
 //! alone (a CJK font's cache is 100 MB). A run that changed few entries writes only a small
 //! delta file beside it ([`DELTA_FILE`], the same layout with its own magic, bound to the
@@ -38,30 +57,31 @@
 //! and those of the last delta it used. Limit: until the cache file is written whole again
 //! (when the delta and the cache file's unused entries pass 1/8 of its entries), it keeps
 //! the entries of edited contours, and the two files depend on the order of the edits, not
-//! only on the sources. A hit is not copied into a second map: each
-//! loaded entry carries a flag saying whether this run used it. It is
-//! written atomically ([`crate::write::write_atomic`]). Limit: a deliberately forged file
-//! with a valid checksum is trusted; the cache is the user's own file in their output
-//! folder, not an input from others.
+//! only on the sources. Each loaded entry carries a flag saying whether this run used it.
+//! The files are written atomically ([`crate::write::write_atomic`]). Limit: a
+//! deliberately forged file with a valid checksum and finite numbers is trusted; the cache
+//! is the user's own file in their output folder, not an input from others.
 //!
 //! [`FitCache::fit`] may be called from many threads at once.
 
-use std::collections::BTreeMap;
+use std::cmp::Ordering as Order;
 use std::fs;
-use std::io;
+use std::hash::Hasher;
+use std::io::{self, Read};
+use std::ops::Range;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
 use kurbo::{Affine, BezPath, PathEl};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHasher};
 use sha2::{Digest, Sha256};
 
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
 use crate::orient::{join_reversed, reversals, ORIENT_VERSION};
 use crate::outline::PlacedContour;
-use crate::record::{put_path, Header, Reader};
+use crate::record::{put_path, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// Name of the cache file in the output folder.
@@ -124,49 +144,154 @@ pub fn delta_path(path: &Path) -> std::path::PathBuf {
     path.with_file_name(DELTA_FILE)
 }
 
-/// What a fit depends on: the control points (bits of x, y, s) and the tolerance (bits).
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-struct Key {
-    tolerance: u64,
-    points: Vec<[u64; 3]>,
+/// The little-endian word in `bytes` (8 of them).
+fn word(bytes: &[u8]) -> u64 {
+    let mut w = [0; 8];
+    w.copy_from_slice(bytes);
+    u64::from_le_bytes(w)
 }
 
-impl Key {
-    fn new(spline: &XSpline, tolerance: f64) -> Key {
-        Key {
-            tolerance: tolerance.to_bits(),
-            points: spline
-                .points()
-                .iter()
-                .map(|p| [p.pos.x.to_bits(), p.pos.y.to_bits(), p.s.to_bits()])
-                .collect(),
+/// The bits of a control point as a static key stores them: x, y, s.
+fn point_bits(p: &ControlPoint) -> [u64; 3] {
+    [p.pos.x.to_bits(), p.pos.y.to_bits(), p.s.to_bits()]
+}
+
+/// A static fit's key as the file stores it: the tolerance's bits (u64), the point count
+/// (u32) and the points' bits.
+fn static_key(tolerance: u64, points: &[ControlPoint]) -> Vec<u8> {
+    let mut key = Vec::with_capacity(12 + 24 * points.len());
+    key.extend_from_slice(&tolerance.to_le_bytes());
+    key.extend_from_slice(&(points.len() as u32).to_le_bytes());
+    for v in points.iter().flat_map(point_bits) {
+        key.extend_from_slice(&v.to_le_bytes());
+    }
+    key
+}
+
+/// The hash of the static key of `points` at `tolerance` (its bits), without making the
+/// key: [`static_key_hash`] of [`static_key`].
+fn static_hash(tolerance: u64, points: &[ControlPoint]) -> u64 {
+    let mut h = FxHasher::default();
+    h.write_u64(tolerance);
+    h.write_u64(points.len() as u64);
+    for p in points {
+        for v in point_bits(p) {
+            h.write_u64(v);
         }
     }
+    h.finish()
 }
 
-/// What a compatible fit depends on: the tolerance, the positions (bits of every weight)
-/// and every master's control points (bits of x, y, s).
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-struct CompatibleKey {
-    tolerance: u64,
-    positions: Vec<Vec<u64>>,
-    masters: Vec<Vec<[u64; 3]>>,
+/// The hash of a static key's bytes (one that the loader walked: 12 + 24 n bytes).
+fn static_key_hash(key: &[u8]) -> u64 {
+    let mut h = FxHasher::default();
+    h.write_u64(word(&key[..8]));
+    h.write_u64(u64::from(u32::from_le_bytes([
+        key[8], key[9], key[10], key[11],
+    ])));
+    for w in key[12..].chunks_exact(8) {
+        h.write_u64(word(w));
+    }
+    h.finish()
 }
 
-impl CompatibleKey {
-    fn new(masters: &[&XSpline], positions: &[Vec<f64>], tolerance: f64) -> CompatibleKey {
-        CompatibleKey {
-            tolerance: tolerance.to_bits(),
-            positions: positions
-                .iter()
-                .map(|w| w.iter().map(|v| v.to_bits()).collect())
-                .collect(),
-            masters: masters
-                .iter()
-                .map(|m| Key::new(m, tolerance).points)
-                .collect(),
+/// Whether `key` (a static key's bytes) is the key of `points` at `tolerance` (its bits).
+fn is_static_key(key: &[u8], tolerance: u64, points: &[ControlPoint]) -> bool {
+    key.len() == 12 + 24 * points.len()
+        && word(&key[..8]) == tolerance
+        && key[8..12] == (points.len() as u32).to_le_bytes()
+        && key[12..].chunks_exact(24).zip(points).all(|(stored, p)| {
+            let [x, y, s] = point_bits(p);
+            word(&stored[..8]) == x && word(&stored[8..16]) == y && word(&stored[16..]) == s
+        })
+}
+
+/// The hash of a compatible key's or a glyph key's bytes.
+fn bytes_hash(key: &[u8]) -> u64 {
+    let mut h = FxHasher::default();
+    h.write(key);
+    h.finish()
+}
+
+/// A compatible fit's key as the file stores it: the tolerance's bits (u64), the master,
+/// point and position counts (u32 each), every master's points (bits of x, y, s), and per
+/// position the bits of its weights. `None` when the masters differ in point count or a
+/// position does not have one weight per master (such input is not cached).
+fn compatible_key(masters: &[&XSpline], positions: &[Vec<f64>], tolerance: f64) -> Option<Vec<u8>> {
+    let points = masters.first()?.points().len();
+    if masters.iter().any(|m| m.points().len() != points)
+        || positions.iter().any(|w| w.len() != masters.len())
+    {
+        return None;
+    }
+    let mut key =
+        Vec::with_capacity(20 + 24 * points * masters.len() + 8 * positions.len() * masters.len());
+    key.extend_from_slice(&tolerance.to_bits().to_le_bytes());
+    for count in [masters.len(), points, positions.len()] {
+        key.extend_from_slice(&(count as u32).to_le_bytes());
+    }
+    for v in masters.iter().flat_map(|m| m.points()).flat_map(point_bits) {
+        key.extend_from_slice(&v.to_le_bytes());
+    }
+    for weight in positions.iter().flatten() {
+        key.extend_from_slice(&weight.to_bits().to_le_bytes());
+    }
+    Some(key)
+}
+
+/// `a` and `b` as sequences of little-endian words, compared as `[u64]` slices are.
+fn cmp_words(a: &[u8], b: &[u8]) -> Order {
+    a.chunks_exact(8).map(word).cmp(b.chunks_exact(8).map(word))
+}
+
+/// The order of static keys' bytes: by tolerance, then by the points' bits, as the
+/// `(tolerance, Vec<[u64; 3]>)` they hold are ordered.
+fn static_order(a: &[u8], b: &[u8]) -> Order {
+    cmp_words(&a[..8], &b[..8]).then_with(|| cmp_words(&a[12..], &b[12..]))
+}
+
+/// The order of compatible keys' bytes: by tolerance, then the positions' weights, then
+/// the masters' points, as the `(tolerance, Vec<Vec<u64>>, Vec<Vec<[u64; 3]>>)` they hold
+/// are ordered.
+fn compatible_order(a: &[u8], b: &[u8]) -> Order {
+    /// The key's masters' points, and its positions' weights, each as one slice per
+    /// master or position.
+    fn parts(key: &[u8]) -> (impl Iterator<Item = &[u8]>, impl Iterator<Item = &[u8]>) {
+        let count =
+            |at: usize| u32::from_le_bytes([key[at], key[at + 1], key[at + 2], key[at + 3]]);
+        let (masters, points, positions) =
+            (count(8) as usize, count(12) as usize, count(16) as usize);
+        let (point_bytes, weights) = key[20..].split_at(24 * points * masters);
+        let (master, position) = (24 * points, 8 * masters);
+        (
+            (0..masters).map(move |m| &point_bytes[master * m..master * (m + 1)]),
+            (0..positions).map(move |p| &weights[position * p..position * (p + 1)]),
+        )
+    }
+    /// Lists of word sequences, compared as `[Vec<u64>]` are.
+    fn cmp_lists<'a>(
+        mut a: impl Iterator<Item = &'a [u8]>,
+        mut b: impl Iterator<Item = &'a [u8]>,
+    ) -> Order {
+        loop {
+            match (a.next(), b.next()) {
+                (Some(x), Some(y)) => match cmp_words(x, y) {
+                    Order::Equal => {}
+                    other => return other,
+                },
+                (x, y) => return x.is_some().cmp(&y.is_some()),
+            }
         }
     }
+    let ((a_masters, a_positions), (b_masters, b_positions)) = (parts(a), parts(b));
+    cmp_words(&a[..8], &b[..8])
+        .then_with(|| cmp_lists(a_positions, b_positions))
+        .then_with(|| cmp_lists(a_masters, b_masters))
+}
+
+/// The order of glyph keys: their digests' bytes.
+fn glyph_order(a: &[u8], b: &[u8]) -> Order {
+    a.cmp(b)
 }
 
 /// What a glyph's orientation depends on: the SHA-256 of the tolerance and of each
@@ -194,21 +319,202 @@ impl GlyphKey {
     }
 }
 
-/// The entries of a cache file, or of one run.
+/// The entries made in this run (not in the files loaded), by their keys' bytes as the
+/// file stores them.
 #[derive(Debug, Default)]
-struct Entries {
-    fits: BTreeMap<Key, ContourFit>,
-    compatible: BTreeMap<CompatibleKey, CompatibleFit>,
+struct Made {
+    fits: FxHashMap<Vec<u8>, ContourFit>,
+    compatible: FxHashMap<Vec<u8>, CompatibleFit>,
     /// Per glyph, which of its contours are reversed.
-    orient: BTreeMap<GlyphKey, Vec<bool>>,
+    orient: FxHashMap<GlyphKey, Vec<bool>>,
 }
 
-/// The entries of a cache file or delta file as loaded, by key, none used yet.
+impl Made {
+    fn len(&self) -> usize {
+        self.fits.len() + self.compatible.len() + self.orient.len()
+    }
+}
+
+/// An entry of the cache file (or its delta file): where its bytes are, and whether this
+/// run used it.
+#[derive(Debug)]
+struct Slot<T> {
+    /// The hash of its key's bytes.
+    hash: u64,
+    /// Its key's bytes in the loaded bytes, from `start` to `key_end`, and the whole entry's
+    /// to `end`.
+    start: usize,
+    key_end: usize,
+    end: usize,
+    used: AtomicBool,
+    /// Whether it came from the delta file.
+    in_delta: bool,
+    /// What the loader decoded of it (a compatible fit), or nothing.
+    value: T,
+}
+
+impl<T> Slot<T> {
+    /// An unused entry whose key is at `key` in the loaded bytes, and which ends at `end`.
+    fn new(hash: u64, key: Range<usize>, end: usize, in_delta: bool, value: T) -> Self {
+        Slot {
+            hash,
+            start: key.start,
+            key_end: key.end,
+            end,
+            used: AtomicBool::new(false),
+            in_delta,
+            value,
+        }
+    }
+
+    fn key<'a>(&self, bytes: &'a [u8]) -> &'a [u8] {
+        &bytes[self.start..self.key_end]
+    }
+    /// Its bytes after the key.
+    fn fit<'a>(&self, bytes: &'a [u8]) -> &'a [u8] {
+        &bytes[self.key_end..self.end]
+    }
+    fn is_used(&self) -> bool {
+        self.used.load(Ordering::Relaxed)
+    }
+}
+
+/// The loaded entries of one kind, found by their keys' hashes in an open-addressing table
+/// (linear probing). A slot is taken only when its key's bytes are the key asked for: keys
+/// of the same hash cost a comparison, never a wrong fit.
+#[derive(Debug)]
+struct Index<T> {
+    slots: Vec<Slot<T>>,
+    /// Its length is 0 or a power of two at least twice the number of slots.
+    table: Vec<Bucket>,
+}
+
+/// A bucket of an [`Index`]: a slot's hash and key's place, so that a lookup reads the
+/// key's bytes without first reading the slot (one wait for memory fewer per lookup).
+#[derive(Clone, Copy, Debug, Default)]
+struct Bucket {
+    hash: u64,
+    key: (usize, usize),
+    /// 1 + the number of the slot, or 0 (empty).
+    slot: usize,
+}
+
+impl<T> Default for Index<T> {
+    fn default() -> Self {
+        Index {
+            slots: Vec::new(),
+            table: Vec::new(),
+        }
+    }
+}
+
+impl<T> Index<T> {
+    /// An index sized for `n` slots.
+    fn with_capacity(n: usize) -> Self {
+        Index {
+            slots: Vec::with_capacity(n),
+            table: vec![Bucket::default(); (2 * n).next_power_of_two().max(8)],
+        }
+    }
+
+    /// The first bucket to probe for `hash` (Fibonacci hashing: the table's size is a
+    /// power of two, so the product's top bits).
+    fn bucket(&self, hash: u64) -> usize {
+        let bits = self.table.len().trailing_zeros();
+        (hash.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize
+    }
+
+    /// The slot whose hash is `hash` and whose key's bytes (in `bytes`) `is_key` accepts.
+    fn find(&self, bytes: &[u8], hash: u64, is_key: impl Fn(&[u8]) -> bool) -> Option<&Slot<T>> {
+        if self.table.is_empty() {
+            return None;
+        }
+        let mask = self.table.len() - 1;
+        let mut at = self.bucket(hash);
+        loop {
+            let bucket = self.table[at];
+            let slot = bucket.slot.checked_sub(1)?;
+            if bucket.hash == hash && is_key(&bytes[bucket.key.0..bucket.key.1]) {
+                return Some(&self.slots[slot]);
+            }
+            at = (at + 1) & mask;
+        }
+    }
+
+    /// Adds `slot` unless a slot of the same key's bytes (in `bytes`) is there; whether it
+    /// was added.
+    fn insert(&mut self, bytes: &[u8], slot: Slot<T>) -> bool {
+        if self
+            .find(bytes, slot.hash, |key| key == slot.key(bytes))
+            .is_some()
+        {
+            return false;
+        }
+        if 2 * (self.slots.len() + 1) > self.table.len() {
+            let size = (4 * (self.slots.len() + 1)).next_power_of_two().max(8);
+            self.table = vec![Bucket::default(); size];
+            for k in 0..self.slots.len() {
+                self.place(k);
+            }
+        }
+        self.slots.push(slot);
+        self.place(self.slots.len() - 1);
+        true
+    }
+
+    /// Puts slot `k` in the first empty bucket from its own.
+    fn place(&mut self, k: usize) {
+        let mask = self.table.len() - 1;
+        let slot = &self.slots[k];
+        let mut at = self.bucket(slot.hash);
+        while self.table[at].slot != 0 {
+            at = (at + 1) & mask;
+        }
+        self.table[at] = Bucket {
+            hash: slot.hash,
+            key: (slot.start, slot.key_end),
+            slot: k + 1,
+        };
+    }
+
+    fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// The cache file's entries this run did not use, and the delta file's it used.
+    fn usage(&self) -> (usize, usize) {
+        self.slots.iter().fold((0, 0), |(unused, delta), s| {
+            let used = s.is_used();
+            (
+                unused + usize::from(!s.in_delta && !used),
+                delta + usize::from(s.in_delta && used),
+            )
+        })
+    }
+
+    /// Adds the slots of `other` (over the same `bytes`) whose keys this one lacks; how
+    /// many.
+    fn merge(&mut self, bytes: &[u8], other: Index<T>) -> usize {
+        other
+            .slots
+            .into_iter()
+            .map(|slot| usize::from(self.insert(bytes, slot)))
+            .sum()
+    }
+}
+
+/// The entries of a cache file and its delta file, as indexed.
 #[derive(Debug, Default)]
 struct Loaded {
-    fits: FxHashMap<Key, FromFile<ContourFit>>,
-    compatible: FxHashMap<CompatibleKey, FromFile<CompatibleFit>>,
-    orient: FxHashMap<GlyphKey, FromFile<Vec<bool>>>,
+    fits: Index<()>,
+    compatible: Index<CompatibleFit>,
+    orient: Index<()>,
+}
+
+impl Loaded {
+    fn len(&self) -> usize {
+        self.fits.len() + self.compatible.len() + self.orient.len()
+    }
 }
 
 /// What happened to the cache file when it was loaded.
@@ -223,32 +529,14 @@ pub enum LoadOutcome {
     Ignored(String),
 }
 
-/// An entry of the cache file (or its delta file), and whether this run used it.
-#[derive(Debug)]
-struct FromFile<T> {
-    fit: T,
-    used: AtomicBool,
-    /// Whether it came from the delta file.
-    in_delta: bool,
-}
-
-impl<T> FromFile<T> {
-    fn new(fit: T) -> Self {
-        FromFile {
-            fit,
-            used: AtomicBool::new(false),
-            in_delta: false,
-        }
-    }
-}
-
 /// Fitted contours by key: those loaded from the file, and those made in this run.
 #[derive(Debug, Default)]
 pub struct FitCache {
-    /// From the file, read-only while fitting (but for the flags).
-    loaded: FxHashMap<Key, FromFile<ContourFit>>,
-    loaded_compatible: FxHashMap<CompatibleKey, FromFile<CompatibleFit>>,
-    loaded_orient: FxHashMap<GlyphKey, FromFile<Vec<bool>>>,
+    /// The bytes of the cache file, then of its delta file when that one is valid:
+    /// read-only while fitting.
+    bytes: Vec<u8>,
+    /// Their entries (read-only while fitting, but for the flags).
+    loaded: Loaded,
     /// The file they came from.
     source: Option<std::path::PathBuf>,
     /// That file's binding and entry count, and the entries its delta file added.
@@ -258,10 +546,28 @@ pub struct FitCache {
     loaded_used: AtomicUsize,
     /// Fits made in this run (not in the file): with the loaded entries used, what
     /// [`FitCache::save`] writes.
-    made: Mutex<Entries>,
+    made: Mutex<Made>,
     hits: AtomicUsize,
     reused: AtomicUsize,
     misses: AtomicUsize,
+}
+
+/// The bytes of the cache file at `path` and of its delta file after them (when there is
+/// one and it can be read), and the cache file's length.
+fn read_files(path: &Path) -> io::Result<(Vec<u8>, usize)> {
+    let mut file = fs::File::open(path)?;
+    let size = |f: &fs::File| f.metadata().map_or(0, |m| m.len() as usize);
+    let delta = fs::File::open(delta_path(path)).ok();
+    // One buffer of the right size: growing it would copy 100 MB.
+    let mut bytes = Vec::with_capacity(size(&file) + delta.as_ref().map_or(0, size));
+    file.read_to_end(&mut bytes)?;
+    let base_len = bytes.len();
+    if let Some(mut delta) = delta {
+        if delta.read_to_end(&mut bytes).is_err() {
+            bytes.truncate(base_len);
+        }
+    }
+    Ok((bytes, base_len))
 }
 
 impl FitCache {
@@ -270,76 +576,72 @@ impl FitCache {
         FitCache::default()
     }
 
-    /// Loads the cache file at `path`; a missing, unreadable, corrupt or stale file gives
-    /// an empty cache and says why.
+    /// Loads the cache file at `path`, and its delta file ([`DELTA_FILE`]) when that one
+    /// is whole and bound to it (otherwise the delta file is ignored, and its contours are
+    /// fitted again, as the one a whole rewrite of the cache file leaves behind is); a
+    /// missing, unreadable, corrupt or stale cache file gives an empty cache and says why.
     pub fn load(path: &Path) -> (FitCache, LoadOutcome) {
-        let bytes = match fs::read(path) {
-            Ok(bytes) => bytes,
+        let (bytes, base_len) = match read_files(path) {
+            Ok(read) => read,
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
                 return (FitCache::new(), LoadOutcome::Missing)
             }
             Err(e) => return (FitCache::new(), LoadOutcome::Ignored(e.to_string())),
         };
-        match decode(&bytes) {
-            Ok(entries) => {
-                let base = BaseFile::of(&bytes);
-                drop(bytes);
-                let all = entries.fits.len() + entries.compatible.len() + entries.orient.len();
-                let mut cache = FitCache {
-                    loaded: entries.fits,
-                    loaded_compatible: entries.compatible,
-                    loaded_orient: entries.orient,
-                    source: Some(path.to_path_buf()),
-                    base: Some((base, all)),
-                    ..FitCache::default()
-                };
-                cache.add_delta(path, base);
-                let n = cache.loaded.len() + cache.loaded_compatible.len();
+        match FitCache::from_bytes(bytes, base_len) {
+            Ok(mut cache) => {
+                cache.source = Some(path.to_path_buf());
+                let n = cache.loaded.fits.len() + cache.loaded.compatible.len();
                 (cache, LoadOutcome::Loaded(n))
             }
             Err(reason) => (FitCache::new(), LoadOutcome::Ignored(reason.into())),
         }
     }
 
-    /// Adds the entries of the delta file beside `path` when it is whole and bound to the
-    /// cache file `base`; otherwise it is ignored (its contours are fitted again), as the
-    /// one a whole rewrite of the cache file leaves behind is. An entry already loaded
-    /// keeps the cache file's copy.
-    fn add_delta(&mut self, path: &Path, base: BaseFile) {
-        let Ok(bytes) = fs::read(delta_path(path)) else {
-            return;
-        };
-        let Ok(entries) = decode_delta(&bytes, base) else {
-            return;
-        };
-        fn merge<K: std::hash::Hash + Eq, T>(
-            into: &mut FxHashMap<K, FromFile<T>>,
-            from: FxHashMap<K, FromFile<T>>,
-        ) -> usize {
-            let mut added = 0;
-            for (k, entry) in from {
-                if let std::collections::hash_map::Entry::Vacant(v) = into.entry(k) {
-                    v.insert(FromFile {
-                        in_delta: true,
-                        ..entry
-                    });
-                    added += 1;
-                }
+    /// A cache over `bytes`: a cache file's (the first `base_len`), then possibly a delta
+    /// file's. The cache file must be whole; the delta file's entries are added when it is
+    /// whole and bound to the cache file (an entry in both keeps the cache file's copy),
+    /// else its bytes are dropped.
+    fn from_bytes(mut bytes: Vec<u8>, base_len: usize) -> Result<FitCache, &'static str> {
+        let base = BaseFile::of(&bytes[..base_len]);
+        let mut loaded = index_file(&bytes, 0..base_len, None)?;
+        let base_entries = loaded.len();
+        let delta_entries = match index_file(&bytes, base_len..bytes.len(), Some(base)) {
+            Ok(delta) => {
+                loaded.fits.merge(&bytes, delta.fits)
+                    + loaded.compatible.merge(&bytes, delta.compatible)
+                    + loaded.orient.merge(&bytes, delta.orient)
             }
-            added
-        }
-        self.delta_entries = merge(&mut self.loaded, entries.fits)
-            + merge(&mut self.loaded_compatible, entries.compatible)
-            + merge(&mut self.loaded_orient, entries.orient);
+            Err(_) => {
+                bytes.truncate(base_len);
+                0
+            }
+        };
+        Ok(FitCache {
+            bytes,
+            loaded,
+            base: Some((base, base_entries)),
+            delta_entries,
+            ..FitCache::default()
+        })
     }
 
     /// [`fit_contour`]`(spline, tolerance)`, from the cache when it holds this contour.
     pub fn fit(&self, spline: &XSpline, tolerance: f64) -> ContourFit {
-        let key = Key::new(spline, tolerance);
-        if let Some(entry) = self.loaded.get(&key) {
-            self.hit(&entry.used);
-            return entry.fit.clone();
+        let (bits, points) = (tolerance.to_bits(), spline.points());
+        let hash = static_hash(bits, points);
+        let stored = self
+            .loaded
+            .fits
+            .find(&self.bytes, hash, |key| is_static_key(key, bits, points));
+        if let Some(slot) = stored {
+            // An entry whose numbers are not finite is a miss.
+            if let Ok(fit) = read_fit(slot.fit(&self.bytes)) {
+                self.hit(&slot.used);
+                return fit;
+            }
         }
+        let key = static_key(bits, points);
         // The same contour placed twice in this run (a component at the same offset).
         if let Some(fit) = self.lock_made().fits.get(&key) {
             self.reused.fetch_add(1, Ordering::Relaxed);
@@ -356,17 +658,25 @@ impl FitCache {
     /// [`fit_compatible`]`(masters, positions, tolerance)`, from the cache when it holds
     /// these masters at these positions; counted with the static fits in
     /// [`FitCache::hits`], [`FitCache::reused`] and [`FitCache::misses`]. An error is
-    /// not cached (the loader refuses such masters; they are refitted every time).
+    /// not cached (the loader refuses such masters; they are refitted every time), nor
+    /// are masters of different point counts or positions without one weight per master.
     pub fn fit_compatible(
         &self,
         masters: &[&XSpline],
         positions: &[Vec<f64>],
         tolerance: f64,
     ) -> Result<CompatibleFit, CompatibleError> {
-        let key = CompatibleKey::new(masters, positions, tolerance);
-        if let Some(entry) = self.loaded_compatible.get(&key) {
-            self.hit(&entry.used);
-            return Ok(entry.fit.clone());
+        let Some(key) = compatible_key(masters, positions, tolerance) else {
+            self.misses.fetch_add(1, Ordering::Relaxed);
+            return fit_compatible(masters, positions, tolerance);
+        };
+        let stored = self
+            .loaded
+            .compatible
+            .find(&self.bytes, bytes_hash(&key), |k| k == key);
+        if let Some(slot) = stored {
+            self.hit(&slot.used);
+            return Ok(slot.value.clone());
         }
         if let Some(fit) = self.lock_made().compatible.get(&key) {
             self.reused.fetch_add(1, Ordering::Relaxed);
@@ -392,10 +702,18 @@ impl FitCache {
             return crate::orient::orient_contours(fitted);
         }
         let key = GlyphKey::new(placed, tolerance);
-        if let Some(entry) = self.loaded_orient.get(&key) {
-            if entry.fit.len() == fitted.len() {
-                self.mark_used(&entry.used);
-                return join_reversed(&fitted, &entry.fit);
+        let stored = self
+            .loaded
+            .orient
+            .find(&self.bytes, bytes_hash(&key.0), |k| k == key.0);
+        if let Some(slot) = stored {
+            // The contour count (u32), then one byte per contour, each 0 or 1 (checked at
+            // load).
+            let flags = &slot.fit(&self.bytes)[4..];
+            if flags.len() == fitted.len() {
+                self.mark_used(&slot.used);
+                let flags: Vec<bool> = flags.iter().map(|&f| f == 1).collect();
+                return join_reversed(&fitted, &flags);
             }
         }
         if let Some(flags) = self.lock_made().orient.get(&key) {
@@ -422,7 +740,7 @@ impl FitCache {
         }
     }
 
-    fn lock_made(&self) -> std::sync::MutexGuard<'_, Entries> {
+    fn lock_made(&self) -> std::sync::MutexGuard<'_, Made> {
         // A poisoned lock only means another thread panicked; every entry in the map was
         // inserted whole.
         self.made.lock().unwrap_or_else(|e| e.into_inner())
@@ -445,23 +763,60 @@ impl FitCache {
 
     /// The cache file's bytes: every fit used in this run, sorted by key.
     pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = HEADER.start();
+        self.put_body(&mut out, false);
+        Header::seal(&mut out);
+        out
+    }
+
+    /// Appends the fitters' key and the entries: the loaded ones used in this run (only
+    /// the delta file's when `delta_only`), their bytes copied, and those made in this run,
+    /// each kind sorted by key (no key is in both: a fit is made only when the files lack
+    /// it, or hold it damaged and so unused).
+    fn put_body(&self, out: &mut Vec<u8>, delta_only: bool) {
         let made = self.lock_made();
-        let fits = used_and_made(&self.loaded, &made.fits);
-        let compatible = used_and_made(&self.loaded_compatible, &made.compatible);
-        let orient = used_and_made(&self.loaded_orient, &made.orient);
-        encode(&fits, &compatible, &orient)
+        for v in fitter_key() {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        let (bytes, loaded) = (&self.bytes, &self.loaded);
+        let orient = made.orient.iter().map(|(k, v)| (&k.0[..], v));
+        put_section(
+            out,
+            bytes,
+            &loaded.orient,
+            delta_only,
+            orient,
+            glyph_order,
+            |out, flags: &Vec<bool>| put_flags(out, flags),
+        );
+        let fits = made.fits.iter().map(|(k, v)| (&k[..], v));
+        put_section(
+            out,
+            bytes,
+            &loaded.fits,
+            delta_only,
+            fits,
+            static_order,
+            put_fit,
+        );
+        let compatible = made.compatible.iter().map(|(k, v)| (&k[..], v));
+        put_section(
+            out,
+            bytes,
+            &loaded.compatible,
+            delta_only,
+            compatible,
+            compatible_order,
+            put_compatible_fit,
+        );
     }
 
     /// Whether the file at `path` already holds [`FitCache::to_bytes`]: it is the file this
     /// cache was loaded from, every entry of it was used, and nothing new was fitted.
     fn file_is_current(&self, path: &Path) -> bool {
-        let made = self.lock_made();
         self.source.as_deref() == Some(path)
-            && made.fits.is_empty()
-            && made.compatible.is_empty()
-            && made.orient.is_empty()
-            && self.loaded_used.load(Ordering::Relaxed)
-                == self.loaded.len() + self.loaded_compatible.len() + self.loaded_orient.len()
+            && self.lock_made().len() == 0
+            && self.loaded_used.load(Ordering::Relaxed) == self.loaded.len()
     }
 
     /// Writes the fits used in this run to `path` (or only its delta file:
@@ -488,12 +843,11 @@ impl FitCache {
         if let (Some((base, base_entries)), true) =
             (self.base, self.source.as_deref() == Some(path))
         {
-            let made = self.lock_made();
-            let made_n = made.fits.len() + made.compatible.len() + made.orient.len();
+            let made_n = self.lock_made().len();
             let (base_unused, delta_used) = [
-                usage(&self.loaded),
-                usage(&self.loaded_compatible),
-                usage(&self.loaded_orient),
+                self.loaded.fits.usage(),
+                self.loaded.compatible.usage(),
+                self.loaded.orient.usage(),
             ]
             .iter()
             .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
@@ -502,11 +856,12 @@ impl FitCache {
                 if made_n == 0 && delta_used == self.delta_entries {
                     return Vec::new();
                 }
-                let fits = used_and_made_delta(&self.loaded, &made.fits);
-                let compatible = used_and_made_delta(&self.loaded_compatible, &made.compatible);
-                let orient = used_and_made_delta(&self.loaded_orient, &made.orient);
-                let bytes = encode_delta(base, &fits, &compatible, &orient);
-                return vec![(delta_path(path), bytes)];
+                let mut out = DELTA_HEADER.start();
+                out.extend_from_slice(&base.len.to_le_bytes());
+                out.extend_from_slice(&base.crc.to_le_bytes());
+                self.put_body(&mut out, true);
+                Header::seal(&mut out);
+                return vec![(delta_path(path), out)];
             }
         }
         vec![(path.to_path_buf(), self.to_bytes())]
@@ -617,121 +972,62 @@ fn fitter_key() -> [u32; 6] {
 //   | segments u32 | between_masters (u8 0, or u8 1 and f64) | max_error (f64 per position)
 //   | one path per master
 
-/// The loaded entries this run used and those it made, sorted by key (no key is in both:
-/// a fit is made only when the file lacks it).
-fn used_and_made<'a, K: Ord + std::hash::Hash, T>(
-    loaded: &'a FxHashMap<K, FromFile<T>>,
-    made: &'a BTreeMap<K, T>,
-) -> Vec<(&'a K, &'a T)> {
-    let mut all: Vec<(&K, &T)> = loaded
-        .iter()
-        .filter(|(_, e)| e.used.load(Ordering::Relaxed))
-        .map(|(k, e)| (k, &e.fit))
-        .chain(made.iter())
-        .collect();
-    all.sort_unstable_by(|a, b| a.0.cmp(b.0));
-    all
-}
+// A delta file: magic (8) | format version u32 | the cache file's length u64 and CRC-32 u32
+//   | the same body as a cache file (fitter key, entries) | CRC-32 of everything before it
 
-/// Of `loaded`: the cache file's entries this run did not use, and the delta file's it
-/// used.
-fn usage<K, T>(loaded: &FxHashMap<K, FromFile<T>>) -> (usize, usize) {
-    loaded.values().fold((0, 0), |(unused, delta), e| {
-        let used = e.used.load(Ordering::Relaxed);
-        (
-            unused + usize::from(!e.in_delta && !used),
-            delta + usize::from(e.in_delta && used),
-        )
-    })
-}
-
-/// The delta file's entries this run used and the entries it made, sorted by key.
-fn used_and_made_delta<'a, K: Ord + std::hash::Hash, T>(
-    loaded: &'a FxHashMap<K, FromFile<T>>,
-    made: &'a BTreeMap<K, T>,
-) -> Vec<(&'a K, &'a T)> {
-    let mut all: Vec<(&K, &T)> = loaded
-        .iter()
-        .filter(|(_, e)| e.in_delta && e.used.load(Ordering::Relaxed))
-        .map(|(k, e)| (k, &e.fit))
-        .chain(made.iter())
-        .collect();
-    all.sort_unstable_by(|a, b| a.0.cmp(b.0));
-    all
-}
-
-/// The cache file's bytes holding these entries.
-fn encode(
-    fits: &[(&Key, &ContourFit)],
-    compatible: &[(&CompatibleKey, &CompatibleFit)],
-    orient: &[(&GlyphKey, &Vec<bool>)],
-) -> Vec<u8> {
-    let mut out = HEADER.start();
-    encode_body(&mut out, fits, compatible, orient);
-    Header::seal(&mut out);
-    out
-}
-
-/// The delta file's bytes holding these entries, bound to the cache file `base` (its
-/// length and checksum).
-fn encode_delta(
-    base: BaseFile,
-    fits: &[(&Key, &ContourFit)],
-    compatible: &[(&CompatibleKey, &CompatibleFit)],
-    orient: &[(&GlyphKey, &Vec<bool>)],
-) -> Vec<u8> {
-    let mut out = DELTA_HEADER.start();
-    out.extend_from_slice(&base.len.to_le_bytes());
-    out.extend_from_slice(&base.crc.to_le_bytes());
-    encode_body(&mut out, fits, compatible, orient);
-    Header::seal(&mut out);
-    out
-}
-
-/// Appends the fitters' key and the entries.
-fn encode_body(
+/// Appends one section of a file: its entry count (u64), then the entries sorted by
+/// `order` of their keys: the used slots of `index` (only the delta file's when
+/// `delta_only`), copied from `bytes`, and those `made` in this run (key, value), each
+/// written as its key and what `put` writes of its value.
+fn put_section<'a, T, V: 'a>(
     out: &mut Vec<u8>,
-    fits: &[(&Key, &ContourFit)],
-    compatible: &[(&CompatibleKey, &CompatibleFit)],
-    orient: &[(&GlyphKey, &Vec<bool>)],
+    bytes: &'a [u8],
+    index: &'a Index<T>,
+    delta_only: bool,
+    made: impl Iterator<Item = (&'a [u8], &'a V)>,
+    order: fn(&[u8], &[u8]) -> Order,
+    put: impl Fn(&mut Vec<u8>, &V),
 ) {
-    for v in fitter_key() {
-        out.extend_from_slice(&v.to_le_bytes());
+    /// What follows a key: the loaded entry's bytes, or a value made in this run.
+    enum Rest<'a, V> {
+        Copied(&'a [u8]),
+        Made(&'a V),
     }
-    out.extend_from_slice(&(orient.len() as u64).to_le_bytes());
-    for &(key, flags) in orient {
-        out.extend_from_slice(&key.0);
-        out.extend_from_slice(&(flags.len() as u32).to_le_bytes());
-        out.extend(flags.iter().map(|&r| u8::from(r)));
-    }
-    out.extend_from_slice(&(fits.len() as u64).to_le_bytes());
-    for &(key, fit) in fits {
-        out.extend_from_slice(&key.tolerance.to_le_bytes());
-        out.extend_from_slice(&(key.points.len() as u32).to_le_bytes());
-        put_points(out, &key.points);
-        put_fit(out, fit);
-    }
-    out.extend_from_slice(&(compatible.len() as u64).to_le_bytes());
-    for &(key, fit) in compatible {
-        out.extend_from_slice(&key.tolerance.to_le_bytes());
-        let points = key.masters.first().map_or(0, Vec::len);
-        for count in [key.masters.len(), points, key.positions.len()] {
-            out.extend_from_slice(&(count as u32).to_le_bytes());
+    let mut all: Vec<(&[u8], Rest<V>)> = index
+        .slots
+        .iter()
+        .filter(|s| s.is_used() && (s.in_delta || !delta_only))
+        .map(|s| (s.key(bytes), Rest::Copied(s.fit(bytes))))
+        .chain(made.map(|(key, value)| (key, Rest::Made(value))))
+        .collect();
+    all.sort_unstable_by(|a, b| order(a.0, b.0));
+    out.extend_from_slice(&(all.len() as u64).to_le_bytes());
+    // Room for the copied entries at least (a CJK font's file is 100 MB).
+    out.reserve(
+        all.iter()
+            .map(|(key, rest)| {
+                key.len()
+                    + if let Rest::Copied(r) = rest {
+                        r.len()
+                    } else {
+                        0
+                    }
+            })
+            .sum(),
+    );
+    for (key, rest) in all {
+        out.extend_from_slice(key);
+        match rest {
+            Rest::Copied(rest) => out.extend_from_slice(rest),
+            Rest::Made(value) => put(out, value),
         }
-        for master in &key.masters {
-            put_points(out, master);
-        }
-        for weight in key.positions.iter().flatten() {
-            out.extend_from_slice(&weight.to_le_bytes());
-        }
-        put_compatible_fit(out, fit);
     }
 }
 
-fn put_points(out: &mut Vec<u8>, points: &[[u64; 3]]) {
-    for v in points.iter().flatten() {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
+/// An orientation without its key: the contour count (u32), then one byte per contour.
+fn put_flags(out: &mut Vec<u8>, flags: &[bool]) {
+    out.extend_from_slice(&(flags.len() as u32).to_le_bytes());
+    out.extend(flags.iter().map(|&r| u8::from(r)));
 }
 
 fn put_fit(out: &mut Vec<u8>, fit: &ContourFit) {
@@ -767,33 +1063,32 @@ impl Reader<'_> {
         }
         Ok(v)
     }
-    /// `count` control points (x, y, s as bits).
-    fn points(&mut self, count: usize) -> Result<Vec<[u64; 3]>, &'static str> {
-        // Pushed: collecting through `Result` would grow the vector step by step.
-        let mut points = Vec::with_capacity(count);
-        for _ in 0..count {
-            points.push([self.u64()?, self.u64()?, self.u64()?]);
+}
+
+/// The entries of the file at `range` of `bytes` (a cache file, or with `bound` a delta
+/// file bound to that cache file), indexed once the whole file is checked: its frame,
+/// the fitters' key, every count, every orientation's flags, every static fit's path's
+/// structure, every compatible entry whole, no key twice, nothing after the last entry.
+fn index_file(
+    bytes: &[u8],
+    range: Range<usize>,
+    bound: Option<BaseFile>,
+) -> Result<Loaded, &'static str> {
+    let header = if bound.is_some() {
+        &DELTA_HEADER
+    } else {
+        &HEADER
+    };
+    let mut r = header.open(&bytes[range.clone()])?;
+    if let Some(base) = bound {
+        if (r.u64()?, r.u32()?) != (base.len, base.crc) {
+            return Err("it belongs to another cache file");
         }
-        Ok(points)
     }
-}
-
-fn decode(bytes: &[u8]) -> Result<Loaded, &'static str> {
-    let mut r = HEADER.open(bytes)?;
-    decode_body(&mut r)
-}
-
-/// The entries of a delta file, if it is bound to the cache file `base`.
-fn decode_delta(bytes: &[u8], base: BaseFile) -> Result<Loaded, &'static str> {
-    let mut r = DELTA_HEADER.open(bytes)?;
-    if (r.u64()?, r.u32()?) != (base.len, base.crc) {
-        return Err("it belongs to another cache file");
-    }
-    decode_body(&mut r)
-}
-
-/// The fitters' key (checked) and the entries, to the last byte.
-fn decode_body(r: &mut Reader<'_>) -> Result<Loaded, &'static str> {
+    // Where the reader is in `bytes`: the body ends before the checksum.
+    let body_end = range.end - 4;
+    let at = |r: &Reader<'_>| body_end - r.remaining();
+    let in_delta = bound.is_some();
     let key = fitter_key();
     if [r.u32()?, r.u32()?] != [key[0], key[1]] {
         return Err("it was written by another version of the fitter");
@@ -804,67 +1099,108 @@ fn decode_body(r: &mut Reader<'_>) -> Result<Loaded, &'static str> {
     if [r.u32()?, r.u32()?] != [key[4], key[5]] {
         return Err("it was written by another version of the orientation");
     }
-    let mut entries = Loaded::default();
     let n = r.u64()?;
     // An orientation entry is at least 32 + 4 bytes.
     let n = r.count(n, 36)?;
-    entries.orient.reserve(n);
+    let mut orient = Index::with_capacity(n);
     for _ in 0..n {
-        let key = GlyphKey(r.array()?);
+        let start = at(&r);
+        r.take(32)?;
         let count = r.u32()?;
         let count = r.count(u64::from(count), 1)?;
-        let flags = r
-            .take(count)?
-            .iter()
-            .map(|&b| match b {
-                0 => Ok(false),
-                1 => Ok(true),
-                _ => Err("an orientation is malformed"),
-            })
-            .collect::<Result<Vec<bool>, _>>()?;
-        if entries.orient.insert(key, FromFile::new(flags)).is_some() {
+        if r.take(count)?.iter().any(|&flag| flag > 1) {
+            return Err("an orientation is malformed");
+        }
+        let key = start..start + 32;
+        let hash = bytes_hash(&bytes[key.clone()]);
+        let entry = Slot::new(hash, key.start..key.end, at(&r), in_delta, ());
+        if !orient.insert(bytes, entry) {
             return Err("a glyph's orientation is stored twice");
         }
     }
     let n = r.u64()?;
     // A static entry is at least 8 + 4 + 8 + 4 bytes.
     let n = r.count(n, 24)?;
-    entries.fits.reserve(n);
+    let mut fits = Index::with_capacity(n);
     for _ in 0..n {
-        let tolerance = r.u64()?;
+        let start = at(&r);
+        r.u64()?;
         let count = r.u32()?;
         let count = r.count(u64::from(count), 24)?;
-        let points = r.points(count)?;
-        let max_error = r.error()?;
-        let path = read_path(r)?;
-        let fit = ContourFit { path, max_error };
-        if entries
-            .fits
-            .insert(Key { tolerance, points }, FromFile::new(fit))
-            .is_some()
-        {
+        r.take(24 * count)?;
+        let key_end = at(&r);
+        // The error; its value is checked when the fit is read.
+        r.u64()?;
+        skip_contour(&mut r)?;
+        let hash = static_key_hash(&bytes[start..key_end]);
+        if !fits.insert(bytes, Slot::new(hash, start..key_end, at(&r), in_delta, ())) {
             return Err("a contour is stored twice");
         }
     }
     let n = r.u64()?;
     // A compatible entry is at least 8 + 3 × 4 + 4 + 1 bytes.
     let n = r.count(n, 25)?;
+    let mut compatible = Index::with_capacity(n);
     for _ in 0..n {
-        let (key, fit) = read_compatible(r)?;
-        if entries.compatible.insert(key, FromFile::new(fit)).is_some() {
+        let start = at(&r);
+        let (masters, positions) = skip_compatible_key(&mut r)?;
+        let key_end = at(&r);
+        let fit = read_compatible_fit(&mut r, masters, positions)?;
+        let hash = bytes_hash(&bytes[start..key_end]);
+        if !compatible.insert(
+            bytes,
+            Slot::new(hash, start..key_end, at(&r), in_delta, fit),
+        ) {
             return Err("a contour is stored twice");
         }
     }
     if !r.is_empty() {
         return Err("bytes follow the last entry");
     }
-    Ok(entries)
+    Ok(Loaded {
+        fits,
+        compatible,
+        orient,
+    })
 }
 
-/// A compatible entry: its key, then a fit with one error per position and one path per
-/// master, all paths of the same elements, as many segments as it says.
-fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit), &'static str> {
-    let tolerance = r.u64()?;
+/// Skips a path that is one closed contour of lines and cubics: its element count, and
+/// its elements, whose tags are checked (its numbers are when it is read: [`read_path`]).
+fn skip_contour(r: &mut Reader<'_>) -> Result<(), &'static str> {
+    let count = r.u32()?;
+    let count = r.count(u64::from(count), 1)?;
+    if count < 2 {
+        return Err("a path is not one closed contour");
+    }
+    let last = count - 1;
+    for k in 0..count {
+        let size = match (r.u8()?, k) {
+            (TAG_MOVE, 0) => 16,
+            (TAG_LINE, k) if k != 0 && k != last => 16,
+            (TAG_CUBIC, k) if k != 0 && k != last => 48,
+            (TAG_CLOSE, k) if k == last => 0,
+            _ => return Err("a path is not one closed contour"),
+        };
+        r.take(size)?;
+    }
+    Ok(())
+}
+
+/// A static fit (the bytes after its key): its error and its path, every number finite.
+fn read_fit(bytes: &[u8]) -> Result<ContourFit, &'static str> {
+    let mut r = Reader::new(bytes);
+    let max_error = r.error()?;
+    let path = read_path(&mut r)?;
+    if !r.is_empty() {
+        return Err("bytes follow the path");
+    }
+    Ok(ContourFit { path, max_error })
+}
+
+/// Skips a compatible entry's key (tolerance, counts, points, weights), checking its
+/// counts; its master and position counts.
+fn skip_compatible_key(r: &mut Reader<'_>) -> Result<(usize, usize), &'static str> {
+    r.u64()?;
     let masters = r.u32()?;
     let masters = r.count(u64::from(masters), 24)?;
     let points = r.u32()?;
@@ -874,14 +1210,20 @@ fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit),
     if masters == 0 {
         return Err("a compatible fit without masters");
     }
-    r.count((masters as u64).saturating_mul(points as u64), 24)?;
-    let master_points = (0..masters)
-        .map(|_| r.points(points))
-        .collect::<Result<Vec<_>, _>>()?;
-    r.count((positions as u64).saturating_mul(masters as u64), 8)?;
-    let weights = (0..positions)
-        .map(|_| (0..masters).map(|_| r.u64()).collect())
-        .collect::<Result<Vec<Vec<u64>>, _>>()?;
+    let n = r.count((masters as u64).saturating_mul(points as u64), 24)?;
+    r.take(24 * n)?;
+    let n = r.count((positions as u64).saturating_mul(masters as u64), 8)?;
+    r.take(8 * n)?;
+    Ok((masters, positions))
+}
+
+/// A compatible entry's fit: one error per position and one path per master, all paths of
+/// the same elements, as many segments as it says.
+fn read_compatible_fit(
+    r: &mut Reader<'_>,
+    masters: usize,
+    positions: usize,
+) -> Result<CompatibleFit, &'static str> {
     let segments = r.u32()? as usize;
     let between_masters = match r.u8()? {
         0 => None,
@@ -902,18 +1244,12 @@ fn read_compatible(r: &mut Reader<'_>) -> Result<(CompatibleKey, CompatibleFit),
     if paths[1..].iter().any(|p| kinds(p) != first) || first.len() != segments + 2 {
         return Err("a compatible fit's paths differ in structure");
     }
-    let key = CompatibleKey {
-        tolerance,
-        positions: weights,
-        masters: master_points,
-    };
-    let fit = CompatibleFit {
+    Ok(CompatibleFit {
         paths,
         max_error,
         between_masters,
         segments,
-    };
-    Ok((key, fit))
+    })
 }
 
 /// One closed contour of lines and cubics.
@@ -937,7 +1273,6 @@ fn read_path(r: &mut Reader<'_>) -> Result<BezPath, &'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::record::{TAG_CLOSE, TAG_MOVE};
 
     fn square() -> XSpline {
         let points = [
@@ -952,38 +1287,60 @@ mod tests {
         XSpline::new(points).unwrap()
     }
 
+    /// The square moved right by `dx`.
+    fn moved(dx: f64) -> XSpline {
+        let points = square()
+            .points()
+            .iter()
+            .map(|p| ControlPoint::new(p.pos.x + dx, p.pos.y, p.s))
+            .collect();
+        XSpline::new(points).unwrap()
+    }
+
+    /// A cache over a cache file's `bytes` (no delta file).
+    fn loaded(bytes: &[u8]) -> Result<FitCache, &'static str> {
+        FitCache::from_bytes(bytes.to_vec(), bytes.len())
+    }
+
+    /// `bytes` (a cache file) with its checksum made to match again.
+    fn resealed(mut bytes: Vec<u8>) -> Vec<u8> {
+        bytes.truncate(bytes.len() - 4);
+        Header::seal(&mut bytes);
+        bytes
+    }
+
     #[test]
     fn a_round_trip_keeps_every_bit() {
         let cache = FitCache::new();
         let fit = cache.fit(&square(), 0.5);
         let bytes = cache.to_bytes();
-        let loaded = decode(&bytes).unwrap();
-        assert_eq!((loaded.fits.len(), loaded.compatible.len()), (1, 0));
-        let back = &loaded.fits.values().next().unwrap().fit;
+        let again = loaded(&bytes).unwrap();
+        assert_eq!(
+            (again.loaded.fits.len(), again.loaded.compatible.len()),
+            (1, 0)
+        );
+        let back = again.fit(&square(), 0.5);
+        assert_eq!((again.hits(), again.misses()), (1, 0));
         assert_eq!(back.max_error.to_bits(), fit.max_error.to_bits());
         assert_eq!(back.path, fit.path);
-        // Encoding is deterministic.
-        let again = FitCache {
-            loaded: loaded.fits,
-            ..FitCache::default()
-        };
-        again.fit(&square(), 0.5);
-        assert_eq!((again.hits(), again.misses()), (1, 0));
+        // Encoding is deterministic, and copying the used entry gives the same bytes.
         assert_eq!(again.to_bytes(), bytes);
+        // The hash made from a spline is the one made from its key's bytes.
+        let points = square().points().to_vec();
+        let key = static_key(0.5f64.to_bits(), &points);
+        assert_eq!(
+            static_key_hash(&key),
+            static_hash(0.5f64.to_bits(), &points)
+        );
+        assert!(is_static_key(&key, 0.5f64.to_bits(), &points));
+        assert!(!is_static_key(&key, 0.25f64.to_bits(), &points));
+        assert!(!is_static_key(&key, 0.5f64.to_bits(), &points[1..]));
     }
 
     #[test]
     fn the_file_is_rewritten_only_when_this_run_changed_its_entries() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join(CACHE_FILE);
-        let moved = |dx: f64| {
-            let points = square()
-                .points()
-                .iter()
-                .map(|p| ControlPoint::new(p.pos.x + dx, p.pos.y, p.s))
-                .collect();
-            XSpline::new(points).unwrap()
-        };
         let first = FitCache::new();
         first.fit(&moved(0.0), 0.5);
         first.fit(&moved(5.0), 0.5);
@@ -1025,6 +1382,249 @@ mod tests {
         assert_eq!(more.to_bytes(), fresh.to_bytes());
     }
 
+    /// Where the static entry for `spline` at `tolerance` lies in `cache`'s bytes.
+    fn static_slot(cache: &FitCache, spline: &XSpline, tolerance: f64) -> (usize, usize) {
+        let (bits, points) = (tolerance.to_bits(), spline.points());
+        let slot = cache
+            .loaded
+            .fits
+            .find(&cache.bytes, static_hash(bits, points), |key| {
+                is_static_key(key, bits, points)
+            })
+            .unwrap();
+        (slot.key_end, slot.end)
+    }
+
+    #[test]
+    fn a_corrupt_fit_with_a_valid_checksum_is_refitted_not_used() {
+        let good = {
+            let cache = FitCache::new();
+            cache.fit(&moved(0.0), 0.5);
+            cache.fit(&moved(5.0), 0.5);
+            cache.to_bytes()
+        };
+        let (fit_at, _) = static_slot(&loaded(&good).unwrap(), &moved(0.0), 0.5);
+        // The error (8 bytes), the element count (4), the move's tag (1), then its x.
+        let x_at = fit_at + 8 + 4 + 1;
+        assert_eq!(
+            good[x_at..x_at + 8],
+            fit_contour(&moved(0.0), 0.5).path.elements()[0]
+                .end_point()
+                .unwrap()
+                .x
+                .to_bits()
+                .to_le_bytes()
+        );
+        for (what, at, value) in [
+            ("a point at infinity", x_at, f64::INFINITY),
+            ("a point not a number", x_at, f64::NAN),
+            ("a negative error", fit_at, -1.0),
+            ("an error not a number", fit_at, f64::NAN),
+        ] {
+            let mut bad = good.clone();
+            bad[at..at + 8].copy_from_slice(&value.to_bits().to_le_bytes());
+            let bad = resealed(bad);
+            // The file is whole: it loads, and the other contour comes from it.
+            let cache = loaded(&bad).unwrap();
+            assert_eq!(cache.loaded.fits.len(), 2, "{what}");
+            let fit = cache.fit(&moved(0.0), 0.5);
+            let direct = fit_contour(&moved(0.0), 0.5);
+            assert_eq!(fit.path, direct.path, "{what}");
+            assert_eq!(
+                fit.max_error.to_bits(),
+                direct.max_error.to_bits(),
+                "{what}"
+            );
+            cache.fit(&moved(5.0), 0.5);
+            // The bad entry is a miss, again on a second call (from this run's fits), and
+            // never marked used: the file written next is the good one.
+            cache.fit(&moved(0.0), 0.5);
+            assert_eq!(
+                (cache.hits(), cache.reused(), cache.misses()),
+                (1, 1, 1),
+                "{what}"
+            );
+            assert_eq!(cache.loaded_used.load(Ordering::Relaxed), 1, "{what}");
+            assert_eq!(cache.to_bytes(), good, "{what}");
+        }
+    }
+
+    #[test]
+    fn keys_of_one_hash_are_told_apart_by_their_bytes() {
+        let (a, b) = (moved(0.0), moved(5.0));
+        let bytes = {
+            let cache = FitCache::new();
+            cache.fit(&a, 0.5);
+            cache.fit(&b, 0.5);
+            cache.to_bytes()
+        };
+        let mut cache = loaded(&bytes).unwrap();
+        // Give b's entry a's hash and put it first in a's bucket: a lookup of a meets b's
+        // entry first, with the same hash.
+        let hash_a = static_hash(0.5f64.to_bits(), a.points());
+        let mut slots = std::mem::take(&mut cache.loaded.fits).slots;
+        slots.sort_by_key(|s| s.hash != hash_a);
+        slots.reverse();
+        let mut index = Index::with_capacity(2);
+        for mut slot in slots {
+            slot.hash = hash_a;
+            assert!(index.insert(&cache.bytes, slot));
+        }
+        assert_eq!(index.table.iter().filter(|b| b.slot != 0).count(), 2);
+        let first = index.table[index.bucket(hash_a)].slot - 1;
+        assert!(!is_static_key(
+            index.slots[first].key(&cache.bytes),
+            0.5f64.to_bits(),
+            a.points()
+        ));
+        cache.loaded.fits = index;
+        // a: its own fit, from the file.
+        let fit = cache.fit(&a, 0.5);
+        assert_eq!(fit.path, fit_contour(&a, 0.5).path);
+        assert_eq!((cache.hits(), cache.misses()), (1, 0));
+        // b: its hash no longer finds it, so it is refitted; never a's fit.
+        let fit = cache.fit(&b, 0.5);
+        assert_eq!(fit.path, fit_contour(&b, 0.5).path);
+        assert_ne!(fit.path, fit_contour(&a, 0.5).path);
+        assert_eq!((cache.hits(), cache.misses()), (1, 1));
+        // Two keys of one hash in an index: each found by its bytes, a third not at all,
+        // and the same key twice refused.
+        let bytes = b"aaaabbbbcccc";
+        let entry = |start| Slot {
+            hash: 7,
+            start,
+            key_end: start + 4,
+            end: start + 4,
+            used: AtomicBool::new(false),
+            in_delta: false,
+            value: (),
+        };
+        let mut index = Index::default();
+        assert!(index.insert(bytes, entry(0)));
+        assert!(index.insert(bytes, entry(4)));
+        assert!(!index.insert(bytes, entry(0)));
+        for key in [b"aaaa", b"bbbb"] {
+            let found = index.find(bytes, 7, |k| k == key).unwrap();
+            assert_eq!(found.key(bytes), key);
+        }
+        assert!(index.find(bytes, 7, |k| k == b"cccc").is_none());
+        assert!(index.find(bytes, 8, |k| k == b"aaaa").is_none());
+        // Grown past its first size, it still finds every key.
+        let many: Vec<u8> = (0..200u32).flat_map(|k| k.to_le_bytes()).collect();
+        let mut index = Index::default();
+        for k in 0..200 {
+            let slot = Slot {
+                hash: (k % 3) as u64,
+                ..entry(4 * k)
+            };
+            assert!(index.insert(&many, slot));
+        }
+        assert!(index.table.len() >= 400);
+        for k in 0..200usize {
+            let key = &many[4 * k..4 * k + 4];
+            assert!(index.find(&many, (k % 3) as u64, |s| s == key).is_some());
+        }
+    }
+
+    /// A small deterministic generator of words, most of them from a short list (so that
+    /// keys share prefixes), some with high bytes set (where the bytes' order is not the
+    /// numbers').
+    struct Words(u64);
+
+    impl Words {
+        fn next(&mut self) -> u64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let r = self.0 >> 33;
+            [0, 1, 256, 1 << 56, u64::MAX, r][(r % 6) as usize]
+        }
+        fn below(&mut self, n: u64) -> usize {
+            (self.next() % n) as usize
+        }
+    }
+
+    #[test]
+    fn the_bytes_order_is_the_keys_order() {
+        let mut w = Words(1);
+        // Static keys: (tolerance, points).
+        let keys: Vec<(u64, Vec<[u64; 3]>)> = (0..300)
+            .map(|_| {
+                let n = w.below(4);
+                (
+                    w.next() % 3,
+                    (0..n).map(|_| [w.next(), w.next() % 2, 0]).collect(),
+                )
+            })
+            .collect();
+        let bytes: Vec<Vec<u8>> = keys
+            .iter()
+            .map(|(tolerance, points)| {
+                let mut out = tolerance.to_le_bytes().to_vec();
+                out.extend_from_slice(&(points.len() as u32).to_le_bytes());
+                for v in points.iter().flatten() {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
+                out
+            })
+            .collect();
+        for i in 0..keys.len() {
+            for j in 0..keys.len() {
+                assert_eq!(
+                    static_order(&bytes[i], &bytes[j]),
+                    keys[i].cmp(&keys[j]),
+                    "{:?} {:?}",
+                    keys[i],
+                    keys[j]
+                );
+            }
+        }
+        // Compatible keys: (tolerance, positions, masters).
+        type Compatible = (u64, Vec<Vec<u64>>, Vec<Vec<[u64; 3]>>);
+        let keys: Vec<Compatible> = (0..300)
+            .map(|_| {
+                let (masters, points, positions) = (1 + w.below(2), w.below(3), w.below(3));
+                let weights = (0..positions)
+                    .map(|_| (0..masters).map(|_| w.next() % 3).collect())
+                    .collect();
+                let points = (0..masters)
+                    .map(|_| (0..points).map(|_| [w.next(), 0, w.next() % 2]).collect())
+                    .collect();
+                (w.next() % 2, weights, points)
+            })
+            .collect();
+        let bytes: Vec<Vec<u8>> = keys
+            .iter()
+            .map(|(tolerance, weights, masters)| {
+                let mut out = tolerance.to_le_bytes().to_vec();
+                for count in [masters.len(), masters[0].len(), weights.len()] {
+                    out.extend_from_slice(&(count as u32).to_le_bytes());
+                }
+                for v in masters
+                    .iter()
+                    .flatten()
+                    .flatten()
+                    .chain(weights.iter().flatten())
+                {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
+                out
+            })
+            .collect();
+        for i in 0..keys.len() {
+            for j in 0..keys.len() {
+                assert_eq!(
+                    compatible_order(&bytes[i], &bytes[j]),
+                    keys[i].cmp(&keys[j]),
+                    "{:?} {:?}",
+                    keys[i],
+                    keys[j]
+                );
+            }
+        }
+    }
+
     /// Two nested squares and one beside them, all counter-clockwise, as placed contours
     /// and their fits.
     fn nested() -> (Vec<PlacedContour>, Vec<BezPath>) {
@@ -1053,6 +1653,13 @@ mod tests {
         (placed, fitted)
     }
 
+    /// A cache file holding only the orientation `flags` of the glyph `key`.
+    fn orientation_file(key: GlyphKey, flags: Vec<bool>) -> Vec<u8> {
+        let cache = FitCache::new();
+        cache.lock_made().orient.insert(key, flags);
+        cache.to_bytes()
+    }
+
     #[test]
     fn orientations_come_from_the_cache_and_are_what_orient_gives() {
         let (placed, fitted) = nested();
@@ -1063,15 +1670,12 @@ mod tests {
         // Made in this run: taken again without orienting (the same path).
         assert_eq!(cache.orient_placed(&placed, 0.5, fitted.clone()), expected);
         let bytes = cache.to_bytes();
-        let entries = decode(&bytes).unwrap();
-        assert_eq!(entries.orient.len(), 1);
-        let loaded = FitCache {
-            loaded_orient: entries.orient,
-            ..FitCache::default()
-        };
-        assert_eq!(loaded.orient_placed(&placed, 0.5, fitted.clone()), expected);
-        assert_eq!(loaded.loaded_used.load(Ordering::Relaxed), 1);
-        assert!(loaded.lock_made().orient.is_empty());
+        let warm = loaded(&bytes).unwrap();
+        assert_eq!(warm.loaded.orient.len(), 1);
+        assert_eq!(warm.orient_placed(&placed, 0.5, fitted.clone()), expected);
+        assert_eq!(warm.loaded_used.load(Ordering::Relaxed), 1);
+        assert!(warm.lock_made().orient.is_empty());
+        assert_eq!(warm.to_bytes(), bytes);
         // Another tolerance or placement is another glyph.
         let moved: Vec<PlacedContour> = placed
             .iter()
@@ -1081,9 +1685,9 @@ mod tests {
             })
             .collect();
         for (other, tolerance) in [(&placed, 0.25), (&moved, 0.5)] {
-            loaded.orient_placed(other, tolerance, fitted.clone());
+            warm.orient_placed(other, tolerance, fitted.clone());
         }
-        assert_eq!(loaded.lock_made().orient.len(), 2);
+        assert_eq!(warm.lock_made().orient.len(), 2);
 
         // The stored flags are what a hit uses: a file resealed with the inner square's
         // flag cleared gives that square unreversed (a forged file is trusted: the limit
@@ -1096,21 +1700,18 @@ mod tests {
             ),
             (vec![false, true], expected.clone()),
         ] {
-            let forged = encode(&[], &[], &[(&key, &flags)]);
-            let cache = FitCache {
-                loaded_orient: decode(&forged).unwrap().orient,
-                ..FitCache::default()
-            };
+            let cache = loaded(&orientation_file(key, flags)).unwrap();
             assert_eq!(cache.orient_placed(&placed, 0.5, fitted.clone()), want);
         }
         // A flag byte other than 0 or 1 makes the whole file refused.
-        let mut bad = encode(&[], &[], &[(&key, &vec![false, true, false])]);
+        let mut bad = orientation_file(key, vec![false, true, false]);
         let at = bad.len() - 4 - 8 - 8 - 2;
         assert_eq!(bad[at], 1);
         bad[at] = 2;
-        bad.truncate(bad.len() - 4);
-        Header::seal(&mut bad);
-        assert_eq!(decode(&bad).err(), Some("an orientation is malformed"));
+        assert_eq!(
+            loaded(&resealed(bad)).err(),
+            Some("an orientation is malformed")
+        );
     }
 
     #[test]
@@ -1118,19 +1719,33 @@ mod tests {
         let cache = FitCache::new();
         cache.fit(&square(), 0.5);
         let good = cache.to_bytes();
-        // Re-sign a body whose path's ClosePath tag became a MoveTo (a second contour that
-        // never closes): the CRC matches, the structure does not.
-        // The last 8 bytes before the checksum count the compatible entries (none).
-        let mut body = good[..good.len() - 12].to_vec();
-        let last = body.len() - 1;
-        assert_eq!(body[last], TAG_CLOSE);
-        body[last] = TAG_MOVE;
-        body.extend_from_slice(&0u64.to_le_bytes());
-        let crc = crc32fast::hash(&body);
-        body.extend_from_slice(&crc.to_le_bytes());
+        // A body whose path's ClosePath tag became a MoveTo (a second contour that never
+        // closes), resealed: the CRC matches, the structure does not, and the file is
+        // refused at load. The last 8 bytes before the checksum count the compatible
+        // entries (none).
+        let mut bad = good.clone();
+        let last = good.len() - 4 - 8 - 1;
+        assert_eq!(bad[last], TAG_CLOSE);
+        bad[last] = TAG_MOVE;
         assert_eq!(
-            decode(&body).err(),
-            Some("an outline is not closed subpaths")
+            loaded(&resealed(bad)).err(),
+            Some("a path is not one closed contour")
         );
+        // A quadratic where the first cubic is: refused too.
+        let mut bad = good.clone();
+        let (start, _) = static_slot(&loaded(&good).unwrap(), &square(), 0.5);
+        // The error (8), the element count (4), the move (1 + 16), then the second tag.
+        let tag = start + 8 + 4 + 17;
+        assert!([TAG_LINE, TAG_CUBIC].contains(&bad[tag]));
+        bad[tag] = crate::record::TAG_QUAD;
+        assert_eq!(
+            loaded(&resealed(bad)).err(),
+            Some("a path is not one closed contour")
+        );
+        // A byte after the last entry.
+        let mut bad = good[..good.len() - 4].to_vec();
+        bad.push(0);
+        Header::seal(&mut bad);
+        assert_eq!(loaded(&bad).err(), Some("bytes follow the last entry"));
     }
 }
