@@ -65,9 +65,8 @@
 //! [`FitCache::fit`] may be called from many threads at once.
 
 use std::cmp::Ordering as Order;
-use std::fs;
 use std::hash::Hasher;
-use std::io::{self, Read};
+use std::io;
 use std::ops::Range;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -81,7 +80,9 @@ use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::fit::{fit_contour, ContourFit};
 use crate::orient::{join_reversed, reversals, ORIENT_VERSION};
 use crate::outline::PlacedContour;
-use crate::record::{put_path, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE};
+use crate::record::{
+    put_path, read_with_delta, Binding, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE,
+};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// Name of the cache file in the output folder.
@@ -118,26 +119,6 @@ const DELTA_HEADER: Header = Header {
     version: FORMAT_VERSION,
     not_ours: "it is not an xglyph cache delta file",
 };
-
-/// What binds a delta file to its cache file: the cache file's length and checksum.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct BaseFile {
-    len: u64,
-    crc: u32,
-}
-
-impl BaseFile {
-    /// The binding of a cache file's `bytes` (its last four bytes are its checksum).
-    fn of(bytes: &[u8]) -> BaseFile {
-        let crc = bytes
-            .split_last_chunk::<4>()
-            .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
-        BaseFile {
-            len: bytes.len() as u64,
-            crc,
-        }
-    }
-}
 
 /// The delta file beside the cache file at `path`.
 pub fn delta_path(path: &Path) -> std::path::PathBuf {
@@ -540,7 +521,7 @@ pub struct FitCache {
     /// The file they came from.
     source: Option<std::path::PathBuf>,
     /// That file's binding and entry count, and the entries its delta file added.
-    base: Option<(BaseFile, usize)>,
+    base: Option<(Binding, usize)>,
     delta_entries: usize,
     /// Loaded entries used in this run.
     loaded_used: AtomicUsize,
@@ -550,24 +531,6 @@ pub struct FitCache {
     hits: AtomicUsize,
     reused: AtomicUsize,
     misses: AtomicUsize,
-}
-
-/// The bytes of the cache file at `path` and of its delta file after them (when there is
-/// one and it can be read), and the cache file's length.
-fn read_files(path: &Path) -> io::Result<(Vec<u8>, usize)> {
-    let mut file = fs::File::open(path)?;
-    let size = |f: &fs::File| f.metadata().map_or(0, |m| m.len() as usize);
-    let delta = fs::File::open(delta_path(path)).ok();
-    // One buffer of the right size: growing it would copy 100 MB.
-    let mut bytes = Vec::with_capacity(size(&file) + delta.as_ref().map_or(0, size));
-    file.read_to_end(&mut bytes)?;
-    let base_len = bytes.len();
-    if let Some(mut delta) = delta {
-        if delta.read_to_end(&mut bytes).is_err() {
-            bytes.truncate(base_len);
-        }
-    }
-    Ok((bytes, base_len))
 }
 
 impl FitCache {
@@ -581,7 +544,7 @@ impl FitCache {
     /// fitted again, as the one a whole rewrite of the cache file leaves behind is); a
     /// missing, unreadable, corrupt or stale cache file gives an empty cache and says why.
     pub fn load(path: &Path) -> (FitCache, LoadOutcome) {
-        let (bytes, base_len) = match read_files(path) {
+        let (bytes, base_len) = match read_with_delta(path, &delta_path(path)) {
             Ok(read) => read,
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
                 return (FitCache::new(), LoadOutcome::Missing)
@@ -603,7 +566,7 @@ impl FitCache {
     /// whole and bound to the cache file (an entry in both keeps the cache file's copy),
     /// else its bytes are dropped.
     fn from_bytes(mut bytes: Vec<u8>, base_len: usize) -> Result<FitCache, &'static str> {
-        let base = BaseFile::of(&bytes[..base_len]);
+        let base = Binding::of(&bytes[..base_len]);
         let mut loaded = index_file(&bytes, 0..base_len, None)?;
         let base_entries = loaded.len();
         let delta_entries = match index_file(&bytes, base_len..bytes.len(), Some(base)) {
@@ -857,8 +820,7 @@ impl FitCache {
                     return Vec::new();
                 }
                 let mut out = DELTA_HEADER.start();
-                out.extend_from_slice(&base.len.to_le_bytes());
-                out.extend_from_slice(&base.crc.to_le_bytes());
+                base.put(&mut out);
                 self.put_body(&mut out, true);
                 Header::seal(&mut out);
                 return vec![(delta_path(path), out)];
@@ -1072,7 +1034,7 @@ impl Reader<'_> {
 fn index_file(
     bytes: &[u8],
     range: Range<usize>,
-    bound: Option<BaseFile>,
+    bound: Option<Binding>,
 ) -> Result<Loaded, &'static str> {
     let header = if bound.is_some() {
         &DELTA_HEADER
@@ -1081,7 +1043,7 @@ fn index_file(
     };
     let mut r = header.open(&bytes[range.clone()])?;
     if let Some(base) = bound {
-        if (r.u64()?, r.u32()?) != (base.len, base.crc) {
+        if Binding::read(&mut r)? != base {
             return Err("it belongs to another cache file");
         }
     }
@@ -1346,7 +1308,7 @@ mod tests {
         first.fit(&moved(5.0), 0.5);
         assert!(!first.file_is_current(&path));
         first.save(&path).unwrap();
-        let bytes = fs::read(&path).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
 
         // Every entry used, nothing fitted: current, and `save` leaves the file alone.
         let (all, outcome) = FitCache::load(&path);

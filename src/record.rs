@@ -8,6 +8,10 @@
 //! (u32), the body, and a CRC-32 of everything before it. [`Header::open`] is the one
 //! place that checks the frame.
 
+use std::fs;
+use std::io::{self, Read};
+use std::path::Path;
+
 use kurbo::{BezPath, PathEl, Point};
 
 pub(crate) const TAG_MOVE: u8 = 0;
@@ -59,6 +63,60 @@ impl Header {
         }
         Ok(r)
     }
+}
+
+/// What binds a delta file to the file it adds to: that file's length and checksum (its
+/// last four bytes). A delta file starts its body with it, and is ignored unless it is the
+/// binding of the file beside it: the one a whole rewrite leaves behind no longer is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Binding {
+    len: u64,
+    crc: u32,
+}
+
+impl Binding {
+    /// The binding of a framed file's `bytes`.
+    pub(crate) fn of(bytes: &[u8]) -> Binding {
+        let crc = bytes
+            .split_last_chunk::<4>()
+            .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
+        Binding {
+            len: bytes.len() as u64,
+            crc,
+        }
+    }
+
+    /// Appends it.
+    pub(crate) fn put(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.len.to_le_bytes());
+        out.extend_from_slice(&self.crc.to_le_bytes());
+    }
+
+    /// Reads one, as [`Binding::put`] wrote it.
+    pub(crate) fn read(r: &mut Reader<'_>) -> Result<Binding, &'static str> {
+        Ok(Binding {
+            len: r.u64()?,
+            crc: r.u32()?,
+        })
+    }
+}
+
+/// The bytes of the file at `path`, then those of its delta file at `delta` when that one
+/// can be read, in one buffer sized once (growing it would copy a CJK font's 100 MB), and
+/// the first file's length.
+pub(crate) fn read_with_delta(path: &Path, delta: &Path) -> io::Result<(Vec<u8>, usize)> {
+    let mut file = fs::File::open(path)?;
+    let size = |f: &fs::File| f.metadata().map_or(0, |m| m.len() as usize);
+    let delta = fs::File::open(delta).ok();
+    let mut bytes = Vec::with_capacity(size(&file).saturating_add(delta.as_ref().map_or(0, size)));
+    file.read_to_end(&mut bytes)?;
+    let len = bytes.len();
+    if let Some(mut delta) = delta {
+        if delta.read_to_end(&mut bytes).is_err() {
+            bytes.truncate(len);
+        }
+    }
+    Ok((bytes, len))
 }
 
 /// Appends `path`: its element count (u32), then per element a tag and its points.

@@ -51,7 +51,7 @@
 
 use std::collections::HashMap;
 use std::fs;
-use std::io::{self, Read};
+use std::io;
 use std::ops::Range;
 use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -61,7 +61,10 @@ use kurbo::BezPath;
 use rustc_hash::FxHashMap;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::record::{put_path, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE, TAG_QUAD};
+use crate::record::{
+    put_path, read_with_delta, Binding, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE,
+    TAG_QUAD,
+};
 use crate::write::FileStamp;
 use sha2::{Digest, Sha256};
 
@@ -207,26 +210,6 @@ impl<T> Earlier<T> {
     }
 }
 
-/// What binds a delta file to its record file: the record file's length and checksum.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Binding {
-    len: u64,
-    crc: u32,
-}
-
-impl Binding {
-    /// The binding of a record file's `bytes` (its last four bytes are its checksum).
-    fn of(bytes: &[u8]) -> Binding {
-        let crc = bytes
-            .split_last_chunk::<4>()
-            .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
-        Binding {
-            len: bytes.len() as u64,
-            crc,
-        }
-    }
-}
-
 /// The outputs of the last build of an output folder, and those of this one.
 #[derive(Debug, Default)]
 pub struct Reuse {
@@ -282,35 +265,23 @@ impl Reuse {
             reuse.out = None;
             return (reuse, Some("the program's own file cannot be read".into()));
         }
-        let (path, delta_path) = (out.join(REUSE_FILE), out.join(DELTA_FILE));
-        // Both files in one buffer, so that every range indexes it: room for the delta is
-        // made first (growing a 90 MB vector copies it).
-        let delta_len = fs::metadata(&delta_path).map_or(0, |m| m.len() as usize);
-        let mut bytes = Vec::new();
-        let read = fs::File::open(&path).and_then(|mut f| {
-            let len = f.metadata()?.len() as usize;
-            bytes.reserve_exact(len.saturating_add(delta_len));
-            f.read_to_end(&mut bytes)
-        });
-        match read {
-            Ok(_) => {}
-            Err(e) if e.kind() == io::ErrorKind::NotFound => return (reuse, None),
-            Err(e) => return (reuse, Some(crate::write::reason(&e))),
-        }
-        let base = Binding::of(&bytes);
+        // Both files in one buffer, so that every range indexes it.
+        let (mut bytes, base_len) =
+            match read_with_delta(&out.join(REUSE_FILE), &out.join(DELTA_FILE)) {
+                Ok(read) => read,
+                Err(e) if e.kind() == io::ErrorKind::NotFound => return (reuse, None),
+                Err(e) => return (reuse, Some(crate::write::reason(&e))),
+            };
+        let base = Binding::of(&bytes[..base_len]);
         let mut parsed = match HEADER
-            .open(&bytes)
+            .open(&bytes[..base_len])
             .and_then(|mut r| parse(&mut r, &bytes, false))
         {
             Ok(parsed) => parsed,
             Err(why) => return (reuse, Some(why.to_string())),
         };
         reuse.base = Some((base, parsed.entries()));
-        let base_len = bytes.len();
-        if fs::File::open(&delta_path)
-            .and_then(|mut f| f.read_to_end(&mut bytes))
-            .is_ok()
-        {
+        if bytes.len() > base_len {
             match parse_delta(&bytes, base_len, base) {
                 Ok(delta) => {
                     parsed.merge(delta);
@@ -572,8 +543,7 @@ impl Reuse {
                     return Ok(Vec::new());
                 }
                 let mut bytes = DELTA_HEADER.start();
-                bytes.extend_from_slice(&binding.len.to_le_bytes());
-                bytes.extend_from_slice(&binding.crc.to_le_bytes());
+                binding.put(&mut bytes);
                 delta.sort();
                 delta.encode(&mut bytes);
                 Header::seal(&mut bytes);
@@ -738,11 +708,7 @@ impl Parsed {
 /// The delta file at `all[start..]`, when it is whole and bound to the record file `base`.
 fn parse_delta(all: &[u8], start: usize, base: Binding) -> Result<Parsed, &'static str> {
     let mut r = DELTA_HEADER.open(&all[start..])?;
-    let bound = Binding {
-        len: r.u64()?,
-        crc: r.u32()?,
-    };
-    if bound != base {
+    if Binding::read(&mut r)? != base {
         return Err("the delta file belongs to another record file");
     }
     parse(&mut r, all, true)

@@ -34,7 +34,7 @@ use rustc_hash::FxHashMap;
 
 use super::glyph::GlyphSpans;
 use crate::model::{Anchor, Component, Contour, Glyph};
-use crate::record::{Header, Reader};
+use crate::record::{Binding, Header, Reader};
 use crate::reuse::KeyBuilder;
 use crate::xspline::ControlPoint;
 
@@ -86,7 +86,7 @@ pub struct SourceMemo {
     bytes: Vec<u8>,
     delta_bytes: Vec<u8>,
     /// The memo file's binding (length, checksum) and entry count, when one was loaded.
-    base: Option<(u64, u32, usize)>,
+    base: Option<(Binding, usize)>,
     /// Entries the delta file added.
     delta_entries: usize,
     earlier: FxHashMap<[u8; 32], Slot>,
@@ -123,8 +123,8 @@ impl SourceMemo {
         };
         match decode(&HEADER, &bytes, None, false) {
             Ok(earlier) => {
-                let binding = binding(&bytes);
-                memo.base = Some((binding.0, binding.1, earlier.len()));
+                let binding = Binding::of(&bytes);
+                memo.base = Some((binding, earlier.len()));
                 memo.earlier = earlier;
                 memo.bytes = bytes;
                 memo.add_delta(path, binding);
@@ -136,7 +136,7 @@ impl SourceMemo {
 
     /// Adds the entries of the delta file beside `path` when it is whole and bound to the
     /// memo file (`binding`); otherwise it is ignored (those files are parsed again).
-    fn add_delta(&mut self, path: &Path, binding: (u64, u32)) {
+    fn add_delta(&mut self, path: &Path, binding: Binding) {
         let Ok(bytes) = fs::read(delta_path(path)) else {
             return;
         };
@@ -230,7 +230,7 @@ impl SourceMemo {
         if !self.on {
             return Vec::new();
         }
-        if let Some((len, crc, base_entries)) = self.base {
+        if let Some((binding, base_entries)) = self.base {
             let Ok(made) = self.made.lock() else {
                 return Vec::new();
             };
@@ -252,8 +252,7 @@ impl SourceMemo {
                     }
                 }
                 let mut out = DELTA_HEADER.start();
-                out.extend_from_slice(&len.to_le_bytes());
-                out.extend_from_slice(&crc.to_le_bytes());
+                binding.put(&mut out);
                 put_entries(&mut out, entries);
                 return vec![(delta_path(path), out)];
             }
@@ -298,14 +297,6 @@ pub fn delta_path(path: &Path) -> PathBuf {
     path.with_file_name(DELTA_FILE)
 }
 
-/// What binds a delta file to the memo file `bytes`: its length and checksum.
-fn binding(bytes: &[u8]) -> (u64, u32) {
-    let crc = bytes
-        .split_last_chunk::<4>()
-        .map_or(0, |(_, crc)| u32::from_le_bytes(*crc));
-    (bytes.len() as u64, crc)
-}
-
 /// Appends the entries sorted by key, and the checksum.
 fn put_entries(out: &mut Vec<u8>, mut entries: Vec<([u8; 32], &[u8])>) {
     entries.sort_by_key(|(key, _)| *key);
@@ -323,12 +314,12 @@ fn put_entries(out: &mut Vec<u8>, mut entries: Vec<([u8; 32], &[u8])>) {
 fn decode(
     header: &Header,
     bytes: &[u8],
-    bound: Option<(u64, u32)>,
+    bound: Option<Binding>,
     in_delta: bool,
 ) -> Result<FxHashMap<[u8; 32], Slot>, &'static str> {
     let mut r = header.open(bytes)?;
     if let Some(binding) = bound {
-        if (r.u64()?, r.u32()?) != binding {
+        if Binding::read(&mut r)? != binding {
             return Err("it belongs to another memo file");
         }
     }
