@@ -1531,17 +1531,7 @@ mod tests {
                 out
             })
             .collect();
-        for i in 0..keys.len() {
-            for j in 0..keys.len() {
-                assert_eq!(
-                    static_order(&bytes[i], &bytes[j]),
-                    keys[i].cmp(&keys[j]),
-                    "{:?} {:?}",
-                    keys[i],
-                    keys[j]
-                );
-            }
-        }
+        same_order(&keys, &bytes, static_order);
         // Compatible keys: (tolerance, positions, masters).
         type Compatible = (u64, Vec<Vec<u64>>, Vec<Vec<[u64; 3]>>);
         let keys: Vec<Compatible> = (0..300)
@@ -1574,15 +1564,18 @@ mod tests {
                 out
             })
             .collect();
-        for i in 0..keys.len() {
-            for j in 0..keys.len() {
-                assert_eq!(
-                    compatible_order(&bytes[i], &bytes[j]),
-                    keys[i].cmp(&keys[j]),
-                    "{:?} {:?}",
-                    keys[i],
-                    keys[j]
-                );
+        same_order(&keys, &bytes, compatible_order);
+    }
+
+    /// Every pair of `keys` compares as `order` compares their encodings `bytes`.
+    fn same_order<K: Ord + std::fmt::Debug>(
+        keys: &[K],
+        bytes: &[Vec<u8>],
+        order: impl Fn(&[u8], &[u8]) -> std::cmp::Ordering,
+    ) {
+        for (a, a_bytes) in keys.iter().zip(bytes) {
+            for (b, b_bytes) in keys.iter().zip(bytes) {
+                assert_eq!(order(a_bytes, b_bytes), a.cmp(b), "{a:?} {b:?}");
             }
         }
     }
