@@ -72,6 +72,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 
+use hashbrown::HashTable;
 use kurbo::{Affine, BezPath, PathEl};
 use rustc_hash::{FxHashMap, FxHasher};
 use sha2::{Digest, Sha256};
@@ -360,23 +361,23 @@ impl<T> Slot<T> {
     }
 }
 
-/// The loaded entries of one kind, found by their keys' hashes in an open-addressing table
-/// (linear probing). A slot is taken only when its key's bytes are the key asked for: keys
-/// of the same hash cost a comparison, never a wrong fit.
+/// The loaded entries of one kind, found by their keys' hashes (`hashbrown`'s
+/// `HashTable`, which takes the hash and the key comparison from the caller: the keys are
+/// bytes of the loaded file, compared in place). A slot is taken only when its key's bytes
+/// are the key asked for: keys of the same hash cost a comparison, never a wrong fit.
 #[derive(Debug)]
 struct Index<T> {
     slots: Vec<Slot<T>>,
-    /// Its length is 0 or a power of two at least twice the number of slots.
-    table: Vec<Bucket>,
+    table: HashTable<Bucket>,
 }
 
-/// A bucket of an [`Index`]: a slot's hash and key's place, so that a lookup reads the
-/// key's bytes without first reading the slot (one wait for memory fewer per lookup).
-#[derive(Clone, Copy, Debug, Default)]
+/// An entry of an [`Index`]'s table: a slot's hash and key's place, so that a lookup reads
+/// the key's bytes without first reading the slot (one wait for memory fewer per lookup).
+#[derive(Clone, Copy, Debug)]
 struct Bucket {
     hash: u64,
     key: (usize, usize),
-    /// 1 + the number of the slot, or 0 (empty).
+    /// The number of the slot.
     slot: usize,
 }
 
@@ -384,7 +385,7 @@ impl<T> Default for Index<T> {
     fn default() -> Self {
         Index {
             slots: Vec::new(),
-            table: Vec::new(),
+            table: HashTable::new(),
         }
     }
 }
@@ -394,32 +395,16 @@ impl<T> Index<T> {
     fn with_capacity(n: usize) -> Self {
         Index {
             slots: Vec::with_capacity(n),
-            table: vec![Bucket::default(); (2 * n).next_power_of_two().max(8)],
+            table: HashTable::with_capacity(n),
         }
-    }
-
-    /// The first bucket to probe for `hash` (Fibonacci hashing: the table's size is a
-    /// power of two, so the product's top bits).
-    fn bucket(&self, hash: u64) -> usize {
-        let bits = self.table.len().trailing_zeros();
-        (hash.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize
     }
 
     /// The slot whose hash is `hash` and whose key's bytes (in `bytes`) `is_key` accepts.
     fn find(&self, bytes: &[u8], hash: u64, is_key: impl Fn(&[u8]) -> bool) -> Option<&Slot<T>> {
-        if self.table.is_empty() {
-            return None;
-        }
-        let mask = self.table.len() - 1;
-        let mut at = self.bucket(hash);
-        loop {
-            let bucket = self.table[at];
-            let slot = bucket.slot.checked_sub(1)?;
-            if bucket.hash == hash && is_key(&bytes[bucket.key.0..bucket.key.1]) {
-                return Some(&self.slots[slot]);
-            }
-            at = (at + 1) & mask;
-        }
+        let bucket = self.table.find(hash, |b| {
+            b.hash == hash && bytes.get(b.key.0..b.key.1).is_some_and(&is_key)
+        })?;
+        self.slots.get(bucket.slot)
     }
 
     /// Adds `slot` unless a slot of the same key's bytes (in `bytes`) is there; whether it
@@ -431,31 +416,14 @@ impl<T> Index<T> {
         {
             return false;
         }
-        if 2 * (self.slots.len() + 1) > self.table.len() {
-            let size = (4 * (self.slots.len() + 1)).next_power_of_two().max(8);
-            self.table = vec![Bucket::default(); size];
-            for k in 0..self.slots.len() {
-                self.place(k);
-            }
-        }
-        self.slots.push(slot);
-        self.place(self.slots.len() - 1);
-        true
-    }
-
-    /// Puts slot `k` in the first empty bucket from its own.
-    fn place(&mut self, k: usize) {
-        let mask = self.table.len() - 1;
-        let slot = &self.slots[k];
-        let mut at = self.bucket(slot.hash);
-        while self.table[at].slot != 0 {
-            at = (at + 1) & mask;
-        }
-        self.table[at] = Bucket {
+        let bucket = Bucket {
             hash: slot.hash,
             key: (slot.start, slot.key_end),
-            slot: k + 1,
+            slot: self.slots.len(),
         };
+        self.table.insert_unique(slot.hash, bucket, |b| b.hash);
+        self.slots.push(slot);
+        true
     }
 
     fn len(&self) -> usize {
@@ -1421,8 +1389,8 @@ mod tests {
             cache.to_bytes()
         };
         let mut cache = loaded(&bytes).unwrap();
-        // Give b's entry a's hash and put it first in a's bucket: a lookup of a meets b's
-        // entry first, with the same hash.
+        // Give b's entry a's hash, and insert it first: a lookup of a may meet b's entry,
+        // with the same hash.
         let hash_a = static_hash(0.5f64.to_bits(), a.points());
         let mut slots = std::mem::take(&mut cache.loaded.fits).slots;
         slots.sort_by_key(|s| s.hash != hash_a);
@@ -1432,10 +1400,9 @@ mod tests {
             slot.hash = hash_a;
             assert!(index.insert(&cache.bytes, slot));
         }
-        assert_eq!(index.table.iter().filter(|b| b.slot != 0).count(), 2);
-        let first = index.table[index.bucket(hash_a)].slot - 1;
+        assert_eq!(index.table.len(), 2);
         assert!(!is_static_key(
-            index.slots[first].key(&cache.bytes),
+            index.slots[0].key(&cache.bytes),
             0.5f64.to_bits(),
             a.points()
         ));
@@ -1481,7 +1448,7 @@ mod tests {
             };
             assert!(index.insert(&many, slot));
         }
-        assert!(index.table.len() >= 400);
+        assert_eq!(index.table.len(), 200);
         for k in 0..200usize {
             let key = &many[4 * k..4 * k + 4];
             assert!(index.find(&many, (k % 3) as u64, |s| s == key).is_some());
