@@ -1097,21 +1097,15 @@ fn index_file(
 /// Skips a path that is one closed contour of lines and cubics: its element count, and
 /// its elements, whose tags are checked (its numbers are when it is read: [`read_path`]).
 fn skip_contour(r: &mut Reader<'_>) -> Result<(), &'static str> {
-    let count = r.u32()?;
-    let count = r.count(u64::from(count), 1)?;
-    if count < 2 {
-        return Err("a path is not one closed contour");
-    }
-    let last = count - 1;
-    for k in 0..count {
-        let size = match (r.u8()?, k) {
-            (TAG_MOVE, 0) => 16,
-            (TAG_LINE, k) if k != 0 && k != last => 16,
-            (TAG_CUBIC, k) if k != 0 && k != last => 48,
-            (TAG_CLOSE, k) if k == last => 0,
-            _ => return Err("a path is not one closed contour"),
-        };
-        r.take(size)?;
+    const NOT_ONE: &str = "a path is not one closed contour";
+    let one_contour = |k: usize, count: usize, tag: u8| match tag {
+        TAG_MOVE => k == 0,
+        TAG_LINE | TAG_CUBIC => k != 0 && k != count - 1,
+        TAG_CLOSE => k == count - 1,
+        _ => false,
+    };
+    if r.skip_path(one_contour, NOT_ONE)? < 2 {
+        return Err(NOT_ONE);
     }
     Ok(())
 }

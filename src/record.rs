@@ -214,6 +214,34 @@ impl<'a> Reader<'a> {
         }
     }
 
+    /// Steps over a path written by [`put_path`] without reading its numbers: its element
+    /// count, then each element's tag, which `tag_ok(index, count, tag)` must accept (else
+    /// `refused`), and its points. [`Reader::path`] checks the numbers when it reads them.
+    /// The element count.
+    pub(crate) fn skip_path(
+        &mut self,
+        tag_ok: impl Fn(usize, usize, u8) -> bool,
+        refused: &'static str,
+    ) -> Result<usize, &'static str> {
+        let count = self.u32()?;
+        let count = self.count(u64::from(count), 1)?;
+        for k in 0..count {
+            let tag = self.u8()?;
+            let points = match tag {
+                TAG_MOVE | TAG_LINE => 1,
+                TAG_QUAD => 2,
+                TAG_CUBIC => 3,
+                TAG_CLOSE => 0,
+                _ => return Err(refused),
+            };
+            if !tag_ok(k, count, tag) {
+                return Err(refused);
+            }
+            self.take(16 * points)?;
+        }
+        Ok(count)
+    }
+
     /// A path written by [`put_path`]: closed subpaths of finite points, possibly none.
     pub(crate) fn path(&mut self) -> Result<BezPath, &'static str> {
         let count = self.u32()?;

@@ -61,10 +61,7 @@ use kurbo::BezPath;
 use rustc_hash::FxHashMap;
 
 use crate::outline::{OutlinedFont, OutlinedGlyph};
-use crate::record::{
-    put_path, read_with_delta, Binding, Header, Reader, TAG_CLOSE, TAG_CUBIC, TAG_LINE, TAG_MOVE,
-    TAG_QUAD,
-};
+use crate::record::{put_path, read_with_delta, Binding, Header, Reader};
 use crate::write::FileStamp;
 use sha2::{Digest, Sha256};
 
@@ -785,7 +782,7 @@ fn parse(r: &mut Reader<'_>, all: &[u8], in_delta: bool) -> Result<Parsed, &'sta
 }
 
 /// Steps over a union's entry ([`union_entry`]): its tag, and unless 0 the outline's
-/// elements, each tag checked and its points skipped (decoded only when a build uses it:
+/// elements stepped over ([`Reader::skip_path`]; decoded only when a build uses it:
 /// [`union_from_entry`]). Its range, from `offset` of the parts read.
 fn union_range(
     r: &mut Reader<'_>,
@@ -799,18 +796,7 @@ fn union_range(
         1 => {}
         _ => return Err(MALFORMED),
     }
-    let count = r.u32()?;
-    let count = r.count(u64::from(count), 1)?;
-    for _ in 0..count {
-        let points = match r.u8()? {
-            TAG_MOVE | TAG_LINE => 1,
-            TAG_QUAD => 2,
-            TAG_CUBIC => 3,
-            TAG_CLOSE => 0,
-            _ => return Err(MALFORMED),
-        };
-        r.take(16 * points)?;
-    }
+    r.skip_path(|_, _, _| true, MALFORMED)?;
     // The end: where the next read starts.
     let end = offset(r.take(0)?);
     Ok(start..end)
