@@ -85,18 +85,14 @@ pub struct FileStamp {
 /// from a coarse clock (a tick of a few milliseconds): a file changed again within the tick
 /// of its last change would keep its times. A file older than this can only be changed in a
 /// later tick, which moves its change time. (Git's "racy" index entries, the same problem.)
-const SETTLED: std::time::Duration = std::time::Duration::from_millis(50);
+pub const SETTLED: std::time::Duration = std::time::Duration::from_millis(50);
 
 impl FileStamp {
     /// The stamp of the file at `path` (not following a link), holding bytes of `sha256`;
     /// none for a file changed less than [`SETTLED`] ago (the next commit compares it).
     fn of(path: &Path, sha256: [u8; 32]) -> Option<FileStamp> {
         let meta = fs::symlink_metadata(path).ok()?;
-        let meta = stamp_meta(&meta)?;
-        let changed =
-            std::time::UNIX_EPOCH + std::time::Duration::new(meta[4], u32::try_from(meta[5]).ok()?);
-        let age = std::time::SystemTime::now().duration_since(changed).ok()?;
-        (age >= SETTLED).then_some(FileStamp { meta, sha256 })
+        settled_meta(&meta).map(|meta| FileStamp { meta, sha256 })
     }
 
     /// Whether the file at `path` (not following a link) still has this stamp's metadata.
@@ -106,6 +102,19 @@ impl FileStamp {
             .and_then(|meta| stamp_meta(&meta))
             == Some(self.meta)
     }
+}
+
+/// The metadata a [`FileStamp`] records of a regular file, when it last changed at least
+/// [`SETTLED`] ago: while these metadata stay the same, so do its bytes. `None` for a file
+/// changed more recently (it may change again within the same clock tick), for anything
+/// but a regular file, and off Unix. Take it before reading the file: a change after the
+/// read then moves the metadata away from the ones recorded.
+pub fn settled_meta(meta: &fs::Metadata) -> Option<[u64; 6]> {
+    let stamp = stamp_meta(meta)?;
+    let changed =
+        std::time::UNIX_EPOCH + std::time::Duration::new(stamp[4], u32::try_from(stamp[5]).ok()?);
+    let age = std::time::SystemTime::now().duration_since(changed).ok()?;
+    (age >= SETTLED).then_some(stamp)
 }
 
 /// The metadata a [`FileStamp`] records, of a regular file (`None` for anything else).

@@ -17,7 +17,7 @@
 use std::collections::BTreeSet;
 
 use super::components::ComponentGraph;
-use super::diagnostic::{Ctx, Diagnostics};
+use super::diagnostic::Diagnostics;
 use super::load::GlyphFile;
 use crate::model::{propagate_anchors, Anchor, Font, Glyph};
 
@@ -61,7 +61,7 @@ pub(super) fn place_components(
         if !file.complete || graph.in_cycle(g) {
             continue;
         }
-        let mut ctx = Ctx::new(&file.path, &file.text, out);
+        let mut ctx = file.ctx(out);
         let mut placed: Vec<((f64, f64), Vec<Anchor>)> = Vec::new();
         for (k, c) in file.glyph.components.iter().enumerate() {
             let anchors = match graph.bases[g][k] {
@@ -182,7 +182,7 @@ pub(super) fn check_anchors(glyphs: &[GlyphFile], out: &mut Diagnostics) {
         .map(|a| a.name.as_str())
         .collect();
     for g in glyphs {
-        let mut ctx = Ctx::new(&g.path, &g.text, out);
+        let mut ctx = g.ctx(out);
         for (a, &at) in g.glyph.anchors.iter().zip(&g.spans.anchors) {
             let Some(to) = a.attaches_to() else { continue };
             if !bases.contains(to) {

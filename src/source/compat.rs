@@ -47,7 +47,7 @@ pub(super) fn check_master(
     let in_default: HashMap<&str, &GlyphFile> =
         default.iter().map(|g| (g.glyph.name.as_str(), g)).collect();
     for m in master {
-        let mut ctx = Ctx::new(&m.path, &m.text, out);
+        let mut ctx = m.ctx(out);
         let Some(d) = in_default.get(m.glyph.name.as_str()) else {
             let at = if m.spans.name > 0 {
                 m.spans.name

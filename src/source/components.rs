@@ -8,7 +8,7 @@
 
 use std::collections::HashMap;
 
-use super::diagnostic::{Ctx, Diagnostics};
+use super::diagnostic::Diagnostics;
 use super::load::GlyphFile;
 
 /// Components resolved to glyph indices, with strongly connected components.
@@ -117,7 +117,7 @@ pub(super) fn check_components(
         if file.glyph.components.is_empty() {
             continue;
         }
-        let mut ctx = Ctx::new(&file.path, &file.text, out);
+        let mut ctx = file.ctx(out);
         let components = file.glyph.components.iter().zip(&file.spans.bases);
         for (k, (c, &off)) in components.enumerate() {
             if graph.bases[g][k].is_none() {

@@ -64,7 +64,7 @@ pub fn load_designspace_text(
 /// folders). `None` when there is an error (reported), including a master set that
 /// [`Designspace::regions`] refuses.
 pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<DesignspaceSpec> {
-    let text = ctx.text;
+    let text = ctx.text();
     // Invalid TOML is reported by `load_info`.
     let table = DeTable::parse(text).ok()?;
     let t = table.get_ref();

@@ -9,6 +9,7 @@
 use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 /// Diagnostics shown per file; further ones are only counted.
 pub const MAX_PER_FILE: usize = 100;
@@ -262,25 +263,57 @@ impl Diagnostics {
 /// Diagnostics being gathered for one file: byte offsets become line and column.
 pub(super) struct Ctx<'a> {
     pub path: &'a Path,
-    pub text: &'a str,
+    text: Text<'a>,
     pub out: &'a mut Diagnostics,
     /// Built on the first diagnostic.
     lines: Option<LineIndex>,
+}
+
+/// The text of a [`Ctx`]'s file.
+#[derive(Clone, Copy)]
+enum Text<'a> {
+    Read(&'a str),
+    /// Not read yet: read on first use (a file the source memo gave by its stamp, whose
+    /// text only a diagnostic needs).
+    Later(&'a OnceLock<String>),
 }
 
 impl<'a> Ctx<'a> {
     pub fn new(path: &'a Path, text: &'a str, out: &'a mut Diagnostics) -> Self {
         Ctx {
             path,
-            text,
+            text: Text::Read(text),
             out,
             lines: None,
         }
     }
 
+    /// A context whose text `text` is read from `path` when first needed. A file that
+    /// cannot be read then has no text (its messages point at line 1).
+    pub fn later(path: &'a Path, text: &'a OnceLock<String>, out: &'a mut Diagnostics) -> Self {
+        Ctx {
+            path,
+            text: Text::Later(text),
+            out,
+            lines: None,
+        }
+    }
+
+    /// The file's text.
+    pub fn text(&self) -> &'a str {
+        match self.text {
+            Text::Read(text) => text,
+            Text::Later(cell) => cell.get_or_init(|| {
+                std::fs::read(self.path)
+                    .map(|b| String::from_utf8_lossy(&b).into_owned())
+                    .unwrap_or_default()
+            }),
+        }
+    }
+
     /// 1-based line and column of a byte offset in this file.
     pub fn line_col(&mut self, offset: usize) -> (usize, usize) {
-        let text = self.text;
+        let text = self.text();
         self.lines
             .get_or_insert_with(|| LineIndex::new(text))
             .line_col(text, offset)
@@ -291,7 +324,7 @@ impl<'a> Ctx<'a> {
             return;
         }
         let (line, col) = self.line_col(offset);
-        let text = self.text;
+        let text = self.text();
         let snippet = self.lines.as_ref().map(|l| l.snippet(text, line, col));
         self.out.kept.push(Diagnostic {
             path: self.path.to_path_buf(),

@@ -82,7 +82,7 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let text = ctx.text;
+    let text = ctx.text();
     let table = parse(ctx, text)?;
     let t = table.get_ref();
     let suggested = check_keys(ctx, t, KEYS);

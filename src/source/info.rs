@@ -67,7 +67,7 @@ pub fn load_info_text(
 }
 
 pub(super) fn load_info(ctx: &mut Ctx<'_>) -> Option<FontInfo> {
-    let text = ctx.text;
+    let text = ctx.text();
     let table = parse(ctx, text)?;
     let t = table.get_ref();
     let suggested = check_keys(ctx, t, KEYS);

@@ -25,7 +25,7 @@ pub fn load_kerning_text(
 /// Loads the pairs in file order. Every side must name an existing glyph; a pair written
 /// twice is an error (which value would win is not obvious), even with the same value.
 pub(super) fn load_kerning(ctx: &mut Ctx<'_>, names: &BTreeSet<String>) -> Option<Vec<KernPair>> {
-    let text = ctx.text;
+    let text = ctx.text();
     let table = parse(ctx, text)?;
     let t = table.get_ref();
     check_keys(ctx, t, &["pair"]);

@@ -244,7 +244,7 @@ pub(super) fn check_font(
         if font_points > MAX_FONT_POINTS && !font_reported {
             font_reported = true;
             let at = file.spans.name;
-            Ctx::new(&file.path, &file.text, out).err(
+            file.ctx(out).err(
                 at,
                 format!(
                     "with glyph `{}`, the font has more than {MAX_FONT_POINTS} control points \
@@ -268,7 +268,7 @@ fn check_names(glyphs: &[GlyphFile], out: &mut Diagnostics) {
         let shown: String = name.chars().flat_map(char::escape_debug).collect();
         // A written `name` value never starts at offset 0 (its key comes first).
         if file.spans.name > 0 {
-            Ctx::new(&file.path, &file.text, out)
+            file.ctx(out)
                 .err(file.spans.name, format!("glyph name `{shown}` {why}"));
         } else {
             out.push(Diagnostic::whole(
@@ -292,7 +292,7 @@ fn expand(
     out: &mut Diagnostics,
 ) -> Option<Expanded> {
     let glyph = &file.glyph;
-    let mut ctx = Ctx::new(&file.path, &file.text, out);
+    let mut ctx = file.ctx(out);
     let mut size = Expanded::default();
     for (c, contour) in glyph.contours.iter().enumerate() {
         size.points += contour.points().len() as u64;
@@ -410,7 +410,7 @@ mod tests {
             complete: true,
             spans: GlyphSpans::default(),
             path: format!("{name}.toml").into(),
-            text: String::new(),
+            text: String::new().into(),
         }
     }
 

@@ -7,6 +7,7 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fs::FileType;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use super::anchors::{check_anchors, place_components};
 use super::compat::check_master;
@@ -66,17 +67,6 @@ pub struct LoadedFont {
     pub masters: Vec<Master>,
 }
 
-impl LoadedFont {
-    /// The font with its masters.
-    pub fn family(&self) -> Family {
-        Family {
-            default: self.font.clone(),
-            designspace: self.designspace.clone(),
-            masters: self.masters.clone(),
-        }
-    }
-}
-
 /// Load a font directory with its masters ([`load_sources`]): the family and its warnings,
 /// or every diagnostic when there are errors.
 pub fn load_family(dir: &Path) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
@@ -89,7 +79,15 @@ pub fn load_family_with(
     dir: &Path,
     memo: &SourceMemo,
 ) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
-    load_sources_with(dir, memo).map(|l| (l.family(), l.warnings))
+    // Without the files' texts: the memo gives unchanged files unread.
+    load_sources_with(dir, memo, false).map(|l| {
+        let family = Family {
+            default: l.font,
+            designspace: l.designspace,
+            masters: l.masters,
+        };
+        (family, l.warnings)
+    })
 }
 
 /// Load a font directory: `font.toml`, optional `kerning.toml`, and one glyph per other
@@ -106,7 +104,28 @@ pub(super) struct GlyphFile {
     pub complete: bool,
     pub spans: GlyphSpans,
     pub path: PathBuf,
-    pub text: String,
+    /// Its text; not read yet for a file the memo gave by its stamp.
+    pub text: OnceLock<String>,
+}
+
+impl GlyphFile {
+    /// A context for diagnostics in this file (its text read only if there is one).
+    pub fn ctx<'a>(&'a self, out: &'a mut Diagnostics) -> Ctx<'a> {
+        Ctx::later(&self.path, &self.text, out)
+    }
+
+    /// Its glyph, and its file of kind `kind` with its text (read now if it was not).
+    fn into_source(self, kind: impl FnOnce(&Glyph) -> SourceKind) -> (Glyph, SourceFile) {
+        let GlyphFile {
+            glyph, path, text, ..
+        } = self;
+        let text = text
+            .into_inner()
+            .or_else(|| read(&path, &mut Diagnostics::default()))
+            .unwrap_or_default();
+        let kind = kind(&glyph);
+        (glyph, SourceFile { path, text, kind })
+    }
 }
 
 /// [`load_font`], also returning the text of every source file (for `fmt`).
@@ -115,11 +134,16 @@ pub(super) struct GlyphFile {
 /// `kerning.toml`), and by position within a file; at most
 /// [`super::diagnostic::MAX_PER_FILE`] per file, then one "… and N more" line.
 pub fn load_sources(dir: &Path) -> Result<LoadedFont, Vec<Diagnostic>> {
-    load_sources_with(dir, &SourceMemo::off())
+    load_sources_with(dir, &SourceMemo::off(), true)
 }
 
-/// [`load_sources`] with glyph files from `memo`.
-fn load_sources_with(dir: &Path, memo: &SourceMemo) -> Result<LoadedFont, Vec<Diagnostic>> {
+/// [`load_sources`] with glyph files from `memo`; with `texts` false,
+/// [`LoadedFont::files`] holds only `font.toml` and `kerning.toml`.
+fn load_sources_with(
+    dir: &Path,
+    memo: &SourceMemo,
+    texts: bool,
+) -> Result<LoadedFont, Vec<Diagnostic>> {
     let mut out = Diagnostics::default();
     let font_path = dir.join("font.toml");
     let kern_path = dir.join("kerning.toml");
@@ -299,12 +323,13 @@ fn load_sources_with(dir: &Path, memo: &SourceMemo) -> Result<LoadedFont, Vec<Di
     }];
     let mut model_glyphs = Vec::with_capacity(glyphs.len());
     for g in glyphs {
-        files.push(SourceFile {
-            path: g.path,
-            text: g.text,
-            kind: SourceKind::Glyph(g.glyph.name.clone()),
-        });
-        model_glyphs.push(g.glyph);
+        if texts {
+            let (glyph, file) = g.into_source(|g| SourceKind::Glyph(g.name.clone()));
+            files.push(file);
+            model_glyphs.push(glyph);
+        } else {
+            model_glyphs.push(g.glyph);
+        }
     }
     if let Some(text) = kern_text {
         files.push(SourceFile {
@@ -314,7 +339,7 @@ fn load_sources_with(dir: &Path, memo: &SourceMemo) -> Result<LoadedFont, Vec<Di
         });
     }
     model_glyphs.sort_by(|a, b| glyph_order(&a.name, &b.name));
-    let model_masters = model_masters(&spec, masters, &model_glyphs, &mut files);
+    let model_masters = model_masters(&spec, masters, &model_glyphs, texts.then_some(&mut files));
     Ok(LoadedFont {
         font: Font {
             info,
@@ -346,21 +371,25 @@ fn model_masters(
     spec: &DesignspaceSpec,
     loaded: Vec<LoadedMaster>,
     default: &[Glyph],
-    files: &mut Vec<SourceFile>,
+    mut files: Option<&mut Vec<SourceFile>>,
 ) -> Vec<Master> {
     let mut masters = Vec::with_capacity(loaded.len());
     for m in loaded {
         let s = &spec.masters[m.index];
         let mut by_name: HashMap<String, Glyph> = HashMap::new();
         for g in m.glyphs {
-            files.push(SourceFile {
-                path: g.path,
-                text: g.text,
-                kind: SourceKind::MasterGlyph(m.index, g.glyph.name.clone()),
-            });
-            by_name.insert(g.glyph.name.clone(), g.glyph);
+            let glyph = match files.as_deref_mut() {
+                Some(files) => {
+                    let kind = |g: &Glyph| SourceKind::MasterGlyph(m.index, g.name.clone());
+                    let (glyph, file) = g.into_source(kind);
+                    files.push(file);
+                    glyph
+                }
+                None => g.glyph,
+            };
+            by_name.insert(glyph.name.clone(), glyph);
         }
-        if let Some((path, text)) = m.kern {
+        if let (Some(files), Some((path, text))) = (files.as_deref_mut(), m.kern) {
             files.push(SourceFile {
                 path,
                 text,
@@ -389,7 +418,7 @@ fn model_masters(
 /// Reads and loads each glyph file; also whether any failed (unreadable, or with an error
 /// of its own).
 fn load_glyph_files(
-    paths: &[PathBuf],
+    paths: &[GlyphPath],
     memo: &SourceMemo,
     out: &mut Diagnostics,
 ) -> (Vec<GlyphFile>, bool) {
@@ -399,9 +428,9 @@ fn load_glyph_files(
     // the one a sequential load gathers, whatever the thread count.
     let loaded: Vec<(Option<GlyphFile>, Diagnostics)> = paths
         .par_iter()
-        .map(|path| {
+        .map(|(path, meta)| {
             let mut mine = Diagnostics::default();
-            let file = load_glyph_file(path, memo, &mut mine);
+            let file = load_glyph_file(path, meta.as_ref(), memo, &mut mine);
             (file, mine)
         })
         .collect();
@@ -420,25 +449,38 @@ fn load_glyph_files(
     (glyphs, failed)
 }
 
-/// One glyph file read and loaded (`None`: unreadable or not a glyph at all).
+/// One glyph file read and loaded (`None`: unreadable or not a glyph at all). `meta`: its
+/// settled metadata, taken before the read ([`crate::write::settled_meta`]).
 /// A file `memo` holds as it is now is taken from it (it loaded complete and without any
-/// diagnostic); a file that loads so is kept in it.
-fn load_glyph_file(path: &Path, memo: &SourceMemo, out: &mut Diagnostics) -> Option<GlyphFile> {
+/// diagnostic), unread when its stamp is the memo's; a file that loads so is kept in it.
+fn load_glyph_file(
+    path: &Path,
+    meta: Option<&[u64; 6]>,
+    memo: &SourceMemo,
+    out: &mut Diagnostics,
+) -> Option<GlyphFile> {
+    let stamp = meta
+        .filter(|_| memo.is_on())
+        .map(|meta| SourceMemo::stamp(path, meta));
+    let from_memo = |(glyph, spans), text| GlyphFile {
+        glyph,
+        complete: true,
+        spans,
+        path: path.to_path_buf(),
+        text,
+    };
+    if let Some(taken) = stamp.as_ref().and_then(|s| memo.take_stamped(s)) {
+        return Some(from_memo(taken, OnceLock::new()));
+    }
     let text = read(path, out)?;
     let key = SourceMemo::key(path, &text);
-    if let Some((glyph, spans)) = memo.take(&key) {
-        return Some(GlyphFile {
-            glyph,
-            complete: true,
-            spans,
-            path: path.to_path_buf(),
-            text,
-        });
+    if let Some(taken) = memo.take(&key, stamp) {
+        return Some(from_memo(taken, OnceLock::from(text)));
     }
     let mut own = Diagnostics::default();
     let loaded = load_glyph(&mut Ctx::new(path, &text, &mut own));
     if let Some(loaded) = loaded.as_ref().filter(|l| l.complete && own.is_empty()) {
-        memo.keep(key, &loaded.glyph, &loaded.spans);
+        memo.keep(key, stamp, &loaded.glyph, &loaded.spans);
     }
     out.absorb(own);
     let loaded = loaded?;
@@ -447,9 +489,12 @@ fn load_glyph_file(path: &Path, memo: &SourceMemo, out: &mut Diagnostics) -> Opt
         complete: loaded.complete,
         spans: loaded.spans,
         path: path.to_path_buf(),
-        text,
+        text: OnceLock::from(text),
     })
 }
+
+/// A glyph file and its settled metadata ([`crate::write::settled_meta`]), if any.
+type GlyphPath = (PathBuf, Option<[u64; 6]>);
 
 /// The glyph files of `dir`, sorted: every `*.toml` except `font.toml`, `kerning.toml`
 /// and names starting with `.` (editor and temporary files). A `*.toml` that is not a
@@ -458,7 +503,8 @@ fn load_glyph_file(path: &Path, memo: &SourceMemo, out: &mut Diagnostics) -> Opt
 fn glyph_files(
     dir: &Path,
     out: &mut Diagnostics,
-) -> Result<(Vec<PathBuf>, Vec<PathBuf>), Diagnostic> {
+) -> Result<(Vec<GlyphPath>, Vec<PathBuf>), Diagnostic> {
+    use rayon::prelude::*;
     let entries = std::fs::read_dir(dir).map_err(|e| {
         let why = if e.kind() == std::io::ErrorKind::NotFound {
             "font directory not found".to_string()
@@ -477,19 +523,21 @@ fn glyph_files(
         })
         .collect();
     paths.sort();
-    let candidates = paths.clone();
-    paths.retain(|p| match regular_file(p) {
-        Ok(found) => found,
-        Err(what) => {
-            out.push(Diagnostic::whole(
+    // Each file's metadata on any core (a CJK font's 20,902), the warnings in order.
+    let found: Vec<_> = paths.par_iter().map(|p| regular_meta(p)).collect();
+    let mut files = Vec::with_capacity(paths.len());
+    for (p, found) in paths.iter().zip(found) {
+        match found {
+            Ok(Some(meta)) => files.push((p.clone(), crate::write::settled_meta(&meta))),
+            Ok(None) => {}
+            Err(what) => out.push(Diagnostic::whole(
                 p,
                 Severity::Warning,
                 format!("{what}, not a regular file; skipped"),
-            ));
-            false
+            )),
         }
-    });
-    Ok((paths, candidates))
+    }
+    Ok((files, paths))
 }
 
 /// Whether `path` is a regular file (following links): `Ok(true)`; absent: `Ok(false)`;
@@ -499,15 +547,20 @@ fn glyph_files(
 /// swapped for a FIFO between this check and the read could still block; that needs a
 /// writer racing the loader on purpose.)
 fn regular_file(path: &Path) -> Result<bool, String> {
+    regular_meta(path).map(|meta| meta.is_some())
+}
+
+/// [`regular_file`], with the file's metadata when it is one.
+fn regular_meta(path: &Path) -> Result<Option<std::fs::Metadata>, String> {
     match std::fs::metadata(path) {
-        Ok(m) if m.is_file() => Ok(true),
+        Ok(m) if m.is_file() => Ok(Some(m)),
         Ok(m) => Err(describe(m.file_type()).to_string()),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             match std::fs::symlink_metadata(path) {
                 Ok(m) if m.file_type().is_symlink() => {
                     Err("a dangling symbolic link (its target does not exist)".to_string())
                 }
-                _ => Ok(false),
+                _ => Ok(None),
             }
         }
         Err(e) => Err(format!("unreadable ({e})")),
@@ -572,7 +625,7 @@ fn check_unique(glyphs: &[GlyphFile], out: &mut Diagnostics) {
     let mut names: BTreeMap<&str, &Path> = BTreeMap::new();
     let mut code_points: BTreeMap<char, &str> = BTreeMap::new();
     for g in glyphs {
-        let mut ctx = Ctx::new(&g.path, &g.text, out);
+        let mut ctx = g.ctx(out);
         let name = g.glyph.name.as_str();
         if let Some(prev) = names.get(name) {
             ctx.err(
@@ -606,7 +659,7 @@ fn check_far_points(glyphs: &[GlyphFile], info: &FontInfo, out: &mut Diagnostics
     let limit = FAR_EMS * f64::from(info.units_per_em);
     for g in glyphs.iter().filter(|g| g.complete) {
         let bounds = glyph_box(g.glyph.advance, info.descender, info.ascender);
-        let mut ctx = Ctx::new(&g.path, &g.text, out);
+        let mut ctx = g.ctx(out);
         for (contour, offs) in g.glyph.contours.iter().zip(&g.spans.points) {
             let points = contour.points();
             let far: Vec<usize> = (0..points.len())

@@ -571,6 +571,82 @@ fn load_ignored(path: &std::path::Path, bytes: &[u8], what: &str, reason: &str) 
     cache
 }
 
+/// Waits until files written before have settled: the source memo gives a file by its
+/// stamp only then (`xglyph::write::settled_meta`), so each load below does the same
+/// whatever the machine's speed.
+fn settle() {
+    std::thread::sleep(xglyph::write::SETTLED * 2);
+}
+
+#[test]
+fn a_settled_glyph_file_comes_from_the_memo_unread_and_any_change_to_it_is_seen() {
+    use xglyph::source::{load_family, load_family_with, SourceMemo};
+    let dir = memo_fixture("memo-stamps");
+    let path = dir.with_file_name(xglyph::source::MEMO_FILE);
+    // `(taken, taken unread, whether the memo is saved again)`, the family and diagnostics
+    // being those of a load without memo.
+    let load = || {
+        let (memo, ignored) = SourceMemo::load(&path);
+        assert_eq!(ignored, None);
+        assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
+        let saved = !memo.files_to_save(&path).is_empty();
+        memo.save(&path).unwrap();
+        (memo.taken(), memo.taken_unread(), saved)
+    };
+    assert_eq!(load(), (0, 0, true));
+    // The 8 clean files by their stamps (`blank` has a warning: never kept).
+    assert_eq!(load(), (8, 8, false));
+
+    // `o` edited to the same length, its modification time set back: its change time
+    // moved, so it is read again.
+    let o = dir.join("o.toml");
+    let text = std::fs::read_to_string(&o).unwrap();
+    let modified = std::fs::metadata(&o).unwrap().modified().unwrap();
+    let moved = text.replacen("[520, 250, -1]", "[521, 250, -1]", 1);
+    assert_eq!((moved.len(), moved != text), (text.len(), true));
+    std::fs::write(&o, &moved).unwrap();
+    let file = std::fs::File::options().write(true).open(&o).unwrap();
+    file.set_modified(modified).unwrap();
+    drop(file);
+    assert_eq!(std::fs::metadata(&o).unwrap().modified().unwrap(), modified);
+    settle();
+    assert_eq!(load(), (7, 7, true));
+    let (family, _) = load_family(&dir).unwrap();
+    let o_glyph = family.default.glyphs.iter().find(|g| g.name == "o");
+    assert_eq!(o_glyph.unwrap().contours[0].points()[0].pos.x, 521.0);
+    assert_eq!(load(), (8, 8, false));
+
+    // Written again with the same text: read, taken by its text and saved with its new
+    // stamp, then unread again.
+    std::fs::write(&o, &moved).unwrap();
+    settle();
+    assert_eq!(load(), (8, 7, true));
+    assert_eq!(load(), (8, 8, false));
+
+    // `A` given `oacute`'s code point: the error is at `oacute.toml`, a file the memo gave
+    // unread, with its line, column and source line as without the memo (`load` compares).
+    let a = dir.join("A_.toml");
+    let a_text = std::fs::read_to_string(&a).unwrap();
+    std::fs::write(&a, a_text.replacen("unicode = 0x41", "unicode = 0xF3", 1)).unwrap();
+    settle();
+    let (memo, _) = SourceMemo::load(&path);
+    let failed = load_family_with(&dir, &memo).unwrap_err();
+    assert_eq!(Err(failed.clone()), load_family(&dir));
+    assert_eq!(memo.taken_unread(), 7);
+    let at_oacute: Vec<String> = failed
+        .iter()
+        .filter(|d| d.path == dir.join("oacute.toml"))
+        .map(|d| d.to_string())
+        .collect();
+    assert_eq!(
+        at_oacute,
+        [format!(
+            "{}:2:11: error: code point U+00F3 is already mapped to `A`",
+            dir.join("oacute.toml").display()
+        )]
+    );
+}
+
 /// The glyph files of `tests/fixtures/mini` and an empty glyph (a warning), copied.
 fn memo_fixture(name: &str) -> PathBuf {
     let dir = temp_dir(name).join("src");
@@ -581,6 +657,7 @@ fn memo_fixture(name: &str) -> PathBuf {
         std::fs::copy(&path, dir.join(path.file_name().unwrap())).unwrap();
     }
     std::fs::write(dir.join("blank.toml"), "name = \"blank\"\nadvance = 0\n").unwrap();
+    settle();
     dir
 }
 
@@ -614,6 +691,7 @@ fn an_edited_glyph_file_goes_into_the_memo_delta_and_a_bad_delta_is_ignored() {
         assert_ne!(copy, o);
         std::fs::write(dir.join(format!("o{k}.toml")), copy).unwrap();
     }
+    settle();
     let path = dir.with_file_name(MEMO_FILE);
     let delta = xglyph::source::memo_delta_path(&path);
     assert_eq!(load_through_memo(&dir, &path), 0);
@@ -627,6 +705,7 @@ fn an_edited_glyph_file_goes_into_the_memo_delta_and_a_bad_delta_is_ignored() {
     let moved = text.replacen("[520, 250, -1]", "[525, 250, -1]", 1);
     assert_ne!(moved, text);
     std::fs::write(&o3, &moved).unwrap();
+    settle();
     assert_eq!(load_through_memo(&dir, &path), 27);
     assert_eq!(std::fs::read(&path).unwrap(), whole);
     assert!(delta.exists());
@@ -680,6 +759,7 @@ fn the_source_memo_gives_what_the_loader_gives_and_only_for_unchanged_clean_file
     let moved = text.replacen("[520, 250, -1]", "[525, 250, -1]", 1);
     assert_ne!(moved, text);
     std::fs::write(&o, &moved).unwrap();
+    settle();
     assert_eq!(load_through_memo(&dir, &path), 7);
     let (family, _) = load_family(&dir).unwrap();
     let o_glyph = family
@@ -692,11 +772,13 @@ fn the_source_memo_gives_what_the_loader_gives_and_only_for_unchanged_clean_file
 
     // `o` broken: the error is reported as without the memo, though `o` was in it.
     std::fs::write(&o, moved.replacen("[525, 250, -1]", "[525, 250, 7]", 1)).unwrap();
+    settle();
     let (memo, _) = SourceMemo::load(&path);
     let failed = load_family_with(&dir, &memo).unwrap_err();
     assert_eq!(Err(failed.clone()), load_family(&dir));
     assert!(failed.iter().any(|d| d.path == o), "{failed:?}");
     std::fs::write(&o, &moved).unwrap();
+    settle();
 
     // A damaged, truncated or malformed memo is ignored with the reason; loading is
     // unchanged.
