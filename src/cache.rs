@@ -658,6 +658,32 @@ impl FitCache {
         path
     }
 
+    /// Marks every loaded entry used, so that what is saved keeps the entries this run did
+    /// not ask for: for a run that makes only part of what `build` makes (`xglyph svg` of
+    /// a font with masters fits neither the compatible fits nor the named instances), so
+    /// that it does not make the next `build` fit them again. Not an entry this run made
+    /// anew (one found damaged): no key is written twice. Call it once the fitting is done.
+    pub fn keep_unused(&self) {
+        let made = self.lock_made();
+        let bytes = &self.bytes;
+        for slot in &self.loaded.fits.slots {
+            if !made.fits.contains_key(slot.key(bytes)) {
+                self.mark_used(&slot.used);
+            }
+        }
+        for slot in &self.loaded.compatible.slots {
+            if !made.compatible.contains_key(slot.key(bytes)) {
+                self.mark_used(&slot.used);
+            }
+        }
+        for slot in &self.loaded.orient.slots {
+            let key = <[u8; 32]>::try_from(slot.key(bytes)).map(GlyphKey);
+            if !key.is_ok_and(|key| made.orient.contains_key(&key)) {
+                self.mark_used(&slot.used);
+            }
+        }
+    }
+
     /// Counts a hit on a loaded entry whose flag is `used`.
     fn hit(&self, used: &AtomicBool) {
         self.hits.fetch_add(1, Ordering::Relaxed);
