@@ -1400,6 +1400,52 @@ mod tests {
     }
 
     #[test]
+    fn keep_unused_keeps_what_the_run_did_not_ask_for_but_no_key_twice() {
+        // A file of three fits and one glyph's orientation, the first fit's x damaged.
+        let (placed, fitted) = nested();
+        let good = {
+            let cache = FitCache::new();
+            for dx in [0.0, 5.0, 10.0] {
+                cache.fit(&moved(dx), 0.5);
+            }
+            cache.orient_placed(&placed, 0.5, fitted.clone());
+            cache.to_bytes()
+        };
+        let (fit_at, _) = static_slot(&loaded(&good).unwrap(), &moved(0.0), 0.5);
+        let mut bad = good.clone();
+        let x_at = fit_at + 8 + 4 + 1;
+        bad[x_at..x_at + 8].copy_from_slice(&f64::NAN.to_bits().to_le_bytes());
+        let bad = resealed(bad);
+        // A run that asks for the damaged fit (refitted) and one other: without
+        // `keep_unused` the file drops the third fit and the orientation; with it, they
+        // stay, and the refitted one replaces the damaged one (one entry per key: the
+        // file written is the good one, which loads whole).
+        let run = |keep: bool| {
+            let cache = loaded(&bad).unwrap();
+            cache.fit(&moved(0.0), 0.5);
+            cache.fit(&moved(5.0), 0.5);
+            assert_eq!((cache.hits(), cache.misses()), (1, 1));
+            if keep {
+                cache.keep_unused();
+            }
+            cache.to_bytes()
+        };
+        let dropped = run(false);
+        assert_eq!(loaded(&dropped).unwrap().loaded.len(), 2);
+        assert_eq!(run(true), good);
+        assert_eq!(loaded(&good).unwrap().loaded.len(), 4);
+        // A run that made nothing and kept the rest leaves the file alone.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(CACHE_FILE);
+        std::fs::write(&path, &good).unwrap();
+        let (cache, _) = FitCache::load(&path);
+        cache.fit(&moved(10.0), 0.5);
+        assert!(!cache.files_to_save(&path).is_empty());
+        cache.keep_unused();
+        assert!(cache.files_to_save(&path).is_empty());
+    }
+
+    #[test]
     fn keys_of_one_hash_are_told_apart_by_their_bytes() {
         let (a, b) = (moved(0.0), moved(5.0));
         let bytes = {
