@@ -14,6 +14,9 @@ use crate::terminal::outln;
 Writes into OUT:
   <Family>-<Style>.svg   SVG 1.1 font: y-up, absolute M L C Z, <hkern> from kerning
   svg/<glyph>.svg        one standalone SVG per glyph, y down, viewBox = advance x em
+  .xglyph-cache, .xglyph-sources
+                         the fits and the parsed glyph files, for the next run (shared
+                         with `xglyph build` into the same OUT)
 
 Examples:
   xglyph svg                      # glyphs/ -> out/
