@@ -11,9 +11,22 @@
 //! xglyph does more than fig2dev (Béziers within a guaranteed 0.5-unit bound, one SVG file
 //! per glyph plus an SVG font, against one polyline file), so the target is a ratio: xglyph
 //! at most 3 × fig2dev on the whole command. Run: `cargo bench --bench fig2dev`; it skips
-//! with a notice when fig2dev is not installed. Reported: the median of 5 interleaved rounds,
-//! each one `xglyph svg` into an empty folder, one into the same folder again (every file
-//! already holds its bytes, so none is written), and one `fig2dev`.
+//! with a notice when fig2dev is not installed; `XGLYPH_BIN=<path>` times another build of
+//! xglyph instead of this one. Reported: the median of 5 interleaved rounds
+//! of wall time, and the CPU time (user + system) of each command summed over the rounds;
+//! each round runs `xglyph svg` into a new folder (2,001 files written, every contour
+//! fitted: no fit cache there yet), `xglyph svg` into that folder again (every file already
+//! holds its bytes, so none is written, and the fits come from the fit cache the first run
+//! left there), and `fig2dev`.
+//!
+//! Each round writes into a folder no earlier round used (`out-<round>`), and the folders
+//! are deleted only once every round is timed. Deleting the last round's 2,001 files just
+//! before the next round's made the new folder's files slow to create on this machine's
+//! ext4 (no journal): its inode allocator checks whether each free inode it meets was
+//! freed in the last seconds (`recently_deleted`, from the kernel's perf profile) and
+//! skips those, so the first run paid 1.0 to 1.4 s of system time instead of 0.14 s. The
+//! stress font is written over in place (same names, so no file is deleted); only the
+//! folders of an interrupted earlier run are deleted before the rounds.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -54,7 +67,7 @@ fn contour(rng: &mut Rng) -> Vec<(f64, f64, f64)> {
 /// Writes the stress font (`dir/font/`) and the xfig file (`dir/stress.fig`).
 fn generate(dir: &Path) -> (PathBuf, PathBuf) {
     let font = dir.join("font");
-    let _ = std::fs::remove_dir_all(dir);
+    // Written over in place (see the module docs: no file deleted before the rounds).
     std::fs::create_dir_all(&font).expect("create the stress font folder");
     std::fs::write(
         font.join("font.toml"),
@@ -97,15 +110,33 @@ fn generate(dir: &Path) -> (PathBuf, PathBuf) {
     (font, fig_path)
 }
 
-/// Wall time of one run of `cmd` (which must succeed).
-fn time(mut cmd: Command) -> Duration {
+/// CPU time (user + system) of the waited-for children of this process so far, from
+/// `/proc/self/stat` (`cutime`, `cstime`, in clock ticks of 1/100 s); zero elsewhere.
+fn children_cpu() -> Duration {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // The fields after the command name (which is in parentheses and may hold spaces):
+    // state is field 3, cutime and cstime fields 16 and 17.
+    let rest = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let ticks: u64 = rest
+        .split_whitespace()
+        .skip(13)
+        .take(2)
+        .filter_map(|t| t.parse::<u64>().ok())
+        .sum();
+    Duration::from_millis(ticks * 10)
+}
+
+/// Wall time and CPU time (user + system) of one run of `cmd` (which must succeed).
+fn time(mut cmd: Command) -> (Duration, Duration) {
+    let cpu = children_cpu();
     let start = Instant::now();
     let status = cmd
         .stdout(Stdio::null())
         .status()
         .expect("the command starts");
+    let wall = start.elapsed();
     assert!(status.success(), "{status}");
-    start.elapsed()
+    (wall, children_cpu() - cpu)
 }
 
 fn main() {
@@ -120,37 +151,61 @@ fn main() {
         return;
     }
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fig2dev-bench");
+    let out = |round: usize| dir.join(format!("out-{round}"));
+    // Only after an interrupted run: see the module docs.
+    let _ = std::fs::remove_dir_all(dir.join("out"));
+    for round in 0..RUNS {
+        let _ = std::fs::remove_dir_all(out(round));
+    }
     let (font, fig) = generate(&dir);
-    let out = dir.join("out");
-    let xglyph = env!("CARGO_BIN_EXE_xglyph");
+    // Another build to compare (as `benches/cjk.sh` takes it), or this one.
+    let xglyph = std::env::var_os("XGLYPH_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_xglyph")));
     let threads = std::env::var("RAYON_NUM_THREADS").unwrap_or_else(|_| "all".into());
     // Interleaved: one run of each per round, so load changes hit both alike.
     let svg_out = dir.join("fig.svg");
-    // xglyph twice a round: into an empty folder (2,001 new files), then again into the
-    // same folder (the files hold their bytes already, so nothing is written).
     let (mut fresh, mut again, mut theirs) = (Vec::new(), Vec::new(), Vec::new());
-    for _ in 0..RUNS {
-        let _ = std::fs::remove_dir_all(&out);
+    for round in 0..RUNS {
         for times in [&mut fresh, &mut again] {
-            let mut c = Command::new(xglyph);
-            c.arg("svg").arg(&font).arg("-o").arg(&out);
+            let mut c = Command::new(&xglyph);
+            c.arg("svg").arg(&font).arg("-o").arg(out(round));
             times.push(time(c));
         }
         let mut c = Command::new("fig2dev");
         c.args(["-L", "svg"]).arg(&fig).arg(&svg_out);
         theirs.push(time(c));
     }
-    let median = |mut v: Vec<Duration>| {
-        v.sort();
-        v[RUNS / 2].as_secs_f64() * 1e3
+    for round in 0..RUNS {
+        let _ = std::fs::remove_dir_all(out(round));
+    }
+    // Median wall time (ms) and summed CPU time (s).
+    let stats = |v: Vec<(Duration, Duration)>| {
+        let cpu: Duration = v.iter().map(|t| t.1).sum();
+        let mut wall: Vec<Duration> = v.iter().map(|t| t.0).collect();
+        wall.sort();
+        (wall[RUNS / 2].as_secs_f64() * 1e3, cpu.as_secs_f64())
     };
-    let (a, r, b) = (median(fresh), median(again), median(theirs));
+    let ((a, a_cpu), (r, r_cpu), (b, b_cpu)) = (stats(fresh), stats(again), stats(theirs));
+    // A ratio of CPU times only when fig2dev's is measurable (1/100 s ticks).
+    let cpu_ratio = |x: f64| {
+        if b_cpu > 0.0 {
+            format!("{:>6.2} x", x / b_cpu)
+        } else {
+            "     - ".into()
+        }
+    };
     println!(
-        "fig2dev: {GLYPHS} random {POINTS}-point closed X-splines (threads: {threads})\n\
-         \x20 xglyph svg, empty folder  {a:>8.1} ms (median of {RUNS}, interleaved)  {:>6.2} x\n\
-         \x20 xglyph svg, same folder   {r:>8.1} ms                                {:>6.2} x\n\
-         \x20 fig2dev -L svg            {b:>8.1} ms (target: xglyph at most 3 x)",
+        "fig2dev: {GLYPHS} random {POINTS}-point closed X-splines (threads: {threads}; {})\n\
+         \x20                            wall, median of {RUNS}       CPU, sum of {RUNS}\n\
+         \x20 xglyph svg, new folder    {a:>8.1} ms {:>6.2} x    {a_cpu:>6.2} s {}\n\
+         \x20 xglyph svg, same again   {r:>8.1} ms {:>6.2} x    {r_cpu:>6.2} s {}\n\
+         \x20 fig2dev -L svg           {b:>8.1} ms             {b_cpu:>6.2} s\n\
+         \x20 (target: xglyph at most 3 x fig2dev; rounds interleaved, each into a new folder)",
+        xglyph.display(),
         a / b,
+        cpu_ratio(a_cpu),
         r / b,
+        cpu_ratio(r_cpu),
     );
 }

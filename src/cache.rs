@@ -658,6 +658,32 @@ impl FitCache {
         path
     }
 
+    /// Marks every loaded entry used, so that what is saved keeps the entries this run did
+    /// not ask for: for a run that makes only part of what `build` makes (`xglyph svg` of
+    /// a font with masters fits neither the compatible fits nor the named instances), so
+    /// that it does not make the next `build` fit them again. Not an entry this run made
+    /// anew (one found damaged): no key is written twice. Call it once the fitting is done.
+    pub fn keep_unused(&self) {
+        let made = self.lock_made();
+        let bytes = &self.bytes;
+        for slot in &self.loaded.fits.slots {
+            if !made.fits.contains_key(slot.key(bytes)) {
+                self.mark_used(&slot.used);
+            }
+        }
+        for slot in &self.loaded.compatible.slots {
+            if !made.compatible.contains_key(slot.key(bytes)) {
+                self.mark_used(&slot.used);
+            }
+        }
+        for slot in &self.loaded.orient.slots {
+            let key = <[u8; 32]>::try_from(slot.key(bytes)).map(GlyphKey);
+            if !key.is_ok_and(|key| made.orient.contains_key(&key)) {
+                self.mark_used(&slot.used);
+            }
+        }
+    }
+
     /// Counts a hit on a loaded entry whose flag is `used`.
     fn hit(&self, used: &AtomicBool) {
         self.hits.fetch_add(1, Ordering::Relaxed);
@@ -1371,6 +1397,52 @@ mod tests {
             assert_eq!(cache.loaded_used.load(Ordering::Relaxed), 1, "{what}");
             assert_eq!(cache.to_bytes(), good, "{what}");
         }
+    }
+
+    #[test]
+    fn keep_unused_keeps_what_the_run_did_not_ask_for_but_no_key_twice() {
+        // A file of three fits and one glyph's orientation, the first fit's x damaged.
+        let (placed, fitted) = nested();
+        let good = {
+            let cache = FitCache::new();
+            for dx in [0.0, 5.0, 10.0] {
+                cache.fit(&moved(dx), 0.5);
+            }
+            cache.orient_placed(&placed, 0.5, fitted.clone());
+            cache.to_bytes()
+        };
+        let (fit_at, _) = static_slot(&loaded(&good).unwrap(), &moved(0.0), 0.5);
+        let mut bad = good.clone();
+        let x_at = fit_at + 8 + 4 + 1;
+        bad[x_at..x_at + 8].copy_from_slice(&f64::NAN.to_bits().to_le_bytes());
+        let bad = resealed(bad);
+        // A run that asks for the damaged fit (refitted) and one other: without
+        // `keep_unused` the file drops the third fit and the orientation; with it, they
+        // stay, and the refitted one replaces the damaged one (one entry per key: the
+        // file written is the good one, which loads whole).
+        let run = |keep: bool| {
+            let cache = loaded(&bad).unwrap();
+            cache.fit(&moved(0.0), 0.5);
+            cache.fit(&moved(5.0), 0.5);
+            assert_eq!((cache.hits(), cache.misses()), (1, 1));
+            if keep {
+                cache.keep_unused();
+            }
+            cache.to_bytes()
+        };
+        let dropped = run(false);
+        assert_eq!(loaded(&dropped).unwrap().loaded.len(), 2);
+        assert_eq!(run(true), good);
+        assert_eq!(loaded(&good).unwrap().loaded.len(), 4);
+        // A run that made nothing and kept the rest leaves the file alone.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(CACHE_FILE);
+        std::fs::write(&path, &good).unwrap();
+        let (cache, _) = FitCache::load(&path);
+        cache.fit(&moved(10.0), 0.5);
+        assert!(!cache.files_to_save(&path).is_empty());
+        cache.keep_unused();
+        assert!(cache.files_to_save(&path).is_empty());
     }
 
     #[test]

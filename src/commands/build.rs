@@ -5,7 +5,7 @@
 //! leaves OUT untouched (not even created).
 
 use std::io::IsTerminal;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -294,28 +294,38 @@ fn replace_outputs(files: &mut Vec<OutputFile>, newer: &[OutputFile]) {
     files.extend(newer.iter().cloned());
 }
 
-/// Runs `xglyph build`.
-pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
-    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
-    let _ = crate::write::exit_on_interrupt();
-    let cache_path = args.font.out.join(CACHE_FILE);
-    let memo_path = args.font.out.join(MEMO_FILE);
-    // The sources (after the memo of them), the fit cache and the output record are read on
-    // any core at once (a CJK font's are 20,000 files and 60 MB, 100 MB and 20 MB); the
-    // messages keep their order.
-    let (((mut memo, memo_ignored), sources), ((cache, outcome), (reuse, ignored))) = rayon::join(
+/// What a command keeps in OUT for the next run besides its outputs: the source memo
+/// ([`MEMO_FILE`]) and the fit cache ([`CACHE_FILE`]), as loaded ([`load_stored`]).
+pub struct Stores {
+    /// The glyph files as the last run loaded them.
+    pub memo: SourceMemo,
+    /// Where the memo is read and written.
+    pub memo_path: PathBuf,
+    /// The fitted contours of the last run; this run's are added.
+    pub cache: FitCache,
+    /// Where the cache is read and written.
+    pub cache_path: PathBuf,
+}
+
+/// Loads the font of `args` as `build` and `svg` do: its sources through the source memo
+/// in OUT while the fit cache in OUT and `beside` (`build`'s output record) are read on
+/// any core (a CJK font's are 20,000 files and 60 MB, 100 MB and 20 MB); prints a note for
+/// a memo or cache ignored (and why), then fits the default master through the cache
+/// ([`load_cached`]: its warnings, or every diagnostic of a failed load). The messages keep
+/// their order whatever the threads.
+pub fn load_stored<R: Send>(
+    args: &FontArgs,
+    beside: impl FnOnce() -> R + Send,
+) -> Result<(Loaded, Stores, R), CommandError> {
+    let cache_path = args.out.join(CACHE_FILE);
+    let memo_path = args.out.join(MEMO_FILE);
+    let (((mut memo, memo_ignored), sources), ((cache, outcome), beside)) = rayon::join(
         || {
             let memo = SourceMemo::load(&memo_path);
-            let sources =
-                pipeline::read_sources_with(&args.font.font_dir, args.font.tolerance, &memo.0);
+            let sources = pipeline::read_sources_with(&args.font_dir, args.tolerance, &memo.0);
             (memo, sources)
         },
-        || {
-            rayon::join(
-                || FitCache::load(&cache_path),
-                || Reuse::load(&args.font.out),
-            )
-        },
+        || rayon::join(|| FitCache::load(&cache_path), beside),
     );
     memo.release_unused();
     if let Some(reason) = memo_ignored {
@@ -330,7 +340,54 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             cache_path.display()
         );
     }
-    let mut loaded = outline_sources(sources, Some(&cache))?;
+    let loaded = outline_sources(sources, Some(&cache))?;
+    let stores = Stores {
+        memo,
+        memo_path,
+        cache,
+        cache_path,
+    };
+    Ok((loaded, stores, beside))
+}
+
+/// Prints how many contours were fitted and how many fits came from the cache at
+/// `cache_path`, when any did: `(hits, misses)`.
+pub fn print_fits(cache_path: &Path, (hits, misses): (usize, usize)) {
+    if hits > 0 {
+        outln!(
+            "refitted {misses} contours; {hits} fits from the cache {}",
+            cache_path.display()
+        );
+    }
+}
+
+/// Writes the records for the next run (the output record's, the memo's and the fit
+/// cache's files), once the outputs are written, in one transaction (one flush to disk);
+/// a record that cannot be written only costs the next run time, so it is a warning.
+pub fn save_records(files: impl IntoIterator<Item = (PathBuf, Vec<u8>)>) {
+    let mut records = crate::write::OutputSet::new();
+    for (path, bytes) in files {
+        records.add(path, bytes);
+    }
+    if !records.is_empty() {
+        if let Err(e) = records.commit() {
+            errln!("warning: {e}");
+        }
+    }
+}
+
+/// Runs `xglyph build`.
+pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
+    // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
+    let _ = crate::write::exit_on_interrupt();
+    let (mut loaded, stores, (reuse, ignored)) =
+        load_stored(&args.font, || Reuse::load(&args.font.out))?;
+    let Stores {
+        memo,
+        memo_path,
+        cache,
+        cache_path,
+    } = stores;
     if let Some(reason) = ignored {
         errln!(
             "note: ignoring {}: {reason}; every output is made anew",
@@ -407,13 +464,8 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             (cache.hits(), cache.misses()),
         ));
     }
-    let (cache_files, (hits, misses)) = to_save.unwrap_or((Vec::new(), (0, 0)));
-    if hits > 0 {
-        outln!(
-            "refitted {misses} contours; {hits} fits from the cache {}",
-            cache_path.display()
-        );
-    }
+    let (cache_files, fits) = to_save.unwrap_or((Vec::new(), (0, 0)));
+    print_fits(&cache_path, fits);
     if reuse.reused() > 0 {
         outln!(
             "took {} outputs unchanged from the last build (sheet pages, proof, WOFF2)",
@@ -426,32 +478,21 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
             kept.len()
         );
     }
-    // The outputs are written. The records for the next build go in one transaction (one
-    // flush to disk); a record that cannot be written only costs the next build time.
-    let mut records = crate::write::OutputSet::new();
-    match reuse.files_to_save() {
-        Ok(files) => {
-            for (path, bytes) in files {
-                records.add(path, bytes);
-            }
-        }
-        Err(e) => errln!(
+    // The outputs are written: the records for the next build.
+    let reuse_files = reuse.files_to_save().unwrap_or_else(|e| {
+        errln!(
             "warning: cannot write {}: {}",
             args.font.out.join(REUSE_FILE).display(),
             crate::write::reason(&e)
-        ),
-    }
-    for (path, bytes) in memo.files_to_save(&memo_path) {
-        records.add(path, bytes);
-    }
-    for (path, bytes) in cache_files {
-        records.add(path, bytes);
-    }
-    if !records.is_empty() {
-        if let Err(e) = records.commit() {
-            errln!("warning: {e}");
-        }
-    }
+        );
+        Vec::new()
+    });
+    save_records(
+        reuse_files
+            .into_iter()
+            .chain(memo.files_to_save(&memo_path))
+            .chain(cache_files),
+    );
     // The command ends here and the process with it: the outlined font, the memo and the
     // records (a CJK font's millions of small allocations) are left to the exit instead of
     // being freed one by one (an edited CJK build: 2.95 s instead of 3.0 s).

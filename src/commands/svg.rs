@@ -2,10 +2,11 @@
 
 use std::process::ExitCode;
 
-use super::build::load;
+use super::build::{load_stored, print_fits, save_records, show_phase};
 use super::{CommandError, FontArgs};
 use crate::instance::{parse_location, style_at};
-use crate::pipeline::{instance, svg_outputs, write_output_files};
+use crate::outline::OutlineOptions;
+use crate::pipeline::{instance_with, svg_outputs, write_output_files};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -13,6 +14,9 @@ use crate::terminal::outln;
 Writes into OUT:
   <Family>-<Style>.svg   SVG 1.1 font: y-up, absolute M L C Z, <hkern> from kerning
   svg/<glyph>.svg        one standalone SVG per glyph, y down, viewBox = advance x em
+  .xglyph-cache, .xglyph-sources
+                         the fits and the parsed glyph files, for the next run (shared
+                         with `xglyph build` into the same OUT)
 
 Examples:
   xglyph svg                      # glyphs/ -> out/
@@ -28,21 +32,44 @@ pub struct SvgArgs {
 }
 
 /// Runs `xglyph svg`.
+///
+/// It keeps the source memo and the fit cache in OUT as `build` does
+/// ([`super::build::load_stored`]), so that `svg` run again refits only the contours that
+/// changed, and `svg` and `build` into one OUT share them. What the cache keeps: for a
+/// font without masters, only the entries this run used or made, as `build` does (`svg`
+/// fits the same contours as `build` then, so an entry not used is one of a contour edited
+/// or deleted since); for a font with masters, also every entry it did not use
+/// ([`crate::cache::FitCache::keep_unused`]), since `svg` fits only the default master (or
+/// the one position of `--at`) and the rest is `build`'s compatible fits and named
+/// instances, which a build would otherwise refit. Those entries of edited contours then
+/// stay until the next `build` (entries are keyed, so they never make a fit wrong).
 pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
     let _ = crate::write::exit_on_interrupt();
-    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
+    let (loaded, stores, ()) = load_stored(&args.font, || ())?;
+    let cache = &stores.cache;
     let at_font = match &args.at {
         Some(at) => {
             let location = parse_location(&loaded.family.designspace, at)?;
             let style = style_at(&loaded.family.designspace, &location);
-            Some(instance(&loaded, &location, Some(&style))?)
+            let opts = OutlineOptions {
+                cache: Some(cache),
+                progress: None,
+            };
+            Some(instance_with(&loaded, &location, Some(&style), opts)?)
         }
         None => None,
     };
+    if loaded.family.is_variable() {
+        cache.keep_unused();
+    }
+    // Encoded before the outputs are made, written after them (a failed run leaves OUT as
+    // it was), as `build` does.
+    let cache_files = cache.files_to_save(&stores.cache_path);
+    let fits = (cache.hits(), cache.misses());
     let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
     let count = files.len();
-    super::build::show_phase(&format!("writing {count} files"), || {
+    show_phase(&format!("writing {count} files"), || {
         write_output_files(&args.font.out, files)
     })?;
     outln!(
@@ -50,5 +77,15 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
         args.font.out.display(),
         count - 1
     );
+    print_fits(&stores.cache_path, fits);
+    save_records(
+        stores
+            .memo
+            .files_to_save(&stores.memo_path)
+            .into_iter()
+            .chain(cache_files),
+    );
+    // As in `build`: a large font's fits and memo are left to the exit, not freed one by one.
+    std::mem::forget((loaded, stores, at_font));
     Ok(ExitCode::SUCCESS)
 }

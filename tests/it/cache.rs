@@ -1,11 +1,13 @@
 //! The fitted-contour cache (`src/cache.rs`): hits give bit-identical fits, static and
 //! compatible, and a corrupt, truncated or stale file is ignored (every contour refitted),
 //! never trusted; a warm build of a font with masters fits nothing and writes the same
-//! bytes.
+//! bytes; `svg` keeps the cache and the source memo in OUT as `build` does, and shares them
+//! with it.
 
 use std::path::{Path, PathBuf};
 
-use xglyph::cache::{FitCache, LoadOutcome};
+use crate::common::cli::xglyph;
+use xglyph::cache::{FitCache, LoadOutcome, CACHE_FILE};
 use xglyph::compatible::{fit_compatible, CompatibleFit};
 use xglyph::fit::{fit_contour, ContourFit};
 use xglyph::source::load_font;
@@ -467,7 +469,8 @@ fn a_corrupt_or_stale_compatible_entry_is_ignored_and_refitted() {
     }
 }
 
-/// SHA-256 of every file in `dir` but the cache and the reuse record, by relative path.
+/// SHA-256 of every file in `dir` but the records for the next run (the fit cache, the
+/// output record, the source memo and their delta files), by relative path.
 fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     use sha2::{Digest, Sha256};
     let mut out = std::collections::BTreeMap::new();
@@ -477,9 +480,11 @@ fn output_hashes(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 stack.push(path);
-            } else if path.file_name().unwrap() != ".xglyph-cache"
-                && path.file_name().unwrap() != xglyph::reuse::REUSE_FILE
-                && path.file_name().unwrap() != xglyph::source::MEMO_FILE
+            } else if !path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with(".xglyph-")
             {
                 let rel = path
                     .strip_prefix(dir)
@@ -803,5 +808,175 @@ fn the_source_memo_gives_what_the_loader_gives_and_only_for_unchanged_clean_file
         assert_eq!(ignored.as_deref(), Some(why));
         assert_eq!(load_family_with(&dir, &memo), load_family(&dir));
         assert_eq!(memo.taken(), 0);
+    }
+}
+
+/// `xglyph <command> <font> -o <out>`, which must succeed: (stdout, stderr).
+fn run_in(command: &str, font: &Path, out: &Path) -> (String, String) {
+    let args = [command, font.to_str().unwrap(), "-o", out.to_str().unwrap()];
+    let (code, stdout, stderr) = xglyph(&args);
+    assert_eq!(code, 0, "{args:?}: {stderr}");
+    (stdout, stderr)
+}
+
+/// The numbers of the line `refitted N contours; M fits from the cache …` in `stdout`:
+/// (N, M), if it has the line.
+fn fits_line(stdout: &str) -> Option<(usize, usize)> {
+    let line = stdout.lines().find(|l| l.starts_with("refitted "))?;
+    let words: Vec<&str> = line.split(' ').collect();
+    let misses = words[1].parse().unwrap_or_else(|_| panic!("{line}"));
+    let hits = words[3].parse().unwrap_or_else(|_| panic!("{line}"));
+    Some((misses, hits))
+}
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name)
+}
+
+/// `path` with one byte in its middle changed.
+fn damage(path: &Path) {
+    let mut bytes = std::fs::read(path).unwrap();
+    let at = bytes.len() / 2;
+    bytes[at] ^= 0x20;
+    std::fs::write(path, bytes).unwrap();
+}
+
+#[test]
+fn svg_again_takes_every_fit_from_the_cache_and_writes_the_same_bytes() {
+    let mini = fixture("mini");
+    let dir = temp_dir("svg-again");
+    let (out, cold, built) = (dir.join("out"), dir.join("cold"), dir.join("built"));
+    let cache_path = out.join(CACHE_FILE);
+    let memo_path = out.join(xglyph::source::MEMO_FILE);
+    let wrote = format!(
+        "wrote 9 files to {} (SVG font and 8 glyph SVGs)\n",
+        out.display()
+    );
+    // The first run fits every contour and leaves the cache and the memo in OUT: the same
+    // fits as a build of this font (no masters) leaves, byte for byte.
+    assert_eq!(run_in("svg", &mini, &out), (wrote.clone(), String::new()));
+    let first = output_hashes(&out);
+    assert_eq!(first.len(), 9);
+    assert!(memo_path.is_file());
+    run_in("build", &mini, &built);
+    assert_eq!(
+        std::fs::read(&cache_path).unwrap(),
+        std::fs::read(built.join(CACHE_FILE)).unwrap()
+    );
+    let (_, outcome) = FitCache::load(&cache_path);
+    let LoadOutcome::Loaded(entries) = outcome else {
+        panic!("{outcome:?}")
+    };
+    assert!(entries >= 8, "{entries}");
+    // Again: every fit from the cache, nothing refitted, the same bytes as the first run
+    // and as a run without the cache; the cache file is left as it was.
+    let cache_bytes = std::fs::read(&cache_path).unwrap();
+    let (stdout, stderr) = run_in("svg", &mini, &out);
+    assert_eq!(stderr, "");
+    let (misses, hits) = fits_line(&stdout).unwrap_or_else(|| panic!("{stdout}"));
+    assert_eq!(misses, 0, "{stdout}");
+    assert!(hits >= entries, "{stdout}");
+    assert_eq!(
+        stdout,
+        format!(
+            "{wrote}refitted 0 contours; {hits} fits from the cache {}\n",
+            cache_path.display()
+        )
+    );
+    assert_eq!(output_hashes(&out), first);
+    assert_eq!(std::fs::read(&cache_path).unwrap(), cache_bytes);
+    run_in("svg", &mini, &cold);
+    assert_eq!(output_hashes(&cold), first);
+    // A damaged cache is ignored with a note (every contour refitted, the same bytes), and
+    // written anew: the next run takes its fits from it again.
+    damage(&cache_path);
+    let (stdout, stderr) = run_in("svg", &mini, &out);
+    assert!(
+        stderr.starts_with(&format!(
+            "note: ignoring the fit cache {}: ",
+            cache_path.display()
+        )) && stderr.contains("checksum")
+            && stderr.ends_with("; every contour is refitted\n"),
+        "{stderr}"
+    );
+    assert_eq!(stdout, wrote);
+    assert_eq!(output_hashes(&out), first);
+    assert_eq!(std::fs::read(&cache_path).unwrap(), cache_bytes);
+    let (stdout, _) = run_in("svg", &mini, &out);
+    assert_eq!(fits_line(&stdout), Some((0, hits)));
+    // So is a damaged source memo (every glyph file read anew).
+    damage(&memo_path);
+    let (stdout, stderr) = run_in("svg", &mini, &out);
+    assert!(
+        stderr.starts_with(&format!("note: ignoring {}: ", memo_path.display()))
+            && stderr.ends_with("; every glyph file is read anew\n"),
+        "{stderr}"
+    );
+    assert_eq!(fits_line(&stdout), Some((0, hits)));
+    assert_eq!(output_hashes(&out), first);
+    let (_, stderr) = run_in("svg", &mini, &out);
+    assert_eq!(stderr, "");
+}
+
+#[test]
+fn build_after_svg_in_one_out_writes_what_build_alone_writes_and_refits_nothing_svg_kept() {
+    for name in ["mini", "masters"] {
+        let font = fixture(name);
+        let dir = temp_dir(&format!("svg-build-{name}"));
+        let (alone, shared) = (dir.join("alone"), dir.join("shared"));
+        run_in("build", &font, &alone);
+        let expected = output_hashes(&alone);
+        // `svg` first: the build takes the default master's fits from it (all of them
+        // without masters), and writes what a build alone writes.
+        run_in("svg", &font, &shared);
+        let (stdout, _) = run_in("build", &font, &shared);
+        let (misses, hits) = fits_line(&stdout).unwrap_or_else(|| panic!("{name}: {stdout}"));
+        assert!(hits > 0, "{name}: {stdout}");
+        assert_eq!(misses == 0, name == "mini", "{name}: {stdout}");
+        assert_eq!(output_hashes(&shared), expected, "{name}");
+        // `svg` between two builds takes its fits from the build's cache and keeps the
+        // entries it does not use (with masters: the compatible fits, the named
+        // instances), so the next build fits nothing.
+        let (stdout, _) = run_in("svg", &font, &shared);
+        assert_eq!(fits_line(&stdout).map(|f| f.0), Some(0), "{name}: {stdout}");
+        let (stdout, _) = run_in("build", &font, &shared);
+        assert_eq!(fits_line(&stdout).map(|f| f.0), Some(0), "{name}: {stdout}");
+        assert_eq!(output_hashes(&shared), expected, "{name}");
+    }
+}
+
+#[test]
+fn svg_of_a_font_without_masters_drops_the_fits_of_an_edited_glyph_as_build_does() {
+    let dir = temp_dir("svg-edit");
+    let font = dir.join("font");
+    std::fs::create_dir_all(&font).unwrap();
+    for entry in std::fs::read_dir(fixture("mini")).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, font.join(path.file_name().unwrap())).unwrap();
+    }
+    let (out, cold) = (dir.join("out"), dir.join("cold"));
+    run_in("build", &font, &out);
+    let o = font.join("o.toml");
+    let text = std::fs::read_to_string(&o).unwrap();
+    assert!(text.contains("[520, 250, -1]"));
+    std::fs::write(&o, text.replace("[520, 250, -1]", "[530, 250, -1]")).unwrap();
+    let (stdout, _) = run_in("svg", &font, &out);
+    // The outer contour of `o` refitted (counted twice when two threads fit it at once
+    // for `o` and for `oacute`, where it is placed alike).
+    let misses = fits_line(&stdout).map(|f| f.0);
+    assert!(matches!(misses, Some(1 | 2)), "{stdout}");
+    // The cache now holds what a first `svg` of the edited font leaves: the old contour's
+    // fit is gone.
+    run_in("svg", &font, &cold);
+    assert_eq!(
+        std::fs::read(out.join(CACHE_FILE)).unwrap(),
+        std::fs::read(cold.join(CACHE_FILE)).unwrap()
+    );
+    // Its SVGs are those of the edited font (`build` left its other outputs beside them).
+    let (now, svg_only) = (output_hashes(&out), output_hashes(&cold));
+    for (path, hash) in &svg_only {
+        assert_eq!(now.get(path), Some(hash), "{path}");
     }
 }
