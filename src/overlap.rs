@@ -218,7 +218,7 @@ pub fn remove_overlaps_font_with(
 
 /// [`remove_overlaps_font_with`], with [`OutlineKeys`] of the result: each glyph's union
 /// key, which determines its union (none when `reuse` is off).
-pub fn remove_overlaps_font_keyed(
+fn remove_overlaps_font_keyed(
     font: &OutlinedFont,
     reuse: &Reuse,
     outlines: &OutlineKeys,

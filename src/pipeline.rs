@@ -420,12 +420,7 @@ fn instance_fonts(
     let ot = ForOpenType::new(font, opts, reuse, outlines);
     let (ttf, (otf, svg)) = rayon::join(
         || ot.ttf(reuse),
-        || {
-            rayon::join(
-                || ot.otf(reuse),
-                || svg_font(font).into_bytes(),
-            )
-        },
+        || rayon::join(|| ot.otf(reuse), || svg_font(font).into_bytes()),
     );
     let ttf = ttf?;
     Ok(InstanceFonts {
