@@ -22,7 +22,7 @@ use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::Unions;
 use crate::render::{
-    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_keeping,
+    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
 };
 use crate::reuse::{font_key, glyph_key, KeyBuilder, OutlineKeys, Reuse};
@@ -651,7 +651,7 @@ fn opentype_and_images(
         || {
             rayon::join(
                 || {
-                    sheet_png_files_keeping(
+                    sheet_png_files_reusing(
                         &layout,
                         &opts.sheet,
                         "sheet",

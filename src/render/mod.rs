@@ -20,8 +20,7 @@ pub use proof::{
 };
 pub use sheet::{
     page_file_names, render_sheet, render_sheet_page, render_sheet_page_with, sheet_order,
-    sheet_pages, sheet_png_files, sheet_png_files_keeping, sheet_png_files_reusing,
-    sheet_png_files_with, SheetOptions,
+    sheet_pages, sheet_png_files, sheet_png_files_reusing, sheet_png_files_with, SheetOptions,
 };
 
 /// Largest image side we allocate, in pixels.

@@ -160,47 +160,6 @@ pub fn sheet_png_files_reusing(
     font_key: Option<&Key>,
     outlines: &OutlineKeys,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
-    let pages = png_pages(layout, opts, stem, font_key, outlines, |name, key, draw| {
-        reuse.get_or_make(Path::new(name), key, draw).map(Some)
-    })?;
-    Ok(pages
-        .into_iter()
-        .filter_map(|(name, png)| Some((name, png?)))
-        .collect())
-}
-
-/// [`sheet_png_files_reusing`], leaving out each page that OUT holds already as the last
-/// build made it under the same key, with the file's recorded stamp
-/// ([`Reuse::kept_or_make`]: not read back, listed by [`Reuse::kept_paths`]). A CJK
-/// font's 41 pages are 50 MB, and an edit of one glyph changes one page.
-pub fn sheet_png_files_keeping(
-    layout: &Layout<'_>,
-    opts: &SheetOptions,
-    stem: &str,
-    reuse: &Reuse,
-    font_key: Option<&Key>,
-    outlines: &OutlineKeys,
-) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
-    let pages = png_pages(layout, opts, stem, font_key, outlines, |name, key, draw| {
-        reuse.kept_or_make(Path::new(name), key, draw)
-    })?;
-    Ok(pages
-        .into_iter()
-        .filter_map(|(name, png)| Some((name, png?)))
-        .collect())
-}
-
-/// What `reuse(name, key, draw)` gives for each page with a key, in page order (`None`:
-/// the page is not made); pages without a key are drawn.
-type Png = Result<Vec<u8>, RenderError>;
-fn png_pages(
-    layout: &Layout<'_>,
-    opts: &SheetOptions,
-    stem: &str,
-    font_key: Option<&Key>,
-    outlines: &OutlineKeys,
-    reuse: impl Fn(&str, Key, &dyn Fn() -> Png) -> Result<Option<Vec<u8>>, RenderError> + Sync,
-) -> Result<Vec<(String, Option<Vec<u8>>)>, RenderError> {
     use rayon::prelude::*;
     let pages = sheet_pages(layout.font(), opts)?;
     let names = page_file_names(stem, pages.len());
@@ -212,8 +171,8 @@ fn png_pages(
         .map(|(name, order)| {
             let draw = || super::encode_png(&render_page(layout, &geometry, opts, order)?);
             let png = match page_key(layout, &geometry, opts, &name, order, font_key, outlines) {
-                Some(key) => reuse(&name, key, &draw)?,
-                None => Some(draw()?),
+                Some(key) => reuse.get_or_make(Path::new(&name), key, draw)?,
+                None => draw()?,
             };
             Ok((name, png))
         })
