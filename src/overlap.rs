@@ -251,8 +251,9 @@ fn remove_overlaps_font_keyed(
 /// Each glyph's union of a font, for the OpenType builders, which take most glyphs' data
 /// from the record by the union's key ([`crate::otf::ttf_reusing_paths`]): a union the last
 /// build recorded is kept for the next build but decoded only when asked for
-/// ([`Unions::path`]); the others are made at once. A CJK rebuild after one edit then
-/// decodes no union at all instead of 20,000 (and their 130 MB of fresh memory).
+/// ([`crate::otf::GlyphPaths::path`]); the others are made at once. A CJK rebuild after
+/// one edit then decodes no union at all instead of 20,000 (and their 130 MB of fresh
+/// memory).
 pub struct Unions<'a> {
     font: &'a OutlinedFont,
     by_name: HashMap<&'a str, &'a OutlinedGlyph>,
@@ -266,7 +267,7 @@ pub struct Unions<'a> {
 
 impl<'a> Unions<'a> {
     /// The unions of `font`'s glyphs at [`UNION_SHARE`] of its tolerance, as
-    /// [`remove_overlaps_font_keyed`] makes them (`outlines`: the font's [`OutlineKeys`]).
+    /// [`remove_overlaps_font_with`] makes them (`outlines`: the font's [`OutlineKeys`]).
     pub fn new(font: &'a OutlinedFont, reuse: &'a Reuse, outlines: &OutlineKeys) -> Self {
         use rayon::prelude::*;
         let eps = UNION_SHARE * font.tolerance;
