@@ -5,7 +5,6 @@
 //! Nothing here prints: warnings and errors come back as [`Diagnostic`]s for the caller
 //! (the command line prints them; a server would send them).
 
-use std::borrow::Cow;
 use std::convert::Infallible;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -21,7 +20,7 @@ use crate::model::Family;
 use crate::names::file_stems;
 use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
-use crate::overlap::remove_overlaps_font_keyed;
+use crate::overlap::Unions;
 use crate::render::{
     encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
     ProofOptions, RenderError, SheetOptions,
@@ -418,16 +417,10 @@ fn instance_fonts(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<InstanceFonts, PipelineError> {
-    let (ot, ot_keys) = for_opentype(font, opts, reuse, outlines);
-    let ot = ot.as_ref();
+    let ot = ForOpenType::new(font, opts, reuse, outlines);
     let (ttf, (otf, svg)) = rayon::join(
-        || otf::ttf_reusing(ot, reuse, &ot_keys),
-        || {
-            rayon::join(
-                || otf::otf_reusing(ot, reuse, &ot_keys),
-                || svg_font(font).into_bytes(),
-            )
-        },
+        || ot.ttf(reuse),
+        || rayon::join(|| ot.otf(reuse), || svg_font(font).into_bytes()),
     );
     let ttf = ttf?;
     Ok(InstanceFonts {
@@ -642,9 +635,8 @@ fn opentype_and_images(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Binary, PipelineError> {
-    let (ot, ot_keys) = for_opentype(font, opts, reuse, outlines);
-    let ot = ot.as_ref();
-    let ttf = otf::ttf_reusing(ot, reuse, &ot_keys)?;
+    let ot = ForOpenType::new(font, opts, reuse, outlines);
+    let ttf = ot.ttf(reuse)?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
     let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
     // What the proof and the sheet labels set in the font depend on.
@@ -680,7 +672,7 @@ fn opentype_and_images(
         || {
             rayon::join(
                 || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
-                || otf::otf_reusing(ot, reuse, &ot_keys),
+                || ot.otf(reuse),
             )
         },
     );
@@ -721,20 +713,46 @@ fn woff2_reusing(ttf: &[u8], name: &str, reuse: &Reuse) -> Result<Vec<u8>, OtfEr
 }
 
 /// What the TTF, OTF and WOFF2 are built from: `font` with its overlaps removed, unless
-/// `opts.keep_overlaps`.
-/// Unions made by the last build are taken from `reuse` (`outlines`: `font`'s
-/// [`OutlineKeys`]). With the result's keys.
-fn for_opentype<'a>(
+/// `opts.keep_overlaps`. Unions made by the last build are taken from `reuse` when a
+/// flavour needs them ([`Unions`]; `outlines`: `font`'s [`OutlineKeys`]).
+struct ForOpenType<'a> {
     font: &'a OutlinedFont,
-    opts: &BuildOptions,
-    reuse: &Reuse,
+    unions: Option<Unions<'a>>,
     outlines: &'a OutlineKeys,
-) -> (Cow<'a, OutlinedFont>, Cow<'a, OutlineKeys>) {
-    if opts.keep_overlaps {
-        (Cow::Borrowed(font), Cow::Borrowed(outlines))
-    } else {
-        let (font, keys) = remove_overlaps_font_keyed(font, reuse, outlines);
-        (Cow::Owned(font), Cow::Owned(keys))
+}
+
+impl<'a> ForOpenType<'a> {
+    fn new(
+        font: &'a OutlinedFont,
+        opts: &BuildOptions,
+        reuse: &'a Reuse,
+        outlines: &'a OutlineKeys,
+    ) -> Self {
+        let unions = (!opts.keep_overlaps).then(|| Unions::new(font, reuse, outlines));
+        ForOpenType {
+            font,
+            unions,
+            outlines,
+        }
+    }
+
+    /// The outlines and their keys for [`otf::ttf_reusing_paths`] and
+    /// [`otf::otf_reusing_paths`].
+    fn paths(&self) -> (Option<&dyn otf::GlyphPaths>, &OutlineKeys) {
+        match &self.unions {
+            Some(unions) => (Some(unions), unions.keys()),
+            None => (None, self.outlines),
+        }
+    }
+
+    fn ttf(&self, reuse: &Reuse) -> Result<Vec<u8>, otf::OtfError> {
+        let (paths, keys) = self.paths();
+        otf::ttf_reusing_paths(self.font, paths, reuse, keys)
+    }
+
+    fn otf(&self, reuse: &Reuse) -> Result<Vec<u8>, otf::OtfError> {
+        let (paths, keys) = self.paths();
+        otf::otf_reusing_paths(self.font, paths, reuse, keys)
     }
 }
 

@@ -405,6 +405,20 @@ impl Reuse {
         path
     }
 
+    /// Whether the last build recorded an outline under `key` ([`Reuse::path_or_make`]);
+    /// if so it is kept for the next build as it is, and [`Reuse::path_or_make`] decodes it
+    /// when this build needs it (the entry is checked then: one that does not decode whole
+    /// is made anew).
+    pub fn keeps_path(&self, key: Key) -> bool {
+        if self.out.is_none() || !self.earlier_paths.contains_key(&key) {
+            return false;
+        }
+        if let Ok(mut now) = self.now_paths.lock() {
+            now.entry(key).or_insert(None);
+        }
+        true
+    }
+
     /// The value `make()` computes under `key` (which must cover every input `make` reads),
     /// kept as bytes: the last build's when it made one under `key` and `decode` accepts its
     /// bytes, else made now. Kept for the next build either way. Without an output folder,
@@ -846,10 +860,12 @@ impl OutlineKeys {
     /// The key of `path`, the outline of the glyph at `index` of the font these keys were
     /// made for; hashed now when they were not made.
     pub fn get(&self, index: usize, path: &BezPath) -> Key {
-        match self.0.get(index) {
-            Some(key) => *key,
-            None => outline_key(path),
-        }
+        self.key(index).unwrap_or_else(|| outline_key(path))
+    }
+
+    /// The key of the outline of the glyph at `index`, when these keys were made.
+    pub fn key(&self, index: usize) -> Option<Key> {
+        self.0.get(index).copied()
     }
 }
 

@@ -96,7 +96,7 @@ pub fn glyphs_reusing(
         .par_iter()
         .enumerate()
         .map(|(i, g)| {
-            let make = || Ok(CffGlyph::new(&round_path(&g.path, &g.model_name)?));
+            let make = || Ok(CffGlyph::new(&round_path(&g.path(), &g.model_name)?));
             match outlines.get(i).copied().flatten() {
                 Some(outline) => {
                     let key = KeyBuilder::new("cff glyph").key(&outline).finish();

@@ -56,7 +56,7 @@ mod tests {
             ps_name: String::new(),
             unicodes: unicodes.to_vec(),
             advance: 0,
-            path: std::borrow::Cow::Owned(kurbo::BezPath::new()),
+            path: crate::otf::OtPath::Given(std::borrow::Cow::Owned(kurbo::BezPath::new())),
             from_components: false,
             anchors: Vec::new(),
         }

@@ -50,7 +50,7 @@ mod tests {
             .path_elements(0.1)
             .collect();
         path.extend(Rect::new(200.0, 0.0, 300.0, 100.0).path_elements(0.1));
-        boxes.path = std::borrow::Cow::Owned(path);
+        boxes.path = crate::otf::OtPath::Given(std::borrow::Cow::Owned(path));
         let glyphs = [ot_glyph(".notdef", &[], 500), boxes];
         let tt = truetype::glyphs_reusing(&glyphs, 0.5, &crate::reuse::Reuse::off(), &[])
             .expect("glyphs");

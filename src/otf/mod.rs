@@ -57,7 +57,7 @@ use kurbo::BezPath;
 use rayon::prelude::*;
 
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
-use crate::reuse::{Key, OutlineKeys, Reuse};
+use crate::reuse::{outline_key, Key, OutlineKeys, Reuse};
 
 pub use features::check_features;
 pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
@@ -118,12 +118,49 @@ pub(crate) struct OtGlyph<'a> {
     pub unicodes: Vec<char>,
     /// Advance in font units, on the grid.
     pub advance: u16,
-    /// y-up outline, outer contours counter-clockwise, not yet rounded.
-    pub path: Cow<'a, BezPath>,
+    /// y-up outline, outer contours counter-clockwise, not yet rounded ([`OtGlyph::path`]).
+    pub path: OtPath<'a>,
     /// The outline includes resolved components, whose contours may overlap.
     pub from_components: bool,
     /// Anchors, the components' included (mark positioning, see `features.rs`).
     pub anchors: Vec<crate::model::Anchor>,
+}
+
+/// Where an [`OtGlyph`]'s outline is: given, or made by a [`GlyphPaths`] when a flavour
+/// has to convert it (most glyphs of a rebuild come from the record by key, and their
+/// outlines are then never needed).
+#[derive(Clone)]
+pub(crate) enum OtPath<'a> {
+    /// The outline itself.
+    Given(Cow<'a, BezPath>),
+    /// The outline of the font's glyph at this index, asked of `paths` when used.
+    Later(&'a dyn GlyphPaths, usize),
+}
+
+impl std::fmt::Debug for OtPath<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OtPath::Given(path) => f.debug_tuple("Given").field(path).finish(),
+            OtPath::Later(_, index) => f.debug_tuple("Later").field(index).finish(),
+        }
+    }
+}
+
+/// The outlines of a font's glyphs, by index, made or decoded when asked (e.g. each glyph's
+/// union of overlaps, [`crate::overlap::Unions`]).
+pub trait GlyphPaths: Sync {
+    /// The outline of the glyph at `index`.
+    fn path(&self, index: usize) -> Cow<'_, BezPath>;
+}
+
+impl OtGlyph<'_> {
+    /// The outline (asked of its [`GlyphPaths`] now if it was not given).
+    pub fn path(&self) -> Cow<'_, BezPath> {
+        match &self.path {
+            OtPath::Given(path) => Cow::Borrowed(path.as_ref()),
+            OtPath::Later(paths, index) => paths.path(*index),
+        }
+    }
 }
 
 /// The glyph order shared by both flavours.
@@ -137,18 +174,34 @@ impl<'a> GlyphSet<'a> {
     /// The outlined font's glyphs in its order, after the [`notdef_box`] when the font
     /// has no `.notdef`.
     pub fn new(font: &'a OutlinedFont) -> Result<Self, OtfError> {
+        GlyphSet::with_paths(font, None)
+    }
+
+    /// [`GlyphSet::new`], each glyph's outline asked of `paths` when used instead of taken
+    /// from `font` (whose glyphs' other fields are used).
+    pub fn with_paths(
+        font: &'a OutlinedFont,
+        paths: Option<&'a dyn GlyphPaths>,
+    ) -> Result<Self, OtfError> {
         let notdef = (!font.has_notdef()).then(|| notdef_box(&font.info));
         let count = font.glyphs.len() + usize::from(notdef.is_some());
         if count > usize::from(u16::MAX) {
             return Err(OtfError::TooManyGlyphs(count));
         }
         // The synthesised `.notdef` owns its outline; the font's glyphs lend theirs.
-        let notdef = notdef.map(|g| OtGlyph::new(&g, Cow::Owned(g.path.clone())));
+        let notdef = notdef.map(|g| OtGlyph::new(&g, OtPath::Given(Cow::Owned(g.path.clone()))));
         // On every core; the first error in glyph order.
         let each: Vec<Result<OtGlyph<'a>, OtfError>> = font
             .glyphs
             .par_iter()
-            .map(|g| OtGlyph::new(g, Cow::Borrowed(&g.path)))
+            .enumerate()
+            .map(|(i, g)| {
+                let path = match paths {
+                    Some(paths) => OtPath::Later(paths, i),
+                    None => OtPath::Given(Cow::Borrowed(&g.path)),
+                };
+                OtGlyph::new(g, path)
+            })
             .collect();
         let mut glyphs = notdef
             .into_iter()
@@ -176,7 +229,7 @@ impl<'a> GlyphSet<'a> {
 impl<'a> OtGlyph<'a> {
     /// The glyph with its advance on the grid and outline `path`; the PostScript name comes
     /// later.
-    fn new(glyph: &OutlinedGlyph, path: Cow<'a, BezPath>) -> Result<Self, OtfError> {
+    fn new(glyph: &OutlinedGlyph, path: OtPath<'a>) -> Result<Self, OtfError> {
         let advance = grid::to_u16(glyph.advance, || format!("advance of '{}'", glyph.name))?;
         Ok(OtGlyph {
             model_name: glyph.name.clone(),
@@ -203,7 +256,19 @@ pub fn ttf_reusing(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Vec<u8>, OtfError> {
-    let set = GlyphSet::new(font)?;
+    ttf_reusing_paths(font, None, reuse, outlines)
+}
+
+/// [`ttf_reusing`], each glyph's outline asked of `paths` (when given) instead of taken
+/// from `font`, and only when its `glyf` bytes are not in the record; `outlines` are then
+/// keys that determine those outlines.
+pub fn ttf_reusing_paths(
+    font: &OutlinedFont,
+    paths: Option<&dyn GlyphPaths>,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::with_paths(font, paths)?;
     let keys = glyph_keys(font, &set, reuse, outlines);
     let glyphs = truetype::glyphs_reusing(&set.glyphs, font.tolerance, reuse, &keys)?;
     tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
@@ -221,7 +286,19 @@ pub fn otf_reusing(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Vec<u8>, OtfError> {
-    let set = GlyphSet::new(font)?;
+    otf_reusing_paths(font, None, reuse, outlines)
+}
+
+/// [`otf_reusing`], each glyph's outline asked of `paths` (when given) instead of taken
+/// from `font`, and only when its charstring is not in the record, as
+/// [`ttf_reusing_paths`] does.
+pub fn otf_reusing_paths(
+    font: &OutlinedFont,
+    paths: Option<&dyn GlyphPaths>,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+) -> Result<Vec<u8>, OtfError> {
+    let set = GlyphSet::with_paths(font, paths)?;
     let keys = glyph_keys(font, &set, reuse, outlines);
     let glyphs = charstring::glyphs_reusing(&set.glyphs, reuse, &keys)?;
     tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
@@ -239,9 +316,9 @@ fn glyph_keys(
         return Vec::new();
     }
     let synthesised = set.glyphs.len() - font.glyphs.len();
-    let own = font.glyphs.iter().enumerate();
+    let own = set.glyphs[synthesised..].iter().enumerate();
     std::iter::repeat_n(None, synthesised)
-        .chain(own.map(|(i, g)| Some(outlines.get(i, &g.path))))
+        .chain(own.map(|(i, g)| Some(outlines.key(i).unwrap_or_else(|| outline_key(&g.path())))))
         .collect()
 }
 

@@ -267,7 +267,7 @@ pub(crate) mod tests {
             ps_name: name.into(),
             unicodes: unicodes.to_vec(),
             advance,
-            path: std::borrow::Cow::Owned(BezPath::new()),
+            path: crate::otf::OtPath::Given(std::borrow::Cow::Owned(BezPath::new())),
             from_components: false,
             anchors: Vec::new(),
         }

@@ -149,7 +149,7 @@ fn truetype_glyph(g: &OtGlyph, accuracy: f64) -> Result<TtGlyph, OtfError> {
 /// zero-length segments and contours of fewer than 3 distinct points dropped.
 fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError> {
     let mut contours = Vec::new();
-    for contour in truetype_contours(&g.path, accuracy) {
+    for contour in truetype_contours(&g.path(), accuracy) {
         let mut points: Vec<CurvePoint> = Vec::with_capacity(contour.len());
         for p in contour {
             let q = grid::round_point(p.point, &g.model_name)?;

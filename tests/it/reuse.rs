@@ -425,17 +425,7 @@ fn unions_from_the_record_are_those_made_anew() {
     use xglyph::overlap::{remove_overlaps_font, remove_overlaps_font_with};
     let dir = scratch("unions");
     // Glyph 0 of two overlapping squares, glyph 1 of two apart (nothing to union).
-    let mut font = cjk_like();
-    for (k, d) in [(0, 300.0), (1, 1000.0)] {
-        let mut path = kurbo::BezPath::new();
-        for x in [0.0, d] {
-            path.extend(kurbo::Shape::path_elements(
-                &kurbo::Rect::new(x, x, x + 500.0, x + 500.0),
-                0.1,
-            ));
-        }
-        font.glyphs[k].path = path;
-    }
+    let font = with_overlaps();
     let fresh = remove_overlaps_font(&font);
     let first = load(&dir);
     let made = remove_overlaps_font_with(&font, &first, &OutlineKeys::new(&font, &first));
@@ -458,6 +448,70 @@ fn unions_from_the_record_are_those_made_anew() {
     assert_eq!(subpaths(&fresh.glyphs[1].path), 2);
     let record = std::fs::read(dir.join(REUSE_FILE)).unwrap();
     assert!(record.len() > 200, "{} bytes", record.len());
+}
+
+/// Two glyphs of `cjk_like`: glyph 0 two overlapping squares, glyph 1 two apart.
+fn with_overlaps() -> OutlinedFont {
+    let mut font = cjk_like();
+    for (k, d) in [(0, 300.0), (1, 1000.0)] {
+        let mut path = kurbo::BezPath::new();
+        for x in [0.0, d] {
+            path.extend(kurbo::Shape::path_elements(
+                &kurbo::Rect::new(x, x, x + 500.0, x + 500.0),
+                0.1,
+            ));
+        }
+        font.glyphs[k].path = path;
+    }
+    font
+}
+
+#[test]
+fn unions_kept_unread_give_the_fonts_of_unions_made_anew() {
+    use xglyph::otf::GlyphPaths;
+    use xglyph::overlap::{remove_overlaps_font, Unions};
+    let dir = scratch("kept-unions");
+    let font = with_overlaps();
+    let fresh = remove_overlaps_font(&font);
+    let (want_ttf, want_otf) = (otf::ttf(&fresh).unwrap(), otf::otf(&fresh).unwrap());
+    // The first build makes every union and records them (no glyph data: the fonts are not
+    // built through the record here).
+    let first = load(&dir);
+    let made = Unions::new(&font, &first, &OutlineKeys::new(&font, &first));
+    for (i, g) in fresh.glyphs.iter().enumerate() {
+        assert_eq!(made.path(i).as_ref(), &g.path, "{}", g.name);
+    }
+    first.save().unwrap();
+    // The second holds every union unread, and keeps them for the next build unread.
+    let second = load(&dir);
+    let kept = Unions::new(&font, &second, &OutlineKeys::new(&font, &second));
+    second.save().unwrap();
+    // The third decodes them when the fonts' glyph data is not in the record: the fonts
+    // are those of the unions made anew, and those of the next build too, taken by key.
+    for _ in 0..2 {
+        let third = load(&dir);
+        let outlines = OutlineKeys::new(&font, &third);
+        let kept_now = Unions::new(&font, &third, &outlines);
+        let paths: Option<&dyn GlyphPaths> = Some(&kept_now);
+        let ttf = otf::ttf_reusing_paths(&font, paths, &third, kept_now.keys()).unwrap();
+        let otf = otf::otf_reusing_paths(&font, paths, &third, kept_now.keys()).unwrap();
+        assert!(ttf == want_ttf, "TTF differs");
+        assert!(otf == want_otf, "OTF differs");
+        third.save().unwrap();
+    }
+    for (i, g) in fresh.glyphs.iter().enumerate() {
+        assert_eq!(kept.path(i).as_ref(), &g.path, "{}", g.name);
+    }
+    // A glyph whose union is not in the record is made at once: an edit.
+    let mut edited = font.clone();
+    edited.glyphs[0]
+        .path
+        .apply_affine(Affine::translate(Vec2::new(7.0, 0.0)));
+    let fourth = load(&dir);
+    let unions = Unions::new(&edited, &fourth, &OutlineKeys::new(&edited, &fourth));
+    let want = remove_overlaps_font(&edited);
+    assert_eq!(unions.path(0).as_ref(), &want.glyphs[0].path);
+    assert_ne!(want.glyphs[0].path, fresh.glyphs[0].path);
 }
 
 /// The number in the build's `left N glyph files` line (0 without one).

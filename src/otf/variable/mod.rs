@@ -123,11 +123,12 @@ fn build(
     let mut advance_deltas = Vec::with_capacity(set.glyphs.len());
     for (gid, glyph) in set.glyphs.iter().enumerate() {
         let source = gid.checked_sub(synthesised);
-        let mut paths: Vec<&BezPath> = vec![&glyph.path];
+        let own = glyph.path();
+        let mut paths: Vec<&BezPath> = vec![own.as_ref()];
         let mut advances = vec![glyph.advance];
         for master in &family.masters {
             let Some(g) = source.map(|i| &master.glyphs[i]) else {
-                paths.push(&glyph.path);
+                paths.push(own.as_ref());
                 advances.push(glyph.advance);
                 continue;
             };
