@@ -198,6 +198,9 @@ pub fn outline_font_with(font: &Font, tolerance: f64, opts: OutlineOptions<'_>) 
         tolerance,
         glyphs: order
             .par_iter()
+            // Small pieces, so that no core is left idle while the other fits a long run
+            // of glyphs at the end.
+            .with_max_len(16)
             .map(|glyph| {
                 let outlined = outline_glyph_with(font, &index, glyph, tolerance, opts.cache);
                 if let Some(progress) = opts.progress {

@@ -376,6 +376,37 @@ pub fn save_records(files: impl IntoIterator<Item = (PathBuf, Vec<u8>)>) {
     }
 }
 
+/// A group of outputs, made.
+type Made = Result<Vec<OutputFile>, PipelineError>;
+
+/// The variable font's outputs and its summary, made (`None`: the font has no masters).
+type MadeVariable = Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineError>;
+
+/// The three groups of outputs of a build on every core (rayon), errors in this order:
+/// the default master's ([`pipeline::static_outputs_with`]), the named instances' and the
+/// variable font's.
+fn render_outputs(
+    loaded: &Loaded,
+    opts: &BuildOptions,
+    reuse: &Reuse,
+    cache: Option<&FitCache>,
+) -> (Made, Made, MadeVariable) {
+    let ((default, instances), variable) = rayon::join(
+        || {
+            rayon::join(
+                || {
+                    // A font with masters writes the UFOs of its compatible fit instead.
+                    let ufo = !loaded.family.is_variable();
+                    pipeline::static_outputs_with(&loaded.font, opts, reuse, ufo)
+                },
+                || pipeline::instance_outputs_reusing(loaded, opts, cache, reuse),
+            )
+        },
+        || pipeline::variable_outputs_with(loaded, cache, reuse),
+    );
+    (default, instances, variable)
+}
+
 /// Runs `xglyph build`.
 pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
     // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
@@ -402,33 +433,30 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         keep_overlaps: args.keep_overlaps,
         ..BuildOptions::default()
     };
-    // A font without masters fits nothing more: its cache is encoded now and its maps
-    // dropped (hundreds of MB for a CJK font) before the outputs are made; the file is
-    // still written after them, so a failed build leaves OUT alone. Its sources' glyphs are
-    // dropped too (70 MB for a CJK font): the outputs read the outlined font only.
-    let (cache, mut to_save) = if loaded.family.is_variable() {
+    // A font without masters fits nothing more: its cache is encoded while the outputs are
+    // made (a CJK font's: 0.7 s on one core) and its maps dropped then (hundreds of MB);
+    // the file is still written after the outputs, so a failed build leaves OUT alone. Its
+    // sources' glyphs are dropped now (70 MB for a CJK font): the outputs read the
+    // outlined font only.
+    let (cache, encode) = if loaded.family.is_variable() {
         (Some(cache), None)
     } else {
-        let stats = (cache.hits(), cache.misses());
         loaded.family.default.glyphs = Vec::new();
-        (None, Some((cache.files_to_save(&cache_path), stats)))
+        (None, Some(cache))
     };
-    // The three groups of outputs on every core (rayon); errors in this order.
-    let ((files, instance_files), variable) = show_phase("rendering the outputs", || {
-        rayon::join(
-            || {
-                rayon::join(
-                    || {
-                        // A font with masters writes the UFOs of its compatible fit instead.
-                        let ufo = !loaded.family.is_variable();
-                        pipeline::static_outputs_with(&loaded.font, &opts, &reuse, ufo)
-                    },
-                    || pipeline::instance_outputs_reusing(&loaded, &opts, cache.as_ref(), &reuse),
-                )
-            },
-            || pipeline::variable_outputs_with(&loaded, cache.as_ref(), &reuse),
-        )
-    });
+    let encode = || {
+        encode.map(|cache| {
+            let stats = (cache.hits(), cache.misses());
+            (cache.files_to_save(&cache_path), stats)
+        })
+    };
+    let ((files, instance_files, variable), mut to_save) =
+        show_phase("rendering the outputs", || {
+            rayon::join(
+                || render_outputs(&loaded, &opts, &reuse, cache.as_ref()),
+                encode,
+            )
+        });
     let mut files = files?;
     files.extend(instance_files?);
     let variable = variable?;
@@ -445,9 +473,14 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         .chain(kept.iter().map(|p| p.as_path()))
         .collect();
     let report = summary(&Summary::new(&loaded.font), &family, &args.font.out, &paths);
-    show_phase(&format!("writing {} files", files.len()), || {
-        pipeline::write_output_files_with(&args.font.out, files, &reuse)
-    })?;
+    // The memo is encoded while the outputs are written (it depends on the sources only).
+    let (written, memo_files) = show_phase(&format!("writing {} files", files.len()), || {
+        rayon::join(
+            || pipeline::write_output_files_with(&args.font.out, files, &reuse),
+            || memo.files_to_save(&memo_path),
+        )
+    });
+    written?;
     out!("{report}");
     if loaded.family.is_variable() {
         outln!("{}", masters_line(&loaded.family));
@@ -487,12 +520,7 @@ pub fn run(args: BuildArgs) -> Result<ExitCode, CommandError> {
         );
         Vec::new()
     });
-    save_records(
-        reuse_files
-            .into_iter()
-            .chain(memo.files_to_save(&memo_path))
-            .chain(cache_files),
-    );
+    save_records(reuse_files.into_iter().chain(memo_files).chain(cache_files));
     // The command ends here and the process with it: the outlined font, the memo and the
     // records (a CJK font's millions of small allocations) are left to the exit instead of
     // being freed one by one (an edited CJK build: 2.95 s instead of 3.0 s).

@@ -168,6 +168,9 @@ pub fn sheet_png_files_reusing(
     names
         .into_par_iter()
         .zip(pages.par_iter())
+        // One page per job: rayon's pieces otherwise end in a run of pages on one core
+        // while the other waits (a CJK font's last 10 pages, 1.5 s).
+        .with_max_len(1)
         .map(|(name, order)| {
             let draw = || super::encode_png(&render_page(layout, &geometry, opts, order)?);
             let png = match page_key(layout, &geometry, opts, &name, order, font_key, outlines) {

@@ -428,6 +428,8 @@ fn load_glyph_files(
     // the one a sequential load gathers, whatever the thread count.
     let loaded: Vec<(Option<GlyphFile>, Diagnostics)> = paths
         .par_iter()
+        // Small pieces, so that the load does not end on one core.
+        .with_max_len(64)
         .map(|(path, meta)| {
             let mut mine = Diagnostics::default();
             let file = load_glyph_file(path, meta.as_ref(), memo, &mut mine);
