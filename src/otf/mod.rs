@@ -268,10 +268,7 @@ pub fn ttf_reusing_paths(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Vec<u8>, OtfError> {
-    let set = GlyphSet::with_paths(font, paths)?;
-    let keys = glyph_keys(font, &set, reuse, outlines);
-    let glyphs = truetype::glyphs_reusing(&set.glyphs, font.tolerance, reuse, &keys)?;
-    tables::build_font(font, &set, tables::Outlines::TrueType(glyphs))
+    font_reusing_paths(font, paths, reuse, outlines, Flavour::TrueType)
 }
 
 /// The font as OpenType/CFF (cubic outlines, points rounded to the integer grid).
@@ -298,10 +295,40 @@ pub fn otf_reusing_paths(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> Result<Vec<u8>, OtfError> {
+    font_reusing_paths(font, paths, reuse, outlines, Flavour::Cff)
+}
+
+/// The outlines a static font carries.
+#[derive(Clone, Copy)]
+enum Flavour {
+    /// `glyf`: quadratic splines.
+    TrueType,
+    /// `CFF `: the cubics.
+    Cff,
+}
+
+/// [`ttf_reusing_paths`] or [`otf_reusing_paths`], by `flavour`.
+fn font_reusing_paths(
+    font: &OutlinedFont,
+    paths: Option<&dyn GlyphPaths>,
+    reuse: &Reuse,
+    outlines: &OutlineKeys,
+    flavour: Flavour,
+) -> Result<Vec<u8>, OtfError> {
     let set = GlyphSet::with_paths(font, paths)?;
     let keys = glyph_keys(font, &set, reuse, outlines);
-    let glyphs = charstring::glyphs_reusing(&set.glyphs, reuse, &keys)?;
-    tables::build_font(font, &set, tables::Outlines::Cff(glyphs))
+    let outlines = match flavour {
+        Flavour::TrueType => tables::Outlines::TrueType(truetype::glyphs_reusing(
+            &set.glyphs,
+            font.tolerance,
+            reuse,
+            &keys,
+        )?),
+        Flavour::Cff => {
+            tables::Outlines::Cff(charstring::glyphs_reusing(&set.glyphs, reuse, &keys)?)
+        }
+    };
+    tables::build_font(font, &set, outlines)
 }
 
 /// Per glyph of `set`, the key of its outline when `reuse` is on (none for a synthesised
