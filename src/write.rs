@@ -85,6 +85,7 @@ pub struct FileStamp {
 /// from a coarse clock (a tick of a few milliseconds): a file changed again within the tick
 /// of its last change would keep its times. A file older than this can only be changed in a
 /// later tick, which moves its change time. (Git's "racy" index entries, the same problem.)
+/// A file whose change time is in whole seconds waits 2 s instead.
 pub const SETTLED: std::time::Duration = std::time::Duration::from_millis(50);
 
 impl FileStamp {
@@ -111,11 +112,24 @@ impl FileStamp {
 /// read then moves the metadata away from the ones recorded.
 pub fn settled_meta(meta: &fs::Metadata) -> Option<[u64; 6]> {
     let stamp = stamp_meta(meta)?;
-    let changed =
-        std::time::UNIX_EPOCH + std::time::Duration::new(stamp[4], u32::try_from(stamp[5]).ok()?);
-    let age = std::time::SystemTime::now().duration_since(changed).ok()?;
-    (age >= SETTLED).then_some(stamp)
+    settled(&stamp, std::time::SystemTime::now()).then_some(stamp)
 }
+
+/// Whether a file of metadata `stamp` ([`stamp_meta`]) last changed long enough before
+/// `now` for a later change to move its change time.
+fn settled(stamp: &[u64; 6], now: std::time::SystemTime) -> bool {
+    let Ok(nanos) = u32::try_from(stamp[5]) else {
+        return false;
+    };
+    let changed = std::time::UNIX_EPOCH + std::time::Duration::new(stamp[4], nanos);
+    // A change time in whole seconds most likely comes from a file system that keeps
+    // seconds only (FAT keeps two): its tick is then taken as 2 s.
+    let tick = if nanos == 0 { COARSE_TICK } else { SETTLED };
+    now.duration_since(changed).is_ok_and(|age| age >= tick)
+}
+
+/// How long after its last change a file with a change time in whole seconds gets a stamp.
+const COARSE_TICK: std::time::Duration = std::time::Duration::from_secs(2);
 
 /// The metadata a [`FileStamp`] records, of a regular file (`None` for anything else).
 #[cfg(unix)]
@@ -796,6 +810,21 @@ mod tests {
     use super::*;
 
     use super::test_tree::{entries, tree};
+
+    #[test]
+    fn a_change_time_in_whole_seconds_settles_after_two_seconds_not_fifty_milliseconds() {
+        use std::time::{Duration, UNIX_EPOCH};
+        let at = |secs: u64, nanos: u32| UNIX_EPOCH + Duration::new(secs, nanos);
+        // Metadata of a file changed at 1000 s (length, inode, modified, changed).
+        let fine = [10, 7, 1000, 123_456_789, 1000, 123_456_789];
+        let coarse = [10, 7, 1000, 0, 1000, 0];
+        assert!(!settled(&fine, at(1000, 160_000_000)));
+        assert!(settled(&fine, at(1000, 180_000_000)));
+        assert!(!settled(&coarse, at(1001, 500_000_000)));
+        assert!(settled(&coarse, at(1002, 0)));
+        // A change time after now (a clock set back) never settles.
+        assert!(!settled(&fine, at(999, 0)));
+    }
 
     #[test]
     fn commit_writes_every_file_and_creates_folders() {
