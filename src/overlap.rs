@@ -213,39 +213,22 @@ pub fn remove_overlaps_font_with(
     reuse: &Reuse,
     outlines: &OutlineKeys,
 ) -> OutlinedFont {
-    remove_overlaps_font_keyed(font, reuse, outlines).0
-}
-
-/// [`remove_overlaps_font_with`], with [`OutlineKeys`] of the result: each glyph's union
-/// key, which determines its union (none when `reuse` is off).
-fn remove_overlaps_font_keyed(
-    font: &OutlinedFont,
-    reuse: &Reuse,
-    outlines: &OutlineKeys,
-) -> (OutlinedFont, OutlineKeys) {
     use rayon::prelude::*;
-    let eps = UNION_SHARE * font.tolerance;
-    let by_name: HashMap<&str, &OutlinedGlyph> =
-        font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
-    let (glyphs, keys): (Vec<OutlinedGlyph>, Vec<Option<Key>>) = font
+    let paths = Unions::new(font, reuse, outlines).into_paths();
+    let glyphs = font
         .glyphs
         .par_iter()
-        .enumerate()
-        .map(|(i, glyph)| {
-            let outline = || outlines.get(i, &glyph.path);
-            remove_glyph_overlaps(glyph, outline, &by_name, eps, reuse)
-        })
-        .unzip();
+        .zip(paths)
+        .map(|(glyph, path)| with_path(glyph, path))
+        .collect();
     // Field by field: `..font.clone()` would copy every glyph only to drop the copies.
-    let unioned = OutlinedFont {
+    OutlinedFont {
         info: font.info.clone(),
         kerning: font.kerning.clone(),
         features: font.features.clone(),
         tolerance: font.tolerance,
         glyphs,
-    };
-    let keys: Option<Vec<Key>> = keys.into_iter().collect();
-    (unioned, OutlineKeys::from_keys(keys.unwrap_or_default()))
+    }
 }
 
 /// Each glyph's union of a font, for the OpenType builders, which take most glyphs' data
@@ -310,6 +293,19 @@ impl<'a> Unions<'a> {
     pub fn keys(&self) -> &OutlineKeys {
         &self.keys
     }
+
+    /// Every glyph's union, in order: those made now moved out, the others decoded.
+    fn into_paths(mut self) -> Vec<BezPath> {
+        use rayon::prelude::*;
+        let made = std::mem::take(&mut self.made);
+        // With `made` empty, `path` decodes (or makes) every union not moved out here.
+        made.into_par_iter()
+            .enumerate()
+            .map(|(i, path)| {
+                path.unwrap_or_else(|| crate::otf::GlyphPaths::path(&self, i).into_owned())
+            })
+            .collect()
+    }
 }
 
 impl crate::otf::GlyphPaths for Unions<'_> {
@@ -335,35 +331,15 @@ fn union_key(eps: f64, input: &Key) -> Key {
     KeyBuilder::new("union").f64(eps).key(input).finish()
 }
 
-/// `outline`: the key of `glyph.path` ([`OutlineKeys::get`]). With `reuse` on, also the
-/// union's key.
-fn remove_glyph_overlaps(
-    glyph: &OutlinedGlyph,
-    outline: impl FnOnce() -> Key,
-    by_name: &HashMap<&str, &OutlinedGlyph>,
-    eps: f64,
-    reuse: &Reuse,
-) -> (OutlinedGlyph, Option<Key>) {
-    let parts = parts(glyph, by_name);
-    let input = parts.as_ref().unwrap_or(&glyph.path);
-    let (path, key) = if reuse.is_on() {
-        let input_key = match &parts {
-            Some(parts) => outline_key(parts),
-            None => outline(),
-        };
-        let key = union_key(eps, &input_key);
-        let path = reuse.path_or_make(key, input, || remove_overlaps(input, eps));
-        (path, Some(key))
-    } else {
-        (remove_overlaps(input, eps), None)
-    };
+/// `glyph` with its outline replaced by `path` (its segments counted again).
+fn with_path(glyph: &OutlinedGlyph, path: BezPath) -> OutlinedGlyph {
     let segments = path
         .elements()
         .iter()
         .filter(|el| !matches!(el, PathEl::MoveTo(_) | PathEl::ClosePath))
         .count();
     // Field by field, so that the old path is not copied.
-    let glyph = OutlinedGlyph {
+    OutlinedGlyph {
         name: glyph.name.clone(),
         unicodes: glyph.unicodes.clone(),
         advance: glyph.advance,
@@ -374,8 +350,7 @@ fn remove_glyph_overlaps(
         path,
         max_error: glyph.max_error,
         segments,
-    };
-    (glyph, key)
+    }
 }
 
 /// A composite's path with each part (its own contours, each component's own) oriented on

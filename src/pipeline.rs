@@ -419,8 +419,8 @@ fn instance_fonts(
 ) -> Result<InstanceFonts, PipelineError> {
     let ot = ForOpenType::new(font, opts, reuse, outlines);
     let (ttf, (otf, svg)) = rayon::join(
-        || ot.ttf(reuse),
-        || rayon::join(|| ot.otf(reuse), || svg_font(font).into_bytes()),
+        || ot.ttf(),
+        || rayon::join(|| ot.otf(), || svg_font(font).into_bytes()),
     );
     let ttf = ttf?;
     Ok(InstanceFonts {
@@ -636,7 +636,7 @@ fn opentype_and_images(
     outlines: &OutlineKeys,
 ) -> Result<Binary, PipelineError> {
     let ot = ForOpenType::new(font, opts, reuse, outlines);
-    let ttf = ot.ttf(reuse)?;
+    let ttf = ot.ttf()?;
     // The images draw `font` (overlaps as drawn) with the positions of the shipped TTF.
     let layout = Layout::with_ttf(font, ttf.clone()).map_err(RenderError::from)?;
     // What the proof and the sheet labels set in the font depend on.
@@ -672,7 +672,7 @@ fn opentype_and_images(
         || {
             rayon::join(
                 || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
-                || ot.otf(reuse),
+                || ot.otf(),
             )
         },
     );
@@ -719,6 +719,7 @@ struct ForOpenType<'a> {
     font: &'a OutlinedFont,
     unions: Option<Unions<'a>>,
     outlines: &'a OutlineKeys,
+    reuse: &'a Reuse,
 }
 
 impl<'a> ForOpenType<'a> {
@@ -733,6 +734,7 @@ impl<'a> ForOpenType<'a> {
             font,
             unions,
             outlines,
+            reuse,
         }
     }
 
@@ -745,14 +747,14 @@ impl<'a> ForOpenType<'a> {
         }
     }
 
-    fn ttf(&self, reuse: &Reuse) -> Result<Vec<u8>, otf::OtfError> {
+    fn ttf(&self) -> Result<Vec<u8>, otf::OtfError> {
         let (paths, keys) = self.paths();
-        otf::ttf_reusing_paths(self.font, paths, reuse, keys)
+        otf::ttf_reusing_paths(self.font, paths, self.reuse, keys)
     }
 
-    fn otf(&self, reuse: &Reuse) -> Result<Vec<u8>, otf::OtfError> {
+    fn otf(&self) -> Result<Vec<u8>, otf::OtfError> {
         let (paths, keys) = self.paths();
-        otf::otf_reusing_paths(self.font, paths, reuse, keys)
+        otf::otf_reusing_paths(self.font, paths, self.reuse, keys)
     }
 }
 

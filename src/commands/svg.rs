@@ -63,28 +63,28 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
     if loaded.family.is_variable() {
         cache.keep_unused();
     }
-    // Encoded before the outputs are made, written after them (a failed run leaves OUT as
-    // it was), as `build` does.
-    let cache_files = cache.files_to_save(&stores.cache_path);
+    // As `build` does: the cache encoded while the outputs are made and the memo while
+    // they are written, both written after them (a failed run leaves OUT as it was).
     let fits = (cache.hits(), cache.misses());
-    let files = svg_outputs(at_font.as_ref().unwrap_or(&loaded.font));
+    let (files, cache_files) = rayon::join(
+        || svg_outputs(at_font.as_ref().unwrap_or(&loaded.font)),
+        || cache.files_to_save(&stores.cache_path),
+    );
     let count = files.len();
-    show_phase(&format!("writing {count} files"), || {
-        write_output_files(&args.font.out, files)
-    })?;
+    let (written, memo_files) = show_phase(&format!("writing {count} files"), || {
+        rayon::join(
+            || write_output_files(&args.font.out, files),
+            || stores.memo.files_to_save(&stores.memo_path),
+        )
+    });
+    written?;
     outln!(
         "wrote {count} files to {} (SVG font and {} glyph SVGs)",
         args.font.out.display(),
         count - 1
     );
     print_fits(&stores.cache_path, fits);
-    save_records(
-        stores
-            .memo
-            .files_to_save(&stores.memo_path)
-            .into_iter()
-            .chain(cache_files),
-    );
+    save_records(memo_files.into_iter().chain(cache_files));
     // As in `build`: a large font's fits and memo are left to the exit, not freed one by one.
     std::mem::forget((loaded, stores, at_font));
     Ok(ExitCode::SUCCESS)
