@@ -385,13 +385,17 @@ type MadeVariable = Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineErr
 /// The three groups of outputs of a build on every core (rayon), errors in this order:
 /// the default master's ([`pipeline::static_outputs_with`]), the named instances' and the
 /// variable font's.
+///
+/// The named instances go first to another core (rayon lends the oldest job first): they
+/// are the longest chain (fit, fonts, then their proof drawn on one core), which started
+/// last left one core drawing alone at the end of a bundled build.
 fn render_outputs(
     loaded: &Loaded,
     opts: &BuildOptions,
     reuse: &Reuse,
     cache: Option<&FitCache>,
 ) -> (Made, Made, MadeVariable) {
-    let ((default, instances), variable) = rayon::join(
+    let ((default, variable), instances) = rayon::join(
         || {
             rayon::join(
                 || {
@@ -399,10 +403,10 @@ fn render_outputs(
                     let ufo = !loaded.family.is_variable();
                     pipeline::static_outputs_with(&loaded.font, opts, reuse, ufo)
                 },
-                || pipeline::instance_outputs_reusing(loaded, opts, cache, reuse),
+                || pipeline::variable_outputs_with(loaded, cache, reuse),
             )
         },
-        || pipeline::variable_outputs_with(loaded, cache, reuse),
+        || pipeline::instance_outputs_reusing(loaded, opts, cache, reuse),
     );
     (default, instances, variable)
 }

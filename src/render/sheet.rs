@@ -13,12 +13,13 @@
 //! rather than one image taller than a PNG viewer (or [`MAX_SIDE`]) allows.
 
 use std::path::Path;
+use std::sync::Mutex;
 
 use kurbo::Point;
 use tiny_skia::{Color, Pixmap};
 
 use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement};
-use super::{labels, overlay, white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
+use super::{labels, overlay, white_pixmap_in, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::Layout;
 use crate::outline::OutlinedFont;
 use crate::reuse::{glyph_key, Key, KeyBuilder, OutlineKeys, Reuse};
@@ -165,6 +166,8 @@ pub fn sheet_png_files_reusing(
     let names = page_file_names(stem, pages.len());
     // One scale for every page (the whole font's ink), computed once.
     let geometry = CellGeometry::new(layout.font(), opts.cell_px);
+    // The memory of pages already encoded, for the next pages (at most one per core).
+    let spare: Mutex<Vec<Vec<u8>>> = Mutex::new(Vec::new());
     names
         .into_par_iter()
         .zip(pages.par_iter())
@@ -172,7 +175,15 @@ pub fn sheet_png_files_reusing(
         // while the other waits (a CJK font's last 10 pages, 1.5 s).
         .with_max_len(1)
         .map(|(name, order)| {
-            let draw = || super::encode_png(&render_page(layout, &geometry, opts, order)?);
+            let draw = || {
+                let memory = spare.lock().ok().and_then(|mut s| s.pop());
+                let page = render_page(layout, &geometry, opts, order, memory.unwrap_or_default())?;
+                let png = super::encode_png(&page);
+                if let Ok(mut s) = spare.lock() {
+                    s.push(page.take());
+                }
+                png
+            };
             let png = match page_key(layout, &geometry, opts, &name, order, font_key, outlines) {
                 Some(key) => reuse.get_or_make(Path::new(&name), key, draw)?,
                 None => draw()?,
@@ -269,14 +280,16 @@ pub fn render_sheet_page_with(
 ) -> Result<Pixmap, RenderError> {
     check_options(opts)?;
     let geometry = CellGeometry::new(layout.font(), opts.cell_px);
-    render_page(layout, &geometry, opts, order)
+    render_page(layout, &geometry, opts, order, Vec::new())
 }
 
+/// One page, drawn in the memory of `spare` ([`super::white_pixmap_in`]).
 fn render_page(
     layout: &Layout<'_>,
     geometry: &CellGeometry,
     opts: &SheetOptions,
     order: &[usize],
+    spare: Vec<u8>,
 ) -> Result<Pixmap, RenderError> {
     let font = layout.font();
     if order.is_empty() {
@@ -288,16 +301,19 @@ fn render_page(
     let max_rows = u64::from(MAX_SIDE) / cell;
     let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
     let rows = n.div_ceil(columns);
-    let mut sheet = white_pixmap(columns * cell, rows * cell)?;
+    let mut sheet = white_pixmap_in(spare, columns * cell, rows * cell)?;
+    // Each cell drawn in the memory of the one before.
+    let mut cell_memory = Vec::new();
     for (k, &index) in order.iter().enumerate() {
         let k = k as u64;
-        let img = render_cell(font, layout, geometry, index, opts)?;
+        let img = render_cell(font, layout, geometry, index, opts, cell_memory)?;
         put_opaque(
             &mut sheet,
             &img,
             ((k % columns) * cell) as u32,
             ((k / columns) * cell) as u32,
         );
+        cell_memory = img.take();
     }
     Ok(sheet)
 }
@@ -345,9 +361,10 @@ fn render_cell(
     geo: &CellGeometry,
     index: usize,
     opts: &SheetOptions,
+    spare: Vec<u8>,
 ) -> Result<Pixmap, RenderError> {
     let glyph = &font.glyphs[index];
-    let mut img = white_pixmap(u64::from(opts.cell_px), u64::from(opts.cell_px))?;
+    let mut img = white_pixmap_in(spare, u64::from(opts.cell_px), u64::from(opts.cell_px))?;
     let at = Placement {
         scale: geo.scale,
         origin_x: ((geo.cell - glyph.advance * geo.scale) / 2.0).round(),
