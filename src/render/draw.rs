@@ -4,7 +4,7 @@
 //! to pixel centres so they stay crisp.
 
 use kurbo::{BezPath, PathEl, Point};
-use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, PixmapMut, Stroke, Transform};
 
 /// Where font units land on a pixmap.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,7 +171,7 @@ pub fn rgb([r, g, b]: [u8; 3]) -> Color {
 /// `dst`: a row-by-row copy. For an opaque `src` it gives exactly the pixels of tiny-skia's
 /// `draw_pixmap` (source-over with full opacity is the source), which runs every pixel
 /// through its high-precision pipeline and took a tenth of a build's CPU for the sheet.
-pub fn put_opaque(dst: &mut Pixmap, src: &Pixmap, x: u32, y: u32) {
+pub fn put_opaque(dst: &mut PixmapMut<'_>, src: &Pixmap, x: u32, y: u32) {
     debug_assert!(src.pixels().iter().all(|p| p.alpha() == u8::MAX));
     let (dw, dh) = (dst.width(), dst.height());
     if x >= dw || y >= dh {

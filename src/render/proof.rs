@@ -252,7 +252,7 @@ pub fn render_instances_proof_with(
             Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
         );
         y += label_h;
-        put_opaque(&mut img, &block, 0, y as u32);
+        put_opaque(&mut img.as_mut(), &block, 0, y as u32);
         y += f64::from(block.height());
     }
     Ok(img)

@@ -16,7 +16,8 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use kurbo::Point;
-use tiny_skia::{Color, Pixmap};
+use rayon::prelude::*;
+use tiny_skia::{Color, Pixmap, PixmapMut};
 
 use super::draw::{fill_glyph, line_px, put_opaque, rgb, stroke_glyph, Placement};
 use super::{labels, overlay, white_pixmap_in, RenderError, MAX_AREA, MAX_SIDE};
@@ -161,7 +162,6 @@ pub fn sheet_png_files_reusing(
     font_key: Option<&Key>,
     outlines: &OutlineKeys,
 ) -> Result<Vec<(String, Vec<u8>)>, RenderError> {
-    use rayon::prelude::*;
     let pages = sheet_pages(layout.font(), opts)?;
     let names = page_file_names(stem, pages.len());
     // One scale for every page (the whole font's ink), computed once.
@@ -301,20 +301,32 @@ fn render_page(
     let max_rows = u64::from(MAX_SIDE) / cell;
     let columns = u64::from(opts.columns).max(n.div_ceil(max_rows)).min(n);
     let rows = n.div_ceil(columns);
-    let mut sheet = white_pixmap_in(spare, columns * cell, rows * cell)?;
-    // Each cell drawn in the memory of the one before.
-    let mut cell_memory = Vec::new();
-    for (k, &index) in order.iter().enumerate() {
-        let k = k as u64;
-        let img = render_cell(font, layout, geometry, index, opts, cell_memory)?;
-        put_opaque(
-            &mut sheet,
-            &img,
-            ((k % columns) * cell) as u32,
-            ((k / columns) * cell) as u32,
-        );
-        cell_memory = img.take();
-    }
+    let width = columns * cell;
+    let mut sheet = white_pixmap_in(spare, width, rows * cell)?;
+    // Each row of cells a rayon job (an edited glyph's page is drawn on every core), its
+    // cells drawn in turn in the memory of the one before; errors in cell order.
+    let strip_bytes = (width * cell * 4) as usize;
+    let drawn: Vec<Result<(), RenderError>> = sheet
+        .data_mut()
+        .par_chunks_mut(strip_bytes)
+        .zip(order.par_chunks(columns as usize))
+        .map(|(strip, row)| {
+            let mut strip = PixmapMut::from_bytes(strip, width as u32, cell as u32).ok_or(
+                RenderError::Size {
+                    width,
+                    height: cell,
+                },
+            )?;
+            let mut memory = Vec::new();
+            for (c, &index) in row.iter().enumerate() {
+                let img = render_cell(font, layout, geometry, index, opts, memory)?;
+                put_opaque(&mut strip, &img, c as u32 * cell as u32, 0);
+                memory = img.take();
+            }
+            Ok(())
+        })
+        .collect();
+    drawn.into_iter().collect::<Result<(), _>>()?;
     Ok(sheet)
 }
 
