@@ -626,8 +626,8 @@ struct Binary {
     woff2: Vec<u8>,
 }
 
-/// The TTF once, then in parallel: the sheet pages and the proof shaped on it, its WOFF2,
-/// and the OTF.
+/// The TTF once, then in parallel: its WOFF2, the OTF, and the sheet pages and the proof
+/// shaped on it.
 fn opentype_and_images(
     font: &OutlinedFont,
     opts: &BuildOptions,
@@ -647,7 +647,14 @@ fn opentype_and_images(
             .str(&format!("{:?}", opts.proof))
             .finish()
     });
-    let ((sheets, proof), (woff2, otf)) = rayon::join(
+    // The WOFF2 first: Brotli runs on one core, the images on every core around it.
+    let ((woff2, otf), (sheets, proof)) = rayon::join(
+        || {
+            rayon::join(
+                || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
+                || ot.otf(),
+            )
+        },
         || {
             rayon::join(
                 || {
@@ -667,12 +674,6 @@ fn opentype_and_images(
                         None => draw(),
                     }
                 },
-            )
-        },
-        || {
-            rayon::join(
-                || woff2_reusing(&ttf, &format!("{stem}.woff2"), reuse),
-                || ot.otf(),
             )
         },
     );

@@ -386,27 +386,28 @@ type MadeVariable = Result<Option<(Vec<OutputFile>, FamilySummary)>, PipelineErr
 /// the default master's ([`pipeline::static_outputs_with`]), the named instances' and the
 /// variable font's.
 ///
-/// The named instances go first to another core (rayon lends the oldest job first): they
-/// are the longest chain (fit, fonts, then their proof drawn on one core), which started
-/// last left one core drawing alone at the end of a bundled build.
+/// The longest chains start first: the variable font (its compatible fit on every core,
+/// then its WOFF2, Brotli on one core), then the named instances (fits, fonts, then their
+/// proof); started last, either left one core working alone at the end of a bundled
+/// build. Rayon runs the first closure here and lends the oldest waiting job first.
 fn render_outputs(
     loaded: &Loaded,
     opts: &BuildOptions,
     reuse: &Reuse,
     cache: Option<&FitCache>,
 ) -> (Made, Made, MadeVariable) {
-    let ((default, variable), instances) = rayon::join(
+    let (variable, (instances, default)) = rayon::join(
+        || pipeline::variable_outputs_with(loaded, cache, reuse),
         || {
             rayon::join(
+                || pipeline::instance_outputs_reusing(loaded, opts, cache, reuse),
                 || {
                     // A font with masters writes the UFOs of its compatible fit instead.
                     let ufo = !loaded.family.is_variable();
                     pipeline::static_outputs_with(&loaded.font, opts, reuse, ufo)
                 },
-                || pipeline::variable_outputs_with(loaded, cache, reuse),
             )
         },
-        || pipeline::instance_outputs_reusing(loaded, opts, cache, reuse),
     );
     (default, instances, variable)
 }
