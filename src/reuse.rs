@@ -183,28 +183,30 @@ fn digest(bytes: &[u8]) -> [u8; 32] {
 /// length and CRC-32, as it could still change within one tick of its clock.
 fn program_identity() -> Option<&'static [u8; 32]> {
     static ID: OnceLock<Option<[u8; 32]>> = OnceLock::new();
-    ID.get_or_init(|| {
-        let path = std::env::current_exe().ok()?;
-        let mut id = Sha256::new();
-        match fs::metadata(&path)
-            .ok()
-            .as_ref()
-            .and_then(crate::write::settled_meta)
-        {
-            Some(stamp) => {
-                id.update(b"stamp");
-                stamp.iter().for_each(|word| id.update(word.to_le_bytes()));
-            }
-            None => {
-                let (len, crc) = file_crc(&path)?;
-                id.update(b"crc");
-                id.update(len.to_le_bytes());
-                id.update(crc.to_le_bytes());
-            }
+    ID.get_or_init(|| file_identity(&std::env::current_exe().ok()?))
+        .as_ref()
+}
+
+/// The identity of the file at `path` as [`program_identity`] takes it.
+fn file_identity(path: &Path) -> Option<[u8; 32]> {
+    let mut id = Sha256::new();
+    match fs::metadata(path)
+        .ok()
+        .as_ref()
+        .and_then(crate::write::settled_meta)
+    {
+        Some(stamp) => {
+            id.update(b"stamp");
+            stamp.iter().for_each(|word| id.update(word.to_le_bytes()));
         }
-        Some(id.finalize().into())
-    })
-    .as_ref()
+        None => {
+            let (len, crc) = file_crc(path)?;
+            id.update(b"crc");
+            id.update(len.to_le_bytes());
+            id.update(crc.to_le_bytes());
+        }
+    }
+    Some(id.finalize().into())
 }
 
 /// The length and CRC-32 of the file at `path`, read in pieces through one small buffer
@@ -952,4 +954,48 @@ pub fn font_key(font: &OutlinedFont, ttf: &[u8], outlines: &OutlineKeys) -> Key 
         k.key(g);
     }
     k.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Waits until the files at `paths` have settled ([`crate::write::settled_meta`]).
+    fn settle(paths: &[&Path]) {
+        for _ in 0..100 {
+            let settled = paths.iter().all(|p| {
+                fs::metadata(p)
+                    .ok()
+                    .as_ref()
+                    .and_then(crate::write::settled_meta)
+                    .is_some()
+            });
+            if settled {
+                return;
+            }
+            std::thread::sleep(crate::write::SETTLED);
+        }
+        panic!("the files did not settle in 5 s");
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn a_settled_program_is_known_by_its_stamp_so_a_new_copy_is_another_program() {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+        fs::write(&a, b"program").expect("write a");
+        fs::write(&b, b"program").expect("write b");
+        settle(&[&a, &b]);
+        let id_a = file_identity(&a).expect("a is read");
+        // The same file again: the same identity.
+        assert_eq!(file_identity(&a), Some(id_a));
+        // The same bytes in another file: another identity (its inode and times differ).
+        assert_ne!(file_identity(&b), Some(id_a));
+        // The file written again with the same bytes: another identity (its times moved).
+        fs::write(&a, b"program").expect("rewrite a");
+        settle(&[&a]);
+        assert_ne!(file_identity(&a), Some(id_a));
+        // A file that cannot be read has none.
+        assert_eq!(file_identity(&dir.path().join("missing")), None);
+    }
 }
