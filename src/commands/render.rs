@@ -3,10 +3,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::build::load;
+use super::build::{load_stored, print_fits, save_records, show_phase};
 use super::{CommandError, FontArgs};
 use crate::instance::parse_location;
 use crate::layout::Layout;
+use crate::outline::OutlineOptions;
 use crate::pipeline::{self, write_outputs};
 use crate::render::{
     encode_png, render_proof_with, sheet_png_files_with, ProofOptions, RenderError, SheetOptions,
@@ -25,6 +26,8 @@ pub enum Only {
 #[command(after_help = "\
 Writes into OUT: sheet.png (sheet-overlay.png with --overlay) and proof.png. A sheet of
 more than one page (512 glyphs at the default cell and columns) is sheet-1.png, sheet-2.png, ...
+Also .xglyph-cache and .xglyph-sources: the fits and the parsed glyph files, for the next
+run (shared with `xglyph build` and `xglyph svg` into the same OUT).
 
 Sheet guides: grey ascender/descender, blue cap height, green x-height, dark baseline,
 red advance box. Overlay: grey glyph with its exported outline as a dark line, the
@@ -68,18 +71,31 @@ pub struct RenderArgs {
 }
 
 /// Runs `xglyph render`.
+///
+/// It keeps the source memo and the fit cache in OUT as `svg` does (see
+/// [`super::svg::run`]): `render` run again, or after a `build` into the same OUT, refits
+/// only the contours that changed (a CJK font's 20,902 glyphs were refitted on every run).
 pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     // Ctrl-C leaves OUT as it was (a handler already set only means plain SIGINT).
     let _ = crate::write::exit_on_interrupt();
     check_flags(&args)?;
-    let loaded = load(&args.font.font_dir, args.font.tolerance)?;
+    let (loaded, stores, ()) = load_stored(&args.font, || ())?;
+    let cache = &stores.cache;
     let at_font = match &args.at {
         Some(at) => {
             let location = parse_location(&loaded.family.designspace, at)?;
-            Some(pipeline::instance(&loaded, &location, None)?)
+            let opts = OutlineOptions {
+                cache: Some(cache),
+                progress: None,
+            };
+            Some(pipeline::instance_with(&loaded, &location, None, opts)?)
         }
         None => None,
     };
+    if loaded.family.is_variable() {
+        cache.keep_unused();
+    }
+    let fits = (cache.hits(), cache.misses());
     let font = at_font.as_ref().unwrap_or(&loaded.font);
     // One TTF shapes the sheet labels and the proof; the two images render in parallel.
     let layout = Layout::new(font).map_err(RenderError::from)?;
@@ -98,17 +114,26 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         sizes: args.sizes,
         width_px: args.width,
     };
-    let (sheets, proof) = rayon::join(
+    // As `build` does: the cache encoded while the images are made, the memo while they
+    // are written, both written after them (a failed run leaves OUT as it was).
+    let ((sheets, proof), cache_files) = rayon::join(
         || {
-            (args.only != Some(Only::Proof))
-                .then(|| sheet_png_files_with(&layout, &sheet_opts, stem))
-                .transpose()
+            rayon::join(
+                || {
+                    (args.only != Some(Only::Proof))
+                        .then(|| sheet_png_files_with(&layout, &sheet_opts, stem))
+                        .transpose()
+                },
+                || {
+                    (args.only != Some(Only::Sheet))
+                        .then(|| {
+                            render_proof_with(&layout, &proof_opts).and_then(|p| encode_png(&p))
+                        })
+                        .transpose()
+                },
+            )
         },
-        || {
-            (args.only != Some(Only::Sheet))
-                .then(|| render_proof_with(&layout, &proof_opts).and_then(|p| encode_png(&p)))
-                .transpose()
-        },
+        || cache.files_to_save(&stores.cache_path),
     );
     let mut files = Vec::new();
     let sheets = sheets.map_err(|e| sheet_flags(e, &sheet_opts))?;
@@ -118,12 +143,20 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
     if let Some(proof) = proof.map_err(|e| proof_flags(e, &proof_opts))? {
         files.push((PathBuf::from("proof.png"), proof));
     }
-    super::build::show_phase(&format!("writing {} files", files.len()), || {
-        write_outputs(&args.font.out, &files)
-    })?;
+    let (written, memo_files) = show_phase(&format!("writing {} files", files.len()), || {
+        rayon::join(
+            || write_outputs(&args.font.out, &files),
+            || stores.memo.files_to_save(&stores.memo_path),
+        )
+    });
+    written?;
     for (path, _) in &files {
         outln!("wrote {}", args.font.out.join(path).display());
     }
+    print_fits(&stores.cache_path, fits);
+    save_records(memo_files.into_iter().chain(cache_files));
+    // As in `build`: a large font's fits and memo are left to the exit, not freed one by one.
+    std::mem::forget((loaded, stores, at_font));
     Ok(ExitCode::SUCCESS)
 }
 

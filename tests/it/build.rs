@@ -278,9 +278,15 @@ fn render_and_svg_write_their_outputs_only() {
     ]);
     assert_eq!(result.status.code(), Some(0));
     let written = files(&png_out);
+    // The fit cache and the source memo for the next run, as `svg` keeps them.
     assert_eq!(
         written.keys().collect::<Vec<_>>(),
-        ["proof.png", "sheet-overlay.png"]
+        [
+            ".xglyph-cache",
+            ".xglyph-sources",
+            "proof.png",
+            "sheet-overlay.png"
+        ]
     );
     let sheet = tiny_skia::Pixmap::decode_png(&written["sheet-overlay.png"]).unwrap();
     // 8 glyphs in rows of 3: 3 x 3 cells of 64 px.

@@ -980,3 +980,44 @@ fn svg_of_a_font_without_masters_drops_the_fits_of_an_edited_glyph_as_build_does
         assert_eq!(now.get(path), Some(hash), "{path}");
     }
 }
+
+#[test]
+fn render_takes_its_fits_from_a_build_into_the_same_out_and_draws_the_same_bytes() {
+    for name in ["mini", "masters"] {
+        let font = fixture(name);
+        let dir = temp_dir(&format!("render-cache-{name}"));
+        let (shared, cold) = (dir.join("shared"), dir.join("cold"));
+        let images = |out: &Path| -> Vec<Vec<u8>> {
+            ["sheet.png", "proof.png"]
+                .iter()
+                .map(|f| std::fs::read(out.join(f)).unwrap())
+                .collect()
+        };
+        // Alone, `render` fits every contour and says nothing of a cache.
+        let (stdout, stderr) = run_in("render", &font, &cold);
+        assert_eq!(stderr, "", "{name}");
+        assert_eq!(fits_line(&stdout), None, "{name}: {stdout}");
+        let expected = images(&cold);
+        // After a build into the same OUT, every fit of the default master comes from the
+        // build's cache; the images are the same bytes.
+        run_in("build", &font, &shared);
+        let (stdout, stderr) = run_in("render", &font, &shared);
+        assert_eq!(stderr, "", "{name}");
+        let (misses, hits) = fits_line(&stdout).unwrap_or_else(|| panic!("{name}: {stdout}"));
+        assert_eq!(misses, 0, "{name}: {stdout}");
+        assert!(hits > 0, "{name}: {stdout}");
+        assert_eq!(images(&shared), expected, "{name}");
+        // `render` keeps what the build needs: the next build refits nothing.
+        let (stdout, _) = run_in("build", &font, &shared);
+        assert_eq!(fits_line(&stdout).map(|f| f.0), Some(0), "{name}: {stdout}");
+        // A damaged cache is ignored with a note, and the images are the same bytes.
+        damage(&shared.join(CACHE_FILE));
+        let (stdout, stderr) = run_in("render", &font, &shared);
+        assert!(
+            stderr.ends_with("; every contour is refitted\n"),
+            "{name}: {stderr}"
+        );
+        assert_eq!(fits_line(&stdout), None, "{name}: {stdout}");
+        assert_eq!(images(&shared), expected, "{name}");
+    }
+}

@@ -111,9 +111,13 @@ fn file_names_and_source_lines_are_escaped_in_check_fmt_svg_and_render() {
     ]);
     assert_eq!(result.status.code(), Some(0));
     assert_clean(&result);
+    // The fits come from the cache `svg` left in OUT; its path is escaped too.
     assert_eq!(
         String::from_utf8_lossy(&result.stdout),
-        format!("wrote {shown_out}/sheet.png\n")
+        format!(
+            "wrote {shown_out}/sheet.png\n\
+             refitted 0 contours; 12 fits from the cache {shown_out}/.xglyph-cache\n"
+        )
     );
 
     // An error message quoting a path (printed by the command line itself).
