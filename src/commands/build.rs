@@ -307,6 +307,61 @@ pub struct Stores {
     pub cache_path: PathBuf,
 }
 
+impl Stores {
+    /// How `svg` and `render` make and write a part of a build's outputs, as `build` does:
+    /// `make` runs while the fit cache is encoded, the files `files` takes from what it
+    /// made are written into `out` while the memo is encoded, and the records are left to
+    /// [`Written::save_records`] after them (a failed run leaves OUT as it was). A font with
+    /// masters keeps the fits not used ([`FitCache::keep_unused`]): they are `build`'s
+    /// compatible fits and named instances.
+    pub fn make_and_write<M: Send>(
+        &self,
+        loaded: &Loaded,
+        out: &Path,
+        make: impl FnOnce() -> M + Send,
+        files: impl FnOnce(M) -> Result<Vec<OutputFile>, CommandError>,
+    ) -> Result<Written, CommandError> {
+        if loaded.family.is_variable() {
+            self.cache.keep_unused();
+        }
+        let fits = (self.cache.hits(), self.cache.misses());
+        let (made, cache_files) = rayon::join(make, || self.cache.files_to_save(&self.cache_path));
+        let files = files(made)?;
+        let paths = files.iter().map(|(path, _)| path.clone()).collect();
+        let (written, memo_files) = show_phase(&format!("writing {} files", files.len()), || {
+            rayon::join(
+                || pipeline::write_output_files(out, files),
+                || self.memo.files_to_save(&self.memo_path),
+            )
+        });
+        written?;
+        Ok(Written {
+            paths,
+            fits,
+            cache_path: self.cache_path.clone(),
+            records: memo_files.into_iter().chain(cache_files).collect(),
+        })
+    }
+}
+
+/// What [`Stores::make_and_write`] wrote, and the records still to write.
+pub struct Written {
+    /// The outputs written, relative to OUT, in order.
+    pub paths: Vec<PathBuf>,
+    fits: (usize, usize),
+    cache_path: PathBuf,
+    records: Vec<OutputFile>,
+}
+
+impl Written {
+    /// Prints how many fits came from the cache ([`print_fits`]) and writes the records
+    /// ([`save_records`]).
+    pub fn save_records(self) {
+        print_fits(&self.cache_path, self.fits);
+        save_records(self.records);
+    }
+}
+
 /// Loads the font of `args` as `build` and `svg` do: its sources through the source memo
 /// in OUT while the fit cache in OUT and `beside` (`build`'s output record) are read on
 /// any core (a CJK font's are 20,000 files and 60 MB, 100 MB and 20 MB); prints a note for

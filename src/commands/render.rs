@@ -3,12 +3,12 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::build::{load_stored, print_fits, save_records, show_phase};
+use super::build::load_stored;
 use super::{CommandError, FontArgs};
 use crate::instance::parse_location;
 use crate::layout::Layout;
 use crate::outline::OutlineOptions;
-use crate::pipeline::{self, write_outputs};
+use crate::pipeline;
 use crate::render::{
     encode_png, render_proof_with, sheet_png_files_with, ProofOptions, RenderError, SheetOptions,
     MAX_AREA, MAX_SIDE,
@@ -92,10 +92,6 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         }
         None => None,
     };
-    if loaded.family.is_variable() {
-        cache.keep_unused();
-    }
-    let fits = (cache.hits(), cache.misses());
     let font = at_font.as_ref().unwrap_or(&loaded.font);
     // One TTF shapes the sheet labels and the proof; the two images render in parallel.
     let layout = Layout::new(font).map_err(RenderError::from)?;
@@ -114,47 +110,35 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, CommandError> {
         sizes: args.sizes,
         width_px: args.width,
     };
-    // As `build` does: the cache encoded while the images are made, the memo while they
-    // are written, both written after them (a failed run leaves OUT as it was).
-    let ((sheets, proof), cache_files) = rayon::join(
-        || {
-            rayon::join(
-                || {
-                    (args.only != Some(Only::Proof))
-                        .then(|| sheet_png_files_with(&layout, &sheet_opts, stem))
-                        .transpose()
-                },
-                || {
-                    (args.only != Some(Only::Sheet))
-                        .then(|| {
-                            render_proof_with(&layout, &proof_opts).and_then(|p| encode_png(&p))
-                        })
-                        .transpose()
-                },
-            )
-        },
-        || cache.files_to_save(&stores.cache_path),
-    );
-    let mut files = Vec::new();
-    let sheets = sheets.map_err(|e| sheet_flags(e, &sheet_opts))?;
-    for (name, png) in sheets.into_iter().flatten() {
-        files.push((PathBuf::from(name), png));
-    }
-    if let Some(proof) = proof.map_err(|e| proof_flags(e, &proof_opts))? {
-        files.push((PathBuf::from("proof.png"), proof));
-    }
-    let (written, memo_files) = show_phase(&format!("writing {} files", files.len()), || {
+    // The two images on every core while the fit cache is encoded, then written.
+    let made = || {
         rayon::join(
-            || write_outputs(&args.font.out, &files),
-            || stores.memo.files_to_save(&stores.memo_path),
+            || {
+                (args.only != Some(Only::Proof))
+                    .then(|| sheet_png_files_with(&layout, &sheet_opts, stem))
+                    .transpose()
+            },
+            || {
+                (args.only != Some(Only::Sheet))
+                    .then(|| render_proof_with(&layout, &proof_opts).and_then(|p| encode_png(&p)))
+                    .transpose()
+            },
         )
-    });
-    written?;
-    for (path, _) in &files {
+    };
+    let written = stores.make_and_write(&loaded, &args.font.out, made, |(sheets, proof)| {
+        let sheets = sheets.map_err(|e| sheet_flags(e, &sheet_opts))?;
+        let mut files: Vec<_> = (sheets.into_iter().flatten())
+            .map(|(name, png)| (PathBuf::from(name), png))
+            .collect();
+        if let Some(proof) = proof.map_err(|e| proof_flags(e, &proof_opts))? {
+            files.push((PathBuf::from("proof.png"), proof));
+        }
+        Ok(files)
+    })?;
+    for path in &written.paths {
         outln!("wrote {}", args.font.out.join(path).display());
     }
-    print_fits(&stores.cache_path, fits);
-    save_records(memo_files.into_iter().chain(cache_files));
+    written.save_records();
     // As in `build`: a large font's fits and memo are left to the exit, not freed one by one.
     std::mem::forget((loaded, stores, at_font));
     Ok(ExitCode::SUCCESS)

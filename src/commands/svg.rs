@@ -2,11 +2,11 @@
 
 use std::process::ExitCode;
 
-use super::build::{load_stored, print_fits, save_records, show_phase};
+use super::build::load_stored;
 use super::{CommandError, FontArgs};
 use crate::instance::{parse_location, style_at};
 use crate::outline::OutlineOptions;
-use crate::pipeline::{instance_with, svg_outputs, write_output_files};
+use crate::pipeline::{instance_with, svg_outputs};
 use crate::terminal::outln;
 
 #[derive(Debug, clap::Args)]
@@ -60,31 +60,19 @@ pub fn run(args: SvgArgs) -> Result<ExitCode, CommandError> {
         }
         None => None,
     };
-    if loaded.family.is_variable() {
-        cache.keep_unused();
-    }
-    // As `build` does: the cache encoded while the outputs are made and the memo while
-    // they are written, both written after them (a failed run leaves OUT as it was).
-    let fits = (cache.hits(), cache.misses());
-    let (files, cache_files) = rayon::join(
+    let written = stores.make_and_write(
+        &loaded,
+        &args.font.out,
         || svg_outputs(at_font.as_ref().unwrap_or(&loaded.font)),
-        || cache.files_to_save(&stores.cache_path),
-    );
-    let count = files.len();
-    let (written, memo_files) = show_phase(&format!("writing {count} files"), || {
-        rayon::join(
-            || write_output_files(&args.font.out, files),
-            || stores.memo.files_to_save(&stores.memo_path),
-        )
-    });
-    written?;
+        Ok,
+    )?;
+    let count = written.paths.len();
     outln!(
         "wrote {count} files to {} (SVG font and {} glyph SVGs)",
         args.font.out.display(),
         count - 1
     );
-    print_fits(&stores.cache_path, fits);
-    save_records(memo_files.into_iter().chain(cache_files));
+    written.save_records();
     // As in `build`: a large font's fits and memo are left to the exit, not freed one by one.
     std::mem::forget((loaded, stores, at_font));
     Ok(ExitCode::SUCCESS)
