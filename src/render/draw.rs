@@ -86,14 +86,14 @@ fn paint(color: Color) -> Paint<'static> {
 }
 
 /// Fills `path` (font units) at `at`: anti-aliased, nonzero rule.
-pub fn fill_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: Color) {
+pub fn fill_glyph(pixmap: &mut PixmapMut<'_>, path: &BezPath, at: Placement, color: Color) {
     if let Some(p) = skia_path(path) {
         pixmap.fill_path(&p, &paint(color), FillRule::Winding, at.transform(), None);
     }
 }
 
 /// Strokes `path` (font units) at `at` with a 1 px line (the width does not scale).
-pub fn stroke_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: Color) {
+pub fn stroke_glyph(pixmap: &mut PixmapMut<'_>, path: &BezPath, at: Placement, color: Color) {
     let in_px = kurbo::Affine::new([at.scale, 0.0, 0.0, -at.scale, at.origin_x, at.baseline_y])
         * path.clone();
     if let Some(p) = skia_path(&in_px) {
@@ -106,7 +106,13 @@ pub fn stroke_glyph(pixmap: &mut Pixmap, path: &BezPath, at: Placement, color: C
 }
 
 /// Strokes a polyline given in pixels, `width` px wide; `closed` joins the ends.
-pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32, color: Color) {
+pub fn stroke_px(
+    pixmap: &mut PixmapMut<'_>,
+    points: &[Point],
+    closed: bool,
+    width: f32,
+    color: Color,
+) {
     if let Some(path) = polyline_px(points, closed) {
         let stroke = Stroke {
             width,
@@ -117,7 +123,7 @@ pub fn stroke_px(pixmap: &mut Pixmap, points: &[Point], closed: bool, width: f32
 }
 
 /// Fills a polygon given in pixels (markers).
-pub fn fill_px(pixmap: &mut Pixmap, points: &[Point], color: Color) {
+pub fn fill_px(pixmap: &mut PixmapMut<'_>, points: &[Point], color: Color) {
     if let Some(path) = polyline_px(points, true) {
         fill_winding(pixmap, &path, color);
     }
@@ -140,14 +146,14 @@ fn polyline_px(points: &[Point], closed: bool) -> Option<tiny_skia::Path> {
 }
 
 /// Fills a circle of `radius` px centred at `c` (pixels).
-pub fn fill_circle_px(pixmap: &mut Pixmap, c: Point, radius: f64, color: Color) {
+pub fn fill_circle_px(pixmap: &mut PixmapMut<'_>, c: Point, radius: f64, color: Color) {
     if let Some(path) = PathBuilder::from_circle(c.x as f32, c.y as f32, radius as f32) {
         fill_winding(pixmap, &path, color);
     }
 }
 
 /// Fills a path given in pixels, nonzero winding.
-fn fill_winding(pixmap: &mut Pixmap, path: &tiny_skia::Path, color: Color) {
+fn fill_winding(pixmap: &mut PixmapMut<'_>, path: &tiny_skia::Path, color: Color) {
     pixmap.fill_path(
         path,
         &paint(color),
@@ -158,7 +164,7 @@ fn fill_winding(pixmap: &mut Pixmap, path: &tiny_skia::Path, color: Color) {
 }
 
 /// A 1 px line between two pixel points.
-pub fn line_px(pixmap: &mut Pixmap, a: Point, b: Point, color: Color) {
+pub fn line_px(pixmap: &mut PixmapMut<'_>, a: Point, b: Point, color: Color) {
     stroke_px(pixmap, &[a, b], false, 1.0, color);
 }
 

@@ -7,7 +7,7 @@
 //! blue-grey line. Components are drawn resolved (their points at their offsets).
 
 use kurbo::{BezPath, PathEl, Point};
-use tiny_skia::Pixmap;
+use tiny_skia::PixmapMut;
 
 use super::draw::{fill_circle_px, fill_px, rgb, stroke_px, Placement};
 use crate::outline::OutlinedGlyph;
@@ -61,7 +61,7 @@ pub fn on_curve_points(path: &BezPath) -> Vec<Point> {
 }
 
 /// Draws the overlay of `glyph` onto a cell `cell_px` wide.
-pub fn draw(img: &mut Pixmap, glyph: &OutlinedGlyph, at: Placement, cell_px: f64) {
+pub fn draw(img: &mut PixmapMut<'_>, glyph: &OutlinedGlyph, at: Placement, cell_px: f64) {
     let r = (cell_px / 55.0).max(2.0);
     for contour in &glyph.contours {
         let poly: Vec<Point> = contour.points().map(|p| at.to_px(p.pos)).collect();
@@ -77,7 +77,7 @@ pub fn draw(img: &mut Pixmap, glyph: &OutlinedGlyph, at: Placement, cell_px: f64
     }
 }
 
-fn marker(img: &mut Pixmap, c: Point, kind: PointKind, r: f64) {
+fn marker(img: &mut PixmapMut<'_>, c: Point, kind: PointKind, r: f64) {
     match kind {
         PointKind::Sharp => {
             let h = r * 0.9;

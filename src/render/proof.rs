@@ -8,11 +8,11 @@
 
 use std::collections::BTreeSet;
 
-use tiny_skia::{Color, Pixmap};
+use tiny_skia::{Color, Pixmap, PixmapMut};
 
-use super::draw::{fill_glyph, put_opaque, Placement};
+use super::draw::{fill_glyph, Placement};
 use super::{white_pixmap, RenderError};
-use crate::layout::Layout;
+use crate::layout::{Layout, Line};
 use crate::outline::OutlinedFont;
 
 /// How to set the proof.
@@ -128,60 +128,84 @@ fn check_sizes(opts: &ProofOptions) -> Result<(), RenderError> {
 }
 
 fn proof_pixmap(layout: &Layout<'_>, opts: &ProofOptions) -> Result<Pixmap, RenderError> {
-    let font = layout.font();
-    let text = opts.text.clone().unwrap_or_else(|| default_text(font));
-    let lines: Vec<&str> = text.lines().collect();
-    let info = &font.info;
-    let upm = f64::from(info.units_per_em);
-    // Lines are spaced by the em box, widened to the font's ink (accented capitals reach
-    // above the ascender), so no glyph is cut off or touches the next line.
-    let (mut top, mut bottom) = (info.ascender, info.descender);
-    if let Some(ink) = font.ink_bounds() {
-        top = top.max(ink.y1);
-        bottom = bottom.min(ink.y0);
-    }
-    let em = (info.ascender - info.descender).max(top - bottom);
-    let laid = lines
-        .iter()
-        .map(|l| layout.line(l))
-        .collect::<Result<Vec<_>, _>>()?;
-    let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
-    // Pass 1: baselines, the image height and width.
-    let mut y = MARGIN;
-    let mut blocks = Vec::new();
-    let mut width = 2.0 * MARGIN + 1.0;
-    for &size in &opts.sizes {
-        let scale = size / upm;
-        width = width.max((2.0 * MARGIN + widest * scale).ceil());
-        let leading = (em * scale * 1.2).ceil();
-        let mut baselines = Vec::new();
-        for _ in &lines {
-            baselines.push((y + top * scale).round());
-            y += leading;
+    let plan = ProofPlan::new(layout, opts)?;
+    let mut img = white_pixmap(plan.width, plan.height)?;
+    plan.draw(&mut img.as_mut(), layout);
+    Ok(img)
+}
+
+/// Where a proof's glyphs go, worked out before a pixel is drawn, so that the instances
+/// proof sizes one image for all its blocks and draws each block in its own rows.
+struct ProofPlan {
+    laid: Vec<Line>,
+    /// Per size: pixels per font unit, and the baseline of each line.
+    blocks: Vec<(f64, Vec<f64>)>,
+    width: u64,
+    height: u64,
+}
+
+impl ProofPlan {
+    fn new(layout: &Layout<'_>, opts: &ProofOptions) -> Result<ProofPlan, RenderError> {
+        let font = layout.font();
+        let text = opts.text.clone().unwrap_or_else(|| default_text(font));
+        let info = &font.info;
+        let upm = f64::from(info.units_per_em);
+        // Lines are spaced by the em box, widened to the font's ink (accented capitals
+        // reach above the ascender), so no glyph is cut off or touches the next line.
+        let (mut top, mut bottom) = (info.ascender, info.descender);
+        if let Some(ink) = font.ink_bounds() {
+            top = top.max(ink.y1);
+            bottom = bottom.min(ink.y0);
         }
-        blocks.push((scale, baselines));
-        y += (size * 0.5).round();
+        let em = (info.ascender - info.descender).max(top - bottom);
+        let laid = text
+            .lines()
+            .map(|l| layout.line(l))
+            .collect::<Result<Vec<_>, _>>()?;
+        let widest = laid.iter().map(|l| l.width).fold(0.0, f64::max);
+        let mut y = MARGIN;
+        let mut blocks = Vec::new();
+        let mut width = 2.0 * MARGIN + 1.0;
+        for &size in &opts.sizes {
+            let scale = size / upm;
+            width = width.max((2.0 * MARGIN + widest * scale).ceil());
+            let leading = (em * scale * 1.2).ceil();
+            let mut baselines = Vec::new();
+            for _ in &laid {
+                baselines.push((y + top * scale).round());
+                y += leading;
+            }
+            blocks.push((scale, baselines));
+            y += (size * 0.5).round();
+        }
+        Ok(ProofPlan {
+            laid,
+            blocks,
+            width: (width as u64).min(u64::from(opts.width_px)),
+            height: (y + MARGIN).ceil() as u64,
+        })
     }
-    let height = (y + MARGIN).ceil() as u64;
-    let width = (width as u64).min(u64::from(opts.width_px));
-    let mut img = white_pixmap(width, height)?;
-    for (scale, baselines) in blocks {
-        for (line, baseline) in laid.iter().zip(baselines) {
-            for placed in &line.glyphs {
-                let origin_x = MARGIN + placed.x * scale;
-                if origin_x > width as f64 {
-                    break;
+
+    /// Draws the glyphs onto `canvas`, whose top left is the plan's; glyphs whose origin
+    /// is past the plan's width are skipped.
+    fn draw(&self, canvas: &mut PixmapMut<'_>, layout: &Layout<'_>) {
+        for (scale, baselines) in &self.blocks {
+            for (line, baseline) in self.laid.iter().zip(baselines) {
+                for placed in &line.glyphs {
+                    let origin_x = MARGIN + placed.x * scale;
+                    if origin_x > self.width as f64 {
+                        break;
+                    }
+                    let at = Placement {
+                        scale: *scale,
+                        origin_x,
+                        baseline_y: baseline - placed.y * scale,
+                    };
+                    fill_glyph(canvas, &layout.outline(placed).path, at, Color::BLACK);
                 }
-                let at = Placement {
-                    scale,
-                    origin_x,
-                    baseline_y: baseline - placed.y * scale,
-                };
-                fill_glyph(&mut img, &layout.outline(placed).path, at, Color::BLACK);
             }
         }
     }
-    Ok(img)
 }
 
 /// Height of an instance label line, pixels per em of the built-in label face.
@@ -221,39 +245,52 @@ pub fn render_instances_proof_with(
         ..opts.clone()
     };
     check_sizes(&opts)?;
-    let label_h = (LABEL_EM * 1.5).ceil();
-    let rendered: Vec<Result<Pixmap, RenderError>> = fonts
+    let label_h = (LABEL_EM * 1.5).ceil() as u64;
+    let plans = fonts
         .par_iter()
-        .map(|(_, layout)| proof_pixmap(layout, &opts))
-        .collect();
-    let mut blocks = Vec::with_capacity(fonts.len());
-    for ((label, _), block) in fonts.iter().zip(rendered) {
-        blocks.push((label, block?));
-    }
-    let width = blocks
-        .iter()
-        .map(|(_, b)| u64::from(b.width()))
-        .max()
-        .unwrap_or(1);
-    let height: u64 = blocks
-        .iter()
-        .map(|(_, b)| label_h as u64 + u64::from(b.height()))
-        .sum();
+        .map(|(_, layout)| ProofPlan::new(layout, &opts))
+        .collect::<Result<Vec<_>, _>>()?;
+    let width = plans.iter().map(|p| p.width).max().unwrap_or(1);
+    let height: u64 = plans.iter().map(|p| label_h + p.height).sum();
+    // One image, each block drawn in its own rows in parallel: blocks drawn apart and
+    // copied in touched twice the memory, and fresh pages are dear on this machine's VM.
     let mut img = white_pixmap(width, height)?;
+    let row_bytes = width as usize * 4;
+    let mut rest = img.data_mut();
+    let mut strips = Vec::with_capacity(plans.len());
+    for plan in &plans {
+        let (_label, after) = rest.split_at_mut(label_h as usize * row_bytes);
+        let (strip, after) = after.split_at_mut(plan.height as usize * row_bytes);
+        strips.push(strip);
+        rest = after;
+    }
+    strips
+        .into_par_iter()
+        .zip(plans.par_iter().zip(fonts.par_iter()))
+        .map(|(strip, (plan, (_, layout)))| {
+            let size = RenderError::Size {
+                width,
+                height: plan.height,
+            };
+            let mut canvas =
+                PixmapMut::from_bytes(strip, width as u32, plan.height as u32).ok_or(size)?;
+            plan.draw(&mut canvas, layout);
+            Ok(())
+        })
+        .collect::<Result<(), RenderError>>()?;
+    let mut canvas = img.as_mut();
     let mut y = 0.0;
-    for (label, block) in blocks {
+    for ((label, _), plan) in fonts.iter().zip(&plans) {
         let room = width as f64 - 2.0 * MARGIN;
         super::labels::draw_line(
-            &mut img,
+            &mut canvas,
             label,
             (MARGIN, y + 0.4 * LABEL_EM),
             LABEL_EM,
             room,
             Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
         );
-        y += label_h;
-        put_opaque(&mut img.as_mut(), &block, 0, y as u32);
-        y += f64::from(block.height());
+        y += (label_h + plan.height) as f64;
     }
     Ok(img)
 }

@@ -377,6 +377,7 @@ fn render_cell(
 ) -> Result<Pixmap, RenderError> {
     let glyph = &font.glyphs[index];
     let mut img = white_pixmap_in(spare, u64::from(opts.cell_px), u64::from(opts.cell_px))?;
+    let mut canvas = img.as_mut();
     let at = Placement {
         scale: geo.scale,
         origin_x: ((geo.cell - glyph.advance * geo.scale) / 2.0).round(),
@@ -393,7 +394,7 @@ fn render_cell(
     ] {
         let py = at.snap_y(y);
         line_px(
-            &mut img,
+            &mut canvas,
             Point::new(left, py),
             Point::new(right, py),
             rgb(color),
@@ -403,7 +404,7 @@ fn render_cell(
     for x in [0.0, glyph.advance] {
         let px = at.snap_x(x);
         line_px(
-            &mut img,
+            &mut canvas,
             Point::new(px, top),
             Point::new(px, bottom),
             rgb(ADVANCE),
@@ -414,22 +415,22 @@ fn render_cell(
     } else {
         Color::BLACK
     };
-    fill_glyph(&mut img, &glyph.path, at, ink);
+    fill_glyph(&mut canvas, &glyph.path, at, ink);
     if opts.overlay {
-        stroke_glyph(&mut img, &glyph.path, at, rgb(OUTLINE_UNDER_OVERLAY));
-        overlay::draw(&mut img, glyph, at, geo.cell);
+        stroke_glyph(&mut canvas, &glyph.path, at, rgb(OUTLINE_UNDER_OVERLAY));
+        overlay::draw(&mut canvas, glyph, at, geo.cell);
     }
-    draw_label(&mut img, font, layout, geo, index)?;
+    draw_label(&mut canvas, font, layout, geo, index)?;
     // Grid: right and bottom edges, so neighbouring cells share one line.
     let edge = geo.cell - 0.5;
     line_px(
-        &mut img,
+        &mut canvas,
         Point::new(edge, 0.0),
         Point::new(edge, geo.cell),
         rgb(GRID),
     );
     line_px(
-        &mut img,
+        &mut canvas,
         Point::new(0.0, edge),
         Point::new(geo.cell, edge),
         rgb(GRID),
@@ -438,7 +439,7 @@ fn render_cell(
 }
 
 fn draw_label(
-    img: &mut Pixmap,
+    img: &mut PixmapMut<'_>,
     font: &OutlinedFont,
     layout: &Layout<'_>,
     geo: &CellGeometry,

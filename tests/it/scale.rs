@@ -116,7 +116,7 @@ fn labels_a_font_cannot_set_come_from_the_built_in_face() {
     let grey = Color::from_rgba8(70, 70, 70, 255);
     let room = 160.0 - 2.0 * f64::from(pad);
     draw_line(
-        &mut expected,
+        &mut expected.as_mut(),
         "uni4E00 U+4E00",
         (f64::from(pad), f64::from(pad)),
         f64::from(em),
@@ -136,7 +136,7 @@ fn labels_a_font_cannot_set_come_from_the_built_in_face() {
     let mut boxes = Pixmap::new(160, 160).unwrap();
     boxes.fill(Color::WHITE);
     let notdefs: String = "\u{FFFF}".repeat(14);
-    draw_line(&mut boxes, &notdefs, (5.0, 5.0), 24.0, room, grey);
+    draw_line(&mut boxes.as_mut(), &notdefs, (5.0, 5.0), 24.0, room, grey);
     let differing = band(&boxes)
         .iter()
         .zip(band(&expected))

@@ -116,7 +116,7 @@ fn glyph_svgs_render_like_the_bezpaths() {
             baseline_y: font.info.ascender * scale,
         };
         let mut direct = Pixmap::new(w, h).unwrap();
-        fill_glyph(&mut direct, &glyph.path, at, Color::BLACK);
+        fill_glyph(&mut direct.as_mut(), &glyph.path, at, Color::BLACK);
         for (a, b) in from_svg.pixels().iter().zip(direct.pixels()) {
             let d = a.alpha().abs_diff(b.alpha());
             worst_alpha = worst_alpha.max(d);
@@ -128,7 +128,7 @@ fn glyph_svgs_render_like_the_bezpaths() {
         if let Some(path) = doc.descendants().find(|n| n.has_tag_name("path")) {
             let read_back = Affine::FLIP_Y * BezPath::from_svg(attr(path, "d")).unwrap();
             let mut rounded = Pixmap::new(w, h).unwrap();
-            fill_glyph(&mut rounded, &read_back, at, Color::BLACK);
+            fill_glyph(&mut rounded.as_mut(), &read_back, at, Color::BLACK);
             assert!(rounded.pixels() == from_svg.pixels(), "{}", file.stem);
         }
     }

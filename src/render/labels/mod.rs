@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 use kurbo::BezPath;
-use tiny_skia::{Color, Pixmap};
+use tiny_skia::{Color, PixmapMut};
 
 use super::draw::{fill_glyph, Placement};
 use crate::flatten::flatten;
@@ -116,7 +116,7 @@ impl LabelFace {
 /// Draws `text` in the built-in face with its em box's top-left corner at `top_left`
 /// (pixels): `em_px` pixels per em, narrowed so that the line fits `room_px`.
 pub fn draw_line(
-    img: &mut Pixmap,
+    img: &mut PixmapMut<'_>,
     text: &str,
     top_left: (f64, f64),
     em_px: f64,
