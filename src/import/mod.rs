@@ -26,6 +26,7 @@
 //! tolerance) is [`BUILD_SHARE`]` · T`. So import followed by build stays within `T` of
 //! the original (triangle inequality on the two-sided distance).
 
+pub mod anchors;
 pub mod contour;
 pub mod designspace;
 pub mod fit;
@@ -39,7 +40,7 @@ pub mod variable;
 
 pub use ufo::import_ufo;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -181,6 +182,7 @@ pub fn import_font(
     let tolerance = check_tolerance(opts.tolerance, source.info.units_per_em)?;
     // Read before the glyphs are fitted: a damaged GPOS fails at once.
     let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
+    let anchors = read_font_anchors(path, data, opts.face, &source)?;
     let info = FontInfo {
         family: opts.family.clone().unwrap_or(source.info.family),
         tolerance: BUILD_SHARE * tolerance,
@@ -189,6 +191,8 @@ pub fn import_font(
     let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress)?;
     imported.font.kerning = kerning.pairs.into_iter().next().unwrap_or_default();
     imported.report.notes.extend(kerning.note);
+    anchors.give(imported.font.glyphs.iter_mut());
+    imported.report.notes.extend(anchors.note);
     for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
@@ -238,6 +242,51 @@ pub(crate) fn read_font_kerning(
         pairs: read.pairs,
         note,
     })
+}
+
+/// What [`read_font_anchors`] gives: each glyph's anchors by name, and a note on what it
+/// left out.
+pub(crate) struct FontAnchors {
+    by_name: HashMap<String, Vec<crate::model::Anchor>>,
+    note: Option<String>,
+}
+
+impl FontAnchors {
+    /// Sets the anchors of each glyph that has some, by name.
+    pub(crate) fn give<'a>(&self, glyphs: impl Iterator<Item = &'a mut crate::model::Glyph>) {
+        for glyph in glyphs {
+            if let Some(a) = self.by_name.get(&glyph.name) {
+                glyph.anchors = a.clone();
+            }
+        }
+    }
+}
+
+/// The mark attachment of the `mark` and `mkmk` features as named anchors of the imported
+/// glyphs ([`anchors`]); a damaged `GPOS` is an error naming the file.
+pub(crate) fn read_font_anchors(
+    path: &Path,
+    data: &[u8],
+    face: u32,
+    source: &font::SourceFont,
+) -> Result<FontAnchors, ImportError> {
+    let font = skrifa::FontRef::from_index(data, face)
+        .map_err(|e| ImportError::at(path, format!("not a readable font ({e})")))?;
+    let read = anchors::read_anchors(&font, &source.ids, source.info.units_per_em)
+        .map_err(|e| ImportError::at(path, format!("damaged GPOS table: {e}")))?;
+    let by_name = source
+        .ids
+        .iter()
+        .zip(&source.glyphs)
+        .filter_map(|(id, g)| Some((g.name.clone(), read.by_glyph.get(id)?.clone())))
+        .collect();
+    let note = (read.ligature_subtables > 0).then(|| {
+        format!(
+            "{} mark-to-ligature subtable(s) left out: xglyph has no ligature anchors",
+            read.ligature_subtables
+        )
+    });
+    Ok(FontAnchors { by_name, note })
 }
 
 /// Imports SVG drawings, one glyph per file: `(path, bytes)` in the order given.

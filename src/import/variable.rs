@@ -99,6 +99,7 @@ pub fn import_variable_font(
     let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
         masters.iter().map(|m| m.coords.coords()).collect();
     let kerning = super::read_font_kerning(path, data, opts.face, &source, &locations)?;
+    let anchors = super::read_font_anchors(path, data, opts.face, &source)?;
     let style_of = |m: &MasterAt| m.name.clone();
     // Every glyph in every master, read first (a damaged gvar is an error naming the file).
     let mut per_glyph: Vec<Vec<SourceGlyph>> = Vec::with_capacity(source.glyphs.len());
@@ -141,6 +142,9 @@ pub fn import_variable_font(
             rows[k].push(f.report);
         }
     }
+    // Every master gets the default's anchors (anchor variations are not read), so the
+    // masters keep the same anchor names in the same order.
+    anchors.give(glyphs.iter_mut().flatten());
     let mut glyphs = glyphs.into_iter();
     let mut rows = rows.into_iter();
     let mut notes: Vec<String> = source
@@ -152,6 +156,7 @@ pub fn import_variable_font(
         notes.push(note);
     }
     notes.extend(kerning.note);
+    notes.extend(anchors.note);
     let mut kerning = kerning.pairs.into_iter();
     let default_name = masters[0].name.clone();
     let info = FontInfo {

@@ -3,7 +3,8 @@
 //! Asserts, against outlines read here directly with ttf-parser: every imported X-spline
 //! within 0.75 T of the original (two-sided, dense sampling, T = 1/1000 em), fewer control
 //! points than the original's stored points, a report consistent with the written files,
-//! and the round trip import -> load -> build within T of the original.
+//! the round trip import -> load -> build within T of the original, and marks that come in
+//! with their GPOS anchors and sit where HarfBuzz puts them in the original.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -402,5 +403,102 @@ fn a_damaged_gpos_is_an_error_naming_the_file() {
             font.display()
         )
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// HarfBuzz's positions (x advance, x offset, y offset) of each text of `argv[3]`
+/// (comma-separated) in the fonts `argv[1]` and `argv[2]`.
+const HB_MARKS: &str = r#"
+import json, sys, uharfbuzz as hb
+def shape(path, text):
+    font = hb.Font(hb.Face(hb.Blob.from_file_path(path)))
+    buf = hb.Buffer()
+    buf.add_str(text)
+    buf.guess_segment_properties()
+    hb.shape(font, buf, {})
+    return [[p.x_advance, p.x_offset, p.y_offset] for p in buf.glyph_positions]
+print(json.dumps({t: [shape(sys.argv[1], t), shape(sys.argv[2], t)] for t in sys.argv[3].split(",")}))
+"#;
+
+/// Marks on bases, above and below, that Unicode does not compose (so HarfBuzz positions
+/// the mark on the base rather than taking a precomposed glyph).
+const MARK_TEXTS: [&str; 10] = [
+    "n\u{308}", "n\u{304}", "n\u{306}", "n\u{30A}", "n\u{302}", "a\u{327}", "o\u{327}", "A\u{327}",
+    "O\u{327}", "u\u{327}",
+];
+
+#[test]
+fn marks_come_in_with_their_gpos_anchors_and_sit_where_harfbuzz_puts_them() {
+    // DejaVu attaches marks in GPOS mark-to-base and mark-to-mark lookups. Without their
+    // anchors the imported combining marks would fail `check`; with them the built font
+    // must position each mark exactly as the original does.
+    let stacked = "n\u{308}\u{304}";
+    let mut chars = std::collections::BTreeSet::new();
+    for text in MARK_TEXTS.iter().chain([&stacked]) {
+        chars.extend(text.chars());
+    }
+    let list: Vec<String> = chars
+        .iter()
+        .map(|c| format!("U+{:04X}", u32::from(*c)))
+        .collect();
+    let opts = ImportOptions {
+        glyphs: Some(xglyph::import::font::parse_glyph_list(&list.join(",")).unwrap()),
+        ..ImportOptions::default()
+    };
+    let imp = import_font(Path::new(DEJAVU), &font_bytes(), &opts).unwrap();
+    let glyph = |c: char| imp.font.glyphs.iter().find(|g| g.unicodes == [c]).unwrap();
+    let anchor = |c: char, name: &str| {
+        let a = glyph(c).anchors.iter().find(|a| a.name == name);
+        a.unwrap_or_else(|| panic!("U+{:04X} has no `{name}`", u32::from(c)))
+            .position
+    };
+    // The main classes take the plain names; DejaVu's diaeresis attaches at (-512, 1147).
+    assert_eq!(anchor('\u{308}', "_top"), (-512.0, 1147.0));
+    assert_eq!(anchor('a', "top"), (586.0, 1147.0));
+    assert!(anchor('\u{327}', "_bottom").1 <= 0.0);
+    let dir = temp_dir("marks");
+    write(&imp, &dir);
+    let (font, warnings) = load_font(&dir).expect("the imported marks pass check");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // Every one of the six combining marks imported is a mark (it has a `_` anchor).
+    let marks = font
+        .glyphs
+        .iter()
+        .filter(|g| g.anchors.iter().any(|a| a.name.starts_with('_')));
+    assert_eq!(marks.count(), 6);
+    let out = dir.join("out");
+    let (code, _, stderr) =
+        crate::common::cli::xglyph(&["build", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    if !crate::common::tools::available(
+        crate::common::tools::python_imports("uharfbuzz"),
+        "uharfbuzz",
+        "pip install uharfbuzz",
+    ) {
+        return;
+    }
+    let built = out.join("DejaVuSans-Book.ttf");
+    let texts = MARK_TEXTS.join(",") + "," + stacked;
+    let shaped: std::collections::BTreeMap<String, [Vec<[i64; 3]>; 2]> =
+        crate::common::tools::python_json(HB_MARKS, &[&DEJAVU, &built, &texts]);
+    for text in MARK_TEXTS {
+        let [original, ours] = &shaped[text];
+        assert_eq!(ours, original, "{text:?}");
+        // Attached: the zero-width mark is moved off the pen position.
+        assert!(ours[1][1] != 0 || ours[1][2] != 0, "{text:?}: {ours:?}");
+    }
+    // A mark on a mark stacks by their mark-to-mark anchors. DejaVu lists its `mkmk` lookup
+    // before its `mark` lookups, so HarfBuzz re-attaches the macron to the base there and the
+    // two marks overlap; xglyph's `mark` comes first and the macron stays stacked.
+    let (diaeresis, macron) = (glyph('\u{308}'), glyph('\u{304}'));
+    let on = macron.anchors.iter().find_map(|a| {
+        let name = a.name.strip_prefix('_')?;
+        let below = diaeresis.anchors.iter().find(|b| b.name == name)?;
+        (name != "top").then_some(below.position.1 - a.position.1)
+    });
+    let [original, ours] = &shaped[stacked];
+    assert_eq!(ours[1], original[1], "the diaeresis on the n");
+    assert_eq!(Some((ours[2][2] - ours[1][2]) as f64), on, "{ours:?}");
+    assert_eq!(on, Some(274.0));
     let _ = std::fs::remove_dir_all(&dir);
 }
