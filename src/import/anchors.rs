@@ -313,3 +313,27 @@ fn name_classes(classes: Vec<Class>, em: f64, by_glyph: &mut HashMap<u16, Vec<An
         }
     }
 }
+
+/// A note naming the glyphs mapped to a combining mark that came in without a `_` anchor
+/// (the font positions them by their outlines alone): `check` asks each for one.
+pub fn anchorless_marks_note(glyphs: &[crate::model::Glyph]) -> Option<String> {
+    let names: Vec<&str> = glyphs
+        .iter()
+        .filter(|g| !g.is_mark() && g.unicodes.iter().any(|&c| crate::source::is_combining(c)))
+        .map(|g| g.name.as_str())
+        .collect();
+    let shown: Vec<String> = names.iter().take(8).map(|n| format!("`{n}`")).collect();
+    let more = if names.len() > shown.len() {
+        ", …"
+    } else {
+        ""
+    };
+    (!names.is_empty()).then(|| {
+        format!(
+            "{} glyph(s) mapped to combining marks have no anchor in the font's GPOS ({}{more}): \
+             `check` asks each for a `_` anchor such as `_top` before the font builds",
+            names.len(),
+            shown.join(", ")
+        )
+    })
+}

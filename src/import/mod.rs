@@ -193,6 +193,10 @@ pub fn import_font(
     imported.report.notes.extend(kerning.note);
     anchors.give(imported.font.glyphs.iter_mut());
     imported.report.notes.extend(anchors.note);
+    imported
+        .report
+        .notes
+        .extend(anchors::anchorless_marks_note(&imported.font.glyphs));
     for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",

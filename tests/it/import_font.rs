@@ -502,3 +502,26 @@ fn marks_come_in_with_their_gpos_anchors_and_sit_where_harfbuzz_puts_them() {
     assert_eq!(on, Some(274.0));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_combining_mark_without_gpos_anchors_is_named_in_the_report() {
+    // DejaVu positions its overlay tilde (U+0334) by its outline: no anchor comes in.
+    let opts = ImportOptions {
+        glyphs: Some(xglyph::import::font::parse_glyph_list("n,U+0308,U+0334").unwrap()),
+        ..ImportOptions::default()
+    };
+    let imp = import_font(Path::new(DEJAVU), &font_bytes(), &opts).unwrap();
+    let notes: Vec<&String> = imp
+        .report
+        .notes
+        .iter()
+        .filter(|n| n.contains("combining"))
+        .collect();
+    assert_eq!(
+        notes,
+        [
+            "1 glyph(s) mapped to combining marks have no anchor in the font's GPOS (`uni0334`): \
+             `check` asks each for a `_` anchor such as `_top` before the font builds"
+        ]
+    );
+}
