@@ -22,7 +22,8 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use skrifa::raw::tables::gpos::{
-    AnchorTable, ExtensionSubtable, Gpos, MarkBasePos, MarkLigPos, MarkMarkPos, PositionLookup,
+    AnchorTable, ExtensionSubtable, Gpos, MarkArray, MarkBasePos, MarkLigPos, MarkMarkPos,
+    PositionLookup,
 };
 use skrifa::raw::tables::layout::CoverageTable;
 use skrifa::raw::types::Tag;
@@ -151,6 +152,27 @@ fn point(anchor: &AnchorTable) -> (f64, f64) {
     (f64::from(x), f64::from(y))
 }
 
+/// Puts each `wanted` mark of `coverage` into its class, at its mark anchor.
+fn add_marks(
+    classes: &mut [Class],
+    coverage: CoverageTable,
+    array: &MarkArray,
+    wanted: &HashSet<u16>,
+) -> Result<(), ReadError> {
+    for (gid, record) in coverage.iter().zip(array.mark_records()) {
+        let Ok(gid) = u16::try_from(gid.to_u32()) else {
+            continue;
+        };
+        if let Some(class) = classes.get_mut(usize::from(record.mark_class())) {
+            if wanted.contains(&gid) {
+                let anchor = record.mark_anchor(array.offset_data())?;
+                class.marks.push((gid, point(&anchor)));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The classes of a mark-to-base subtable, restricted to `wanted` glyphs.
 fn base_classes(subtable: &MarkBasePos, wanted: &HashSet<u16>) -> Result<Vec<Class>, ReadError> {
     let MarkBasePos::Format1(t) = subtable else {
@@ -158,18 +180,7 @@ fn base_classes(subtable: &MarkBasePos, wanted: &HashSet<u16>) -> Result<Vec<Cla
     };
     let count = usize::from(t.mark_class_count());
     let mut classes: Vec<Class> = (0..count).map(|_| Class::new(false)).collect();
-    let mark_array = t.mark_array()?;
-    let records = mark_array.mark_records();
-    for (gid, record) in t.mark_coverage()?.iter().zip(records) {
-        let Ok(gid) = u16::try_from(gid.to_u32()) else {
-            continue;
-        };
-        let class = usize::from(record.mark_class());
-        if wanted.contains(&gid) && class < count {
-            let anchor = record.mark_anchor(mark_array.offset_data())?;
-            classes[class].marks.push((gid, point(&anchor)));
-        }
-    }
+    add_marks(&mut classes, t.mark_coverage()?, &t.mark_array()?, wanted)?;
     let base_array = t.base_array()?;
     for (gid, record) in t
         .base_coverage()?
@@ -203,18 +214,7 @@ fn mark_classes(subtable: &MarkMarkPos, wanted: &HashSet<u16>) -> Result<Vec<Cla
     };
     let count = usize::from(t.mark_class_count());
     let mut classes: Vec<Class> = (0..count).map(|_| Class::new(true)).collect();
-    let mark_array = t.mark1_array()?;
-    let records = mark_array.mark_records();
-    for (gid, record) in t.mark1_coverage()?.iter().zip(records) {
-        let Ok(gid) = u16::try_from(gid.to_u32()) else {
-            continue;
-        };
-        let class = usize::from(record.mark_class());
-        if wanted.contains(&gid) && class < count {
-            let anchor = record.mark_anchor(mark_array.offset_data())?;
-            classes[class].marks.push((gid, point(&anchor)));
-        }
-    }
+    add_marks(&mut classes, t.mark1_coverage()?, &t.mark1_array()?, wanted)?;
     let array = t.mark2_array()?;
     for (gid, record) in t.mark2_coverage()?.iter().zip(array.mark2_records().iter()) {
         let Ok(gid) = u16::try_from(gid.to_u32()) else {
