@@ -8,9 +8,11 @@
 //! (or, mark to mark, the marks they stack on) get `name`. A class is named by where its
 //! base anchors sit: `top` when their median is above a quarter of the em, else `bottom`;
 //! mark-to-base classes are named before mark-to-mark ones, and the classes with the most
-//! glyphs first. Classes share a name when no glyph would get that name at two different positions, so a
-//! font whose above-marks attach the same way in every lookup comes in with one `top`; a
-//! class that cannot share gets the next free name (`top2`, `top3`, …). xglyph makes one
+//! glyphs first. Classes share a name when no glyph would get that name at two different
+//! positions, so a font whose above-marks attach the same way in every lookup comes in with
+//! one `top`; a class that cannot share gets the next free name (`top2`, `top3`, …). A
+//! DejaVu Sans mark above attaches to bases and to other marks at different points, so its
+//! mark-to-mark class comes in as `_top2` and `top2`, beside `_top`. xglyph makes one
 //! lookup per name, so glyphs of two classes that share a name attach to each other even
 //! where the font's own lookups kept them apart (a Latin mark on a Cyrillic base).
 //!
