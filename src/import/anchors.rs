@@ -28,7 +28,7 @@ use skrifa::raw::tables::gpos::{
     PositionLookup,
 };
 use skrifa::raw::tables::layout::CoverageTable;
-use skrifa::raw::types::Tag;
+use skrifa::raw::types::{GlyphId, Tag};
 use skrifa::raw::{ReadError, TableProvider};
 use skrifa::FontRef;
 
@@ -137,11 +137,7 @@ fn touches(subtable: &MarkLigPos, wanted: &HashSet<u16>) -> Result<bool, ReadErr
     let MarkLigPos::Format1(t) = subtable else {
         return Ok(false);
     };
-    let any = |coverage: CoverageTable| {
-        coverage
-            .iter()
-            .any(|g| u16::try_from(g.to_u32()).is_ok_and(|g| wanted.contains(&g)))
-    };
+    let any = |coverage: CoverageTable| coverage.iter().any(|g| wanted_id(g, wanted).is_some());
     Ok(any(t.mark_coverage()?) && any(t.ligature_coverage()?))
 }
 
@@ -162,17 +158,36 @@ fn add_marks(
     wanted: &HashSet<u16>,
 ) -> Result<(), ReadError> {
     for (gid, record) in coverage.iter().zip(array.mark_records()) {
-        let Ok(gid) = u16::try_from(gid.to_u32()) else {
-            continue;
-        };
-        if let Some(class) = classes.get_mut(usize::from(record.mark_class())) {
-            if wanted.contains(&gid) {
-                let anchor = record.mark_anchor(array.offset_data())?;
-                class.marks.push((gid, point(&anchor)));
-            }
+        let class = classes.get_mut(usize::from(record.mark_class()));
+        if let (Some(gid), Some(class)) = (wanted_id(gid, wanted), class) {
+            let anchor = record.mark_anchor(array.offset_data())?;
+            class.marks.push((gid, point(&anchor)));
         }
     }
     Ok(())
+}
+
+/// Puts the base (or, mark to mark, the second mark) `gid` into each class it has an
+/// anchor for: `anchors` holds one per class, in class order (a null one for a class it
+/// does not take).
+fn add_base<'a>(
+    classes: &mut [Class],
+    gid: u16,
+    anchors: impl Iterator<Item = Option<Result<AnchorTable<'a>, ReadError>>>,
+) -> Result<(), ReadError> {
+    for (class, anchor) in classes.iter_mut().zip(anchors) {
+        if let Some(anchor) = anchor.transpose()? {
+            class.bases.push((gid, point(&anchor)));
+        }
+    }
+    Ok(())
+}
+
+/// `gid` as a 16-bit id when it is among `wanted`.
+fn wanted_id(gid: GlyphId, wanted: &HashSet<u16>) -> Option<u16> {
+    u16::try_from(gid.to_u32())
+        .ok()
+        .filter(|g| wanted.contains(g))
 }
 
 /// The classes of a mark-to-base subtable, restricted to `wanted` glyphs.
@@ -184,26 +199,11 @@ fn base_classes(subtable: &MarkBasePos, wanted: &HashSet<u16>) -> Result<Vec<Cla
     let mut classes: Vec<Class> = (0..count).map(|_| Class::new(false)).collect();
     add_marks(&mut classes, t.mark_coverage()?, &t.mark_array()?, wanted)?;
     let base_array = t.base_array()?;
-    for (gid, record) in t
-        .base_coverage()?
-        .iter()
-        .zip(base_array.base_records().iter())
-    {
-        let Ok(gid) = u16::try_from(gid.to_u32()) else {
-            continue;
-        };
-        if !wanted.contains(&gid) {
-            continue;
-        }
-        let record = record?;
-        for (class, anchor) in record
-            .base_anchors(base_array.offset_data())
-            .iter()
-            .enumerate()
-        {
-            if let (Some(anchor), true) = (anchor.transpose()?, class < count) {
-                classes[class].bases.push((gid, point(&anchor)));
-            }
+    let records = base_array.base_records();
+    for (gid, record) in t.base_coverage()?.iter().zip(records.iter()) {
+        if let Some(gid) = wanted_id(gid, wanted) {
+            let anchors = record?.base_anchors(base_array.offset_data());
+            add_base(&mut classes, gid, anchors.iter())?;
         }
     }
     Ok(classes)
@@ -218,18 +218,11 @@ fn mark_classes(subtable: &MarkMarkPos, wanted: &HashSet<u16>) -> Result<Vec<Cla
     let mut classes: Vec<Class> = (0..count).map(|_| Class::new(true)).collect();
     add_marks(&mut classes, t.mark1_coverage()?, &t.mark1_array()?, wanted)?;
     let array = t.mark2_array()?;
-    for (gid, record) in t.mark2_coverage()?.iter().zip(array.mark2_records().iter()) {
-        let Ok(gid) = u16::try_from(gid.to_u32()) else {
-            continue;
-        };
-        if !wanted.contains(&gid) {
-            continue;
-        }
-        let record = record?;
-        for (class, anchor) in record.mark2_anchors(array.offset_data()).iter().enumerate() {
-            if let (Some(anchor), true) = (anchor.transpose()?, class < count) {
-                classes[class].bases.push((gid, point(&anchor)));
-            }
+    let records = array.mark2_records();
+    for (gid, record) in t.mark2_coverage()?.iter().zip(records.iter()) {
+        if let Some(gid) = wanted_id(gid, wanted) {
+            let anchors = record?.mark2_anchors(array.offset_data());
+            add_base(&mut classes, gid, anchors.iter())?;
         }
     }
     Ok(classes)
