@@ -369,6 +369,7 @@ mod tests {
             contours,
             components,
             anchors: Vec::new(),
+            outline_mark: false,
         }
     }
 

@@ -196,7 +196,8 @@ pub(super) fn check_anchors(glyphs: &[GlyphFile], out: &mut Diagnostics) {
                 );
             }
         }
-        if g.glyph.is_mark() {
+        // A `mark` written with a bad value has its error at the value already.
+        if g.glyph.is_mark() || g.spans.mark > 0 {
             continue;
         }
         let combining = g.glyph.unicodes.iter().zip(&g.spans.unicodes);
