@@ -547,7 +547,9 @@ fn a_mark_placed_by_its_outline_comes_in_with_mark_outline_and_shapes_as_in_deja
     write(&imp, &dir);
     let text = std::fs::read_to_string(dir.join("uni0334.toml")).unwrap();
     assert!(
-        text.starts_with("name = \"uni0334\"\nunicode = 0x0334\nadvance = 0\nmark = \"outline\"\n\n[[contour]]"),
+        text.starts_with(
+            "name = \"uni0334\"\nunicode = 0x0334\nadvance = 0\nmark = \"outline\"\n\n[[contour]]"
+        ),
         "{text}"
     );
     let (code, stdout, stderr) = crate::common::cli::xglyph(&["check", dir.to_str().unwrap()]);
@@ -558,9 +560,15 @@ fn a_mark_placed_by_its_outline_comes_in_with_mark_outline_and_shapes_as_in_deja
         crate::common::cli::xglyph(&["build", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     // The UFO export comes back with the key (its `public.openTypeCategories`).
-    let ufo = xglyph::import::import_ufo(&out.join("DejaVuSans-Book.ufo"), &ImportOptions::default())
+    let ufo =
+        xglyph::import::import_ufo(&out.join("DejaVuSans-Book.ufo"), &ImportOptions::default())
+            .unwrap();
+    let back = ufo
+        .font
+        .glyphs
+        .iter()
+        .find(|g| g.name == "uni0334")
         .unwrap();
-    let back = ufo.font.glyphs.iter().find(|g| g.name == "uni0334").unwrap();
     assert!(back.outline_mark);
     assert_eq!(ufo.font.glyphs.iter().filter(|g| g.outline_mark).count(), 1);
     if !crate::common::tools::available(
@@ -590,8 +598,9 @@ fn a_mark_placed_by_its_outline_comes_in_with_mark_outline_and_shapes_as_in_deja
     assert_eq!(original[2], [0, 0, 0]);
     let classes: std::collections::BTreeMap<String, u16> =
         crate::common::tools::python_json(GDEF_CLASSES, &[&built, &"n,uni0308,uni0334"]);
-    let want: std::collections::BTreeMap<String, u16> =
-        [("n", 1), ("uni0308", 3), ("uni0334", 3)].map(|(n, c)| (n.to_string(), c)).into();
+    let want: std::collections::BTreeMap<String, u16> = [("n", 1), ("uni0308", 3), ("uni0334", 3)]
+        .map(|(n, c)| (n.to_string(), c))
+        .into();
     assert_eq!(classes, want);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -23,11 +23,11 @@ const TRIANGLE: &str = "[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [100, 100
 /// The overlay tilde as `fmt` writes it: on U+0334, placed by its outline, with a `top`
 /// for a mark stacked on it.
 fn overlay() -> String {
-    format!(
+    const OVERLAY: &str =
         "name = \"tildeoverlaycomb\"\nunicode = 0x0334\nadvance = 0\nmark = \"outline\"\n\n\
          [[contour]]\npoints = [\n  [-300, 250, 0],\n  [-100, 250, 0],\n  [-100, 300, 0],\n]\n\n\
-         [[anchor]]\nname = \"top\"\nposition = [-250, 800]\n"
-    )
+         [[anchor]]\nname = \"top\"\nposition = [-250, 800]\n";
+    OVERLAY.to_string()
 }
 
 /// `n` (anchor `top`, kerned -50 against itself), `x`, the overlay, an acute that
@@ -41,7 +41,10 @@ fn files() -> Vec<(&'static str, String)> {
                  position = [250, 500]\n"
             ),
         ),
-        ("x.toml", format!("unicode = 0x0078\nadvance = 400\n\n{TRIANGLE}")),
+        (
+            "x.toml",
+            format!("unicode = 0x0078\nadvance = 400\n\n{TRIANGLE}"),
+        ),
         ("tildeoverlaycomb.toml", overlay()),
         (
             "acutecomb.toml",
@@ -108,9 +111,11 @@ fn the_key_loads_and_check_accepts_a_combining_mark_with_it() {
         .collect();
     assert_eq!(
         shown,
-        ["2:11: glyph `tildeoverlaycomb` is mapped to U+0334, a combining mark, but has no `_` \
+        [
+            "2:11: glyph `tildeoverlaycomb` is mapped to U+0334, a combining mark, but has no `_` \
           anchor to attach by; add one, e.g. `[[anchor]]` with name = \"_top\", or write \
-          mark = \"outline\" if its outline places it"]
+          mark = \"outline\" if its outline places it"
+        ]
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -125,7 +130,11 @@ fn fmt_keeps_the_key_after_advance_and_the_emitter_writes_it() {
     let dir = font_dir("fmt", &files);
     let before = load_font(&dir).expect("loads").0;
     let out = xglyph(&["fmt"], &dir);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let path = dir.join("tildeoverlaycomb.toml");
     assert_eq!(std::fs::read_to_string(&path).expect("read"), overlay());
     assert_eq!(load_font(&dir).expect("reloads").0, before);
@@ -184,16 +193,27 @@ fn masters_take_the_default_masters_key_and_fmt_keeps_each_file_as_written() {
         let marks = glyphs.iter().filter(|g| g.outline_mark);
         marks.map(|g| g.name.clone()).collect()
     };
-    assert_eq!(marks(&family.default.glyphs), ["ringoverlay", "tildeoverlaycomb"]);
-    assert_eq!(marks(&family.masters[0].glyphs), marks(&family.default.glyphs));
+    assert_eq!(
+        marks(&family.default.glyphs),
+        ["ringoverlay", "tildeoverlaycomb"]
+    );
+    assert_eq!(
+        marks(&family.masters[0].glyphs),
+        marks(&family.default.glyphs)
+    );
     let bold = |name: &str| std::fs::read_to_string(dir.join("bold").join(name)).expect("read");
     let overlay_before = bold("tildeoverlaycomb.toml");
     let out = xglyph(&["fmt"], &dir);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // The overlay was canonical without the key and stays so; the ring keeps it.
     assert_eq!(bold("tildeoverlaycomb.toml"), overlay_before);
     assert!(!overlay_before.contains("mark ="));
-    assert!(bold("ringoverlay.toml").starts_with("name = \"ringoverlay\"\nadvance = 0\nmark = \"outline\"\n\n"));
+    assert!(bold("ringoverlay.toml")
+        .starts_with("name = \"ringoverlay\"\nadvance = 0\nmark = \"outline\"\n\n"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -209,7 +229,10 @@ fn gdef_classes(ttf: &[u8], names: &[&str], order: &[xglyph::otf::OrderedGlyph])
     names
         .iter()
         .map(|n| {
-            let gid = order.iter().position(|g| g.model_name == *n).expect("in the font");
+            let gid = order
+                .iter()
+                .position(|g| g.model_name == *n)
+                .expect("in the font");
             classes.get(skrifa::GlyphId::new(gid as u32))
         })
         .collect()
@@ -237,7 +260,10 @@ fn the_build_classes_it_a_mark_stacks_on_it_and_kerns_across_it() {
     // Not moved: its outline places it.
     assert_eq!(
         placed("n\u{334}"),
-        [at("n", 0.0, 0.0, 500.0), at("tildeoverlaycomb", 500.0, 0.0, 0.0)]
+        [
+            at("n", 0.0, 0.0, 500.0),
+            at("tildeoverlaycomb", 500.0, 0.0, 0.0)
+        ]
     );
     // The acute stacks on the overlay's `top` (mkmk), at (500 - 250, 800) less its `_top`,
     // not on the `n`'s `top` (which would put it at y = 0).
