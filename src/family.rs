@@ -344,6 +344,7 @@ fn fit_glyph(
         components: glyph.components.clone(),
         anchors: glyph.anchors.clone(),
         placed_anchors: fonts[0].anchors_in(&indexes[0], glyph),
+        outline_mark: glyph.outline_mark,
         contours: placed[0]
             .iter()
             .map(|(c, (dx, dy))| PlacedContour {

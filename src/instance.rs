@@ -101,6 +101,7 @@ impl Family {
                 })
                 .collect();
             glyphs.push(Glyph {
+                outline_mark: d.outline_mark,
                 name: d.name.clone(),
                 unicodes: d.unicodes.clone(),
                 advance: blend(&w, masters.iter().map(|g| g.advance)),

@@ -183,6 +183,7 @@ mod tests {
             contours: vec![],
             components: vec![],
             anchors: vec![],
+            outline_mark: false,
         }
     }
 

@@ -158,6 +158,10 @@ pub struct Glyph {
     /// Named attachment points (`[[anchor]]`), in source order. A name starting with `_`
     /// makes the glyph a mark that attaches by it (`_top` to a base's `top`).
     pub anchors: Vec<Anchor>,
+    /// `mark = "outline"`: a mark (GDEF class Mark) that its own outline places, drawn
+    /// where it lands after a zero or small advance; it has no `_` anchor, so the `mark`
+    /// and `mkmk` features never attach it.
+    pub outline_mark: bool,
 }
 
 /// A named attachment point of a glyph, font units (`[[anchor]]` in the glyph file).
@@ -223,8 +227,15 @@ pub fn propagate_anchors<'a>(
 }
 
 impl Glyph {
-    /// Whether the glyph is a mark: it has an anchor whose name starts with `_`.
+    /// Whether the glyph is a mark: it has an anchor whose name starts with `_`, or its
+    /// outline places it ([`Glyph::outline_mark`]).
     pub fn is_mark(&self) -> bool {
+        self.outline_mark || self.attaches_by_anchor()
+    }
+
+    /// Whether the glyph is a mark that attaches by an anchor (one whose name starts
+    /// with `_`).
+    pub fn attaches_by_anchor(&self) -> bool {
         self.anchors.iter().any(|a| a.attaches_to().is_some())
     }
 }

@@ -68,6 +68,8 @@ pub struct OutlinedGlyph {
     /// Its own anchors and those its components bring ([`Font::anchors`]): what mark
     /// positioning reads, so a precomposed `ecircumflex` takes a further accent.
     pub placed_anchors: Vec<Anchor>,
+    /// A mark its outline places ([`Glyph::outline_mark`]): GDEF class Mark, no anchors.
+    pub outline_mark: bool,
     /// The X-spline contours the path was fitted to: the glyph's own, then its components'.
     pub contours: Vec<PlacedContour>,
     /// Closed subpaths (MoveTo … ClosePath), components resolved, oriented.
@@ -262,6 +264,7 @@ fn outline_glyph_with<'a>(
         components: glyph.components.clone(),
         anchors: glyph.anchors.clone(),
         placed_anchors: font.anchors_in(index, glyph),
+        outline_mark: glyph.outline_mark,
         contours,
         path,
         max_error,
@@ -318,6 +321,7 @@ pub fn notdef_box(info: &FontInfo) -> OutlinedGlyph {
         components: Vec::new(),
         anchors: Vec::new(),
         placed_anchors: Vec::new(),
+        outline_mark: false,
         contours: Vec::new(),
         path,
         max_error: 0.0,
@@ -365,6 +369,7 @@ mod tests {
             contours,
             components,
             anchors: Vec::new(),
+            outline_mark: false,
         }
     }
 

@@ -346,6 +346,7 @@ fn with_path(glyph: &OutlinedGlyph, path: BezPath) -> OutlinedGlyph {
         components: glyph.components.clone(),
         anchors: glyph.anchors.clone(),
         placed_anchors: glyph.placed_anchors.clone(),
+        outline_mark: glyph.outline_mark,
         contours: glyph.contours.clone(),
         path,
         max_error: glyph.max_error,

@@ -16,6 +16,12 @@
 //! lookup per name, so glyphs of two classes that share a name attach to each other even
 //! where the font's own lookups kept them apart (a Latin mark on a Cyrillic base).
 //!
+//! A mark that no `mark` or `mkmk` lookup attaches (no `_` anchor comes in) is one the font
+//! places by its outline (DejaVu Sans's U+0334 and U+20DD: zero advance, drawn where they
+//! land): a glyph mapped to a combining code point, or classed a mark by `GDEF`
+//! ([`gdef_marks`]), comes in with `mark = "outline"`, and the report names them
+//! ([`outline_marks_note`]).
+//!
 //! Limits: anchor positions are the default's (a variable font's anchor deltas and
 //! hinting device tables are not read); mark-to-ligature lookups, lookup flags, mark
 //! filtering sets, language systems and the 24-bit glyph id formats are not read (the
@@ -309,12 +315,41 @@ fn name_classes(classes: Vec<Class>, em: f64, by_glyph: &mut HashMap<u16, Vec<An
     }
 }
 
-/// A note naming the glyphs mapped to a combining mark that came in without a `_` anchor
-/// (the font positions them by their outlines alone): `check` asks each for one.
-pub fn anchorless_marks_note(glyphs: &[crate::model::Glyph]) -> Option<String> {
+/// The glyphs among `glyphs` (glyph ids) that the font's `GDEF` classes as marks (class
+/// 3). A font without `GDEF` or without glyph classes has none; a damaged table is an
+/// error.
+pub fn gdef_marks(font: &FontRef, glyphs: &[u16]) -> Result<HashSet<u16>, ReadError> {
+    let gdef = match font.gdef() {
+        Ok(gdef) => gdef,
+        Err(ReadError::TableIsMissing(_)) => return Ok(HashSet::new()),
+        Err(e) => return Err(e),
+    };
+    let Some(classes) = gdef.glyph_class_def().transpose()? else {
+        return Ok(HashSet::new());
+    };
+    Ok(glyphs
+        .iter()
+        .copied()
+        .filter(|&g| classes.get(GlyphId::from(g)) == 3)
+        .collect())
+}
+
+/// Whether an imported glyph is a mark its outline places: a mark (`GDEF`'s, `in_gdef`, or
+/// by a combining code point) that came in without a `_` anchor.
+pub fn placed_by_outline(glyph: &crate::model::Glyph, in_gdef: bool) -> bool {
+    let combining = glyph
+        .unicodes
+        .iter()
+        .any(|&c| crate::source::is_combining(c));
+    (in_gdef || combining) && !glyph.attaches_by_anchor()
+}
+
+/// A note naming the marks that came in with `mark = "outline"` (no `_` anchor in the
+/// font's GPOS: the font places them by their outlines).
+pub fn outline_marks_note(glyphs: &[crate::model::Glyph]) -> Option<String> {
     let names: Vec<&str> = glyphs
         .iter()
-        .filter(|g| !g.is_mark() && g.unicodes.iter().any(|&c| crate::source::is_combining(c)))
+        .filter(|g| g.outline_mark)
         .map(|g| g.name.as_str())
         .collect();
     let shown: Vec<String> = names.iter().take(8).map(|n| format!("`{n}`")).collect();
@@ -325,8 +360,8 @@ pub fn anchorless_marks_note(glyphs: &[crate::model::Glyph]) -> Option<String> {
     };
     (!names.is_empty()).then(|| {
         format!(
-            "{} glyph(s) mapped to combining marks have no anchor in the font's GPOS ({}{more}): \
-             `check` asks each for a `_` anchor such as `_top` before the font builds",
+            "{} mark(s) with no `_` anchor in the font's GPOS came in with mark = \"outline\" \
+             (their outlines place them): {}{more}",
             names.len(),
             shown.join(", ")
         )

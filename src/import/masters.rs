@@ -124,6 +124,7 @@ pub fn import_compatible_glyph(
                 contours,
                 components: Vec::new(),
                 anchors: Vec::new(),
+                outline_mark: false,
             },
             report,
         })

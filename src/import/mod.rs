@@ -196,7 +196,7 @@ pub fn import_font(
     imported
         .report
         .notes
-        .extend(anchors::anchorless_marks_note(&imported.font.glyphs));
+        .extend(anchors::outline_marks_note(&imported.font.glyphs));
     for c in source.missing {
         imported.report.notes.push(format!(
             "no glyph for '{c}' (U+{:04X}) in the font",
@@ -248,26 +248,31 @@ pub(crate) fn read_font_kerning(
     })
 }
 
-/// What [`read_font_anchors`] gives: each glyph's anchors by name, and a note on what it
-/// left out.
+/// What [`read_font_anchors`] gives: each glyph's anchors by name, the names of the
+/// glyphs `GDEF` classes as marks, and a note on what it left out.
 pub(crate) struct FontAnchors {
     by_name: HashMap<String, Vec<crate::model::Anchor>>,
+    gdef_marks: std::collections::HashSet<String>,
     note: Option<String>,
 }
 
 impl FontAnchors {
-    /// Sets the anchors of each glyph that has some, by name.
+    /// Sets the anchors of each glyph that has some, by name, and `mark = "outline"` on
+    /// each mark that then has no `_` anchor ([`anchors::placed_by_outline`]).
     pub(crate) fn give<'a>(&self, glyphs: impl Iterator<Item = &'a mut crate::model::Glyph>) {
         for glyph in glyphs {
             if let Some(a) = self.by_name.get(&glyph.name) {
                 glyph.anchors = a.clone();
             }
+            let in_gdef = self.gdef_marks.contains(&glyph.name);
+            glyph.outline_mark = anchors::placed_by_outline(glyph, in_gdef);
         }
     }
 }
 
 /// The mark attachment of the `mark` and `mkmk` features as named anchors of the imported
-/// glyphs ([`anchors`]); a damaged `GPOS` is an error naming the file.
+/// glyphs, and `GDEF`'s marks among them ([`anchors`]); a damaged `GPOS` or `GDEF` is an
+/// error naming the file.
 pub(crate) fn read_font_anchors(
     path: &Path,
     data: &[u8],
@@ -284,13 +289,26 @@ pub(crate) fn read_font_anchors(
         .zip(&source.glyphs)
         .filter_map(|(id, g)| Some((g.name.clone(), read.by_glyph.get(id)?.clone())))
         .collect();
+    let marks = anchors::gdef_marks(&font, &source.ids)
+        .map_err(|e| ImportError::at(path, format!("damaged GDEF table: {e}")))?;
+    let gdef_marks = source
+        .ids
+        .iter()
+        .zip(&source.glyphs)
+        .filter(|(id, _)| marks.contains(id))
+        .map(|(_, g)| g.name.clone())
+        .collect();
     let note = (read.ligature_subtables > 0).then(|| {
         format!(
             "{} mark-to-ligature subtable(s) left out: xglyph has no ligature anchors",
             read.ligature_subtables
         )
     });
-    Ok(FontAnchors { by_name, note })
+    Ok(FontAnchors {
+        by_name,
+        gdef_marks,
+        note,
+    })
 }
 
 /// Imports SVG drawings, one glyph per file: `(path, bytes)` in the order given.
@@ -488,6 +506,7 @@ pub fn import_glyph(source: &SourceGlyph, tolerance: f64, grid: f64) -> FittedGl
         contours,
         components: Vec::new(),
         anchors: Vec::new(),
+        outline_mark: false,
     };
     FittedGlyph { glyph, report: row }
 }

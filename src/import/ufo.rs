@@ -16,7 +16,9 @@
 //! text from the font lib when an xglyph export wrote them. Kerning: glyph pairs as they are;
 //! group pairs (`public.kern1.*`, `public.kern2.*`) are expanded to glyph pairs, a more
 //! specific pair winning, as UFO kerning defines. Named anchors come in as they are (an
-//! unnamed one is left out and counted in the report), and so does `features.fea` (written
+//! unnamed one is left out and counted in the report); a glyph `public.openTypeCategories`
+//! calls "mark" that has no `_` anchor comes in with `mark = "outline"` (the other
+//! categories are not read: xglyph classes glyphs itself); `features.fea` comes in (written
 //! next to the glyph files; `check` compiles it). Limits: guidelines, images and other
 //! layers are not imported (the model has no place for them); a glyph name outside the
 //! OpenType `post` rule is renamed as SVG file names are (`names::glyph_name_from`), in components and
@@ -125,6 +127,10 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     }
     for g in &glyphs {
         super::check_fitted_limits(g)?;
+    }
+    let marks = categorised_marks(&ufo, &names);
+    for g in glyphs.iter_mut() {
+        g.outline_mark = marks.contains(g.name.as_str()) && !g.attaches_by_anchor();
     }
     let kerning = kerning(&ufo, &names);
     Ok(Imported {
@@ -299,6 +305,7 @@ fn import_one(
                     contours: splines,
                     components,
                     anchors: anchors(g),
+                    outline_mark: false,
                 };
                 return Ok(UfoGlyph {
                     fitted: FittedGlyph { glyph, report },
@@ -324,6 +331,27 @@ fn import_one(
         from_lib: false,
         stale_lib: lib.is_some(),
     })
+}
+
+/// The model names of the glyphs `public.openTypeCategories` in the font lib calls
+/// "mark" (what [`crate::ufo`] writes for a font with a `mark = "outline"` glyph; other
+/// values and a malformed key are ignored).
+fn categorised_marks<'a>(
+    ufo: &norad::Font,
+    names: &'a HashMap<String, String>,
+) -> std::collections::HashSet<&'a str> {
+    let Some(categories) = ufo
+        .lib
+        .get(crate::ufo::lib::CATEGORIES_KEY)
+        .and_then(|v| v.as_dictionary())
+    else {
+        return Default::default();
+    };
+    categories
+        .iter()
+        .filter(|(_, c)| c.as_string() == Some("mark"))
+        .filter_map(|(name, _)| names.get(name).map(String::as_str))
+        .collect()
 }
 
 /// The glyph's named anchors, in file order, at their exact positions (an unnamed one has

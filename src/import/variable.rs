@@ -145,9 +145,9 @@ pub fn import_variable_font(
     // Every master gets the default's anchors (anchor variations are not read), so the
     // masters keep the same anchor names in the same order.
     anchors.give(glyphs.iter_mut().flatten());
-    let anchorless = glyphs
+    let outline_marks = glyphs
         .first()
-        .and_then(|g| super::anchors::anchorless_marks_note(g));
+        .and_then(|g| super::anchors::outline_marks_note(g));
     let mut glyphs = glyphs.into_iter();
     let mut rows = rows.into_iter();
     let mut notes: Vec<String> = source
@@ -160,7 +160,7 @@ pub fn import_variable_font(
     }
     notes.extend(kerning.note);
     notes.extend(anchors.note);
-    notes.extend(anchorless);
+    notes.extend(outline_marks);
     let mut kerning = kerning.pairs.into_iter();
     let default_name = masters[0].name.clone();
     let info = FontInfo {

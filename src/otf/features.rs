@@ -9,9 +9,10 @@
 //!   `N`, filtered to those marks (UseMarkFilteringSet);
 //! - GDEF glyph classes: fea-rs's own inference from the GPOS lookups (`markClass`
 //!   members are marks), the outputs of ligature substitutions ligatures, every glyph with
-//!   a `_` anchor or a combining code point (U+0300…) a mark, every other glyph but
-//!   `.notdef` a base. No component class: components are
-//!   resolved into outlines.
+//!   a `_` anchor, a combining code point (U+0300…) or `mark = "outline"` a mark, every
+//!   other glyph but `.notdef` a base. No component class: components are
+//!   resolved into outlines. A `mark = "outline"` glyph is in no `mark` lookup (it has no
+//!   `_` anchor); an anchor `x` on it takes marks in `mkmk`, as on any mark.
 //!
 //! The user's features and the generated ones merge (fea-rs's [`FeatureProvider`]); where
 //! the user's file has its own `kern`, `mark` or `mkmk` feature, that feature is theirs
@@ -60,6 +61,8 @@ pub(crate) struct LayoutSource<'a> {
     pub names: Vec<&'a str>,
     /// Each glyph's code points (combining marks are GDEF marks without anchors too).
     pub unicodes: Vec<&'a [char]>,
+    /// Per glyph, whether it is a mark its outline places (`mark = "outline"`).
+    pub outline_marks: Vec<bool>,
     /// Per master, per glyph (glyph order), its anchors.
     pub anchors: Vec<Vec<&'a [Anchor]>>,
     /// Per master, its kerning by glyph id.
@@ -365,7 +368,7 @@ struct Generated {
     marks: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>>,
     /// Anchor name -> glyph -> its `name` anchor (bases and marks alike).
     attach: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>>,
-    /// Glyph ids of the marks (a `_` anchor).
+    /// Glyph ids of the marks (a `_` anchor, or `mark = "outline"`).
     mark_glyphs: BTreeSet<u16>,
     skip_kern: bool,
     skip_mark: bool,
@@ -404,7 +407,11 @@ impl Generated {
 
         let mut marks: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>> = BTreeMap::new();
         let mut attach: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>> = BTreeMap::new();
-        let mut mark_glyphs = BTreeSet::new();
+        // Marks placed by their outlines are marks too: an anchor `x` on one is a mark's.
+        let mut mark_glyphs: BTreeSet<u16> = (0u16..)
+            .zip(&source.outline_marks)
+            .filter_map(|(gid, &mark)| mark.then_some(gid))
+            .collect();
         let default = &source.anchors[0];
         for (gid, anchors) in default.iter().enumerate() {
             let gid = gid as u16;
@@ -610,7 +617,8 @@ fn glyph_classes(
     for (gid, unicodes) in source.unicodes.iter().enumerate() {
         // The combining blocks are marks whether or not they have anchors (as glyphsLib's
         // categories make them; FontBakery's `gdef_mark_chars`).
-        if unicodes.iter().any(|&c| crate::source::is_combining(c)) {
+        let outline_mark = source.outline_marks.get(gid).copied().unwrap_or(false);
+        if outline_mark || unicodes.iter().any(|&c| crate::source::is_combining(c)) {
             classes.insert(gid as u16, mark);
         }
     }

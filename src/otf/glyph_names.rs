@@ -59,6 +59,7 @@ mod tests {
             path: crate::otf::OtPath::Given(std::borrow::Cow::Owned(kurbo::BezPath::new())),
             from_components: false,
             anchors: Vec::new(),
+            outline_mark: false,
         }
     }
 

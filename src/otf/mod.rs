@@ -124,6 +124,8 @@ pub(crate) struct OtGlyph<'a> {
     pub from_components: bool,
     /// Anchors, the components' included (mark positioning, see `features.rs`).
     pub anchors: Vec<crate::model::Anchor>,
+    /// A mark its outline places (GDEF class Mark without anchors).
+    pub outline_mark: bool,
 }
 
 /// Where an [`OtGlyph`]'s outline is: given, or made by a [`GlyphPaths`] when a flavour
@@ -239,6 +241,7 @@ impl<'a> OtGlyph<'a> {
             path,
             from_components: !glyph.components.is_empty(),
             anchors: glyph.placed_anchors.clone(),
+            outline_mark: glyph.outline_mark,
         })
     }
 }

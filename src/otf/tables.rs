@@ -138,6 +138,7 @@ pub fn build_font(
     let layout = layout_tables(&LayoutSource {
         names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
         unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
+        outline_marks: set.glyphs.iter().map(|g| g.outline_mark).collect(),
         anchors: vec![set.glyphs.iter().map(|g| g.anchors.as_slice()).collect()],
         kerning: vec![kern_pairs(&font.kerning, set)?],
         regions: &[],
@@ -270,6 +271,7 @@ pub(crate) mod tests {
             path: crate::otf::OtPath::Given(std::borrow::Cow::Owned(BezPath::new())),
             from_components: false,
             anchors: Vec::new(),
+            outline_mark: false,
         }
     }
 

@@ -428,6 +428,7 @@ impl Studio {
             components: glyph.components.clone(),
             anchors: glyph.anchors.clone(),
             placed_anchors: self.font.anchors(glyph),
+            outline_mark: glyph.outline_mark,
             contours: self
                 .font
                 .placed_contours(glyph)

@@ -173,7 +173,7 @@ fn attach(
 
 /// The checks of a font's anchors that need every glyph: a mark anchor `_x` for which no
 /// glyph has an anchor `x`, and a glyph mapped to a combining code point
-/// ([`COMBINING_BLOCKS`]) without a `_` anchor.
+/// ([`COMBINING_BLOCKS`]) that is no mark (no `_` anchor, no `mark = "outline"`).
 pub(super) fn check_anchors(glyphs: &[GlyphFile], out: &mut Diagnostics) {
     let bases: BTreeSet<&str> = glyphs
         .iter()
@@ -196,7 +196,8 @@ pub(super) fn check_anchors(glyphs: &[GlyphFile], out: &mut Diagnostics) {
                 );
             }
         }
-        if g.glyph.is_mark() {
+        // A `mark` written with a bad value has its error at the value already.
+        if g.glyph.is_mark() || g.spans.mark > 0 {
             continue;
         }
         let combining = g.glyph.unicodes.iter().zip(&g.spans.unicodes);
@@ -205,7 +206,8 @@ pub(super) fn check_anchors(glyphs: &[GlyphFile], out: &mut Diagnostics) {
                 at,
                 format!(
                     "glyph `{}` is mapped to U+{:04X}, a combining mark, but has no `_` \
-                     anchor to attach by; add one, e.g. `[[anchor]]` with name = \"_top\"",
+                     anchor to attach by; add one, e.g. `[[anchor]]` with name = \"_top\", \
+                     or write mark = \"outline\" if its outline places it",
                     g.glyph.name,
                     u32::from(c)
                 ),

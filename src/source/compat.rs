@@ -1,7 +1,8 @@
 //! Compatibility of a master with the default master: the same glyphs, and in each glyph
 //! the same contours with the same number of points, the same sharp points, and the same
 //! components in the same order, and the same anchor names in the same order (their
-//! positions may differ).
+//! positions may differ). The glyph-level keys `unicode` and `mark` are the default
+//! master's: a master's file may leave them out, and what it writes must be the default's.
 //!
 //! Problems are reported in the master's file, at the place to fix, and say what the
 //! default master has. A glyph the master lacks is reported at the master's `folder` in
@@ -82,6 +83,13 @@ fn check_glyph(ctx: &mut Ctx<'_>, d: &GlyphFile, m: &GlyphFile) {
                 code_points(&mg.unicodes),
                 code_points(&dg.unicodes),
             ),
+        );
+    }
+    if mg.outline_mark && !dg.outline_mark {
+        ctx.err(
+            m.spans.mark,
+            "`mark = \"outline\"` is not in the default master's file; write it there (the \
+             default master's file says it for every master), or remove it here",
         );
     }
 

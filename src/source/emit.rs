@@ -113,25 +113,25 @@ fn key(k: &str) -> String {
     }
 }
 
-/// One glyph file: name, code points, advance, contours, components, anchors.
+/// One glyph file: name, code points, advance, `mark`, contours, components, anchors.
 pub fn glyph_toml(glyph: &Glyph) -> String {
-    glyph_text(glyph, true, &[])
+    glyph_text(glyph, true, true, &[])
 }
 
-/// A glyph file of a non-default master that leaves out `unicode` (a master's glyph has
-/// the default's code points): [`glyph_toml`] without it.
+/// A glyph file of a non-default master that leaves out `unicode` and `mark` (a master's
+/// glyph has the default's): [`glyph_toml`] without them.
 pub fn master_glyph_toml(glyph: &Glyph) -> String {
-    glyph_text(glyph, false, &[])
+    glyph_text(glyph, false, false, &[])
 }
 
 /// A glyph file as `fmt` rewrites it: [`glyph_toml`], with `unicode` only when `unicodes`,
 /// and an `offset` only for the components whose entry in `offsets_written` is true (or
 /// missing): a component placed by anchors stays without one.
 pub fn glyph_source(glyph: &Glyph, unicodes: bool, offsets_written: &[bool]) -> String {
-    glyph_text(glyph, unicodes, offsets_written)
+    glyph_text(glyph, unicodes, true, offsets_written)
 }
 
-fn glyph_text(glyph: &Glyph, unicodes: bool, offsets_written: &[bool]) -> String {
+fn glyph_text(glyph: &Glyph, unicodes: bool, mark: bool, offsets_written: &[bool]) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "name = {}", string(&glyph.name));
     let shown: &[char] = if unicodes { &glyph.unicodes } else { &[] };
@@ -146,6 +146,9 @@ fn glyph_text(glyph: &Glyph, unicodes: bool, offsets_written: &[bool]) -> String
         }
     }
     let _ = writeln!(out, "advance = {}", number(glyph.advance));
+    if mark && glyph.outline_mark {
+        out.push_str("mark = \"outline\"\n");
+    }
     for contour in &glyph.contours {
         out.push_str("\n[[contour]]\npoints = [\n");
         for p in contour.points() {

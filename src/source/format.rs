@@ -57,12 +57,14 @@ pub fn rewrites(loaded: &LoadedFont) -> Vec<Rewrite> {
                 SourceKind::MasterGlyph(m, name) => {
                     let master = loaded.masters.get(*m)?;
                     let glyph = master.glyphs.iter().find(|g| &g.name == name)?;
-                    // `unicode` stays as the author has it: written (then it is the
-                    // default's, the loader checked) or left out.
-                    let written = load_glyph_text(&file.path, &file.text)
-                        .is_ok_and(|(g, _)| !g.unicodes.is_empty());
+                    // `unicode` and `mark` stay as the author has them: written (then they
+                    // are the default's, the loader checked) or left out.
+                    let written = load_glyph_text(&file.path, &file.text).ok().map(|(g, _)| g);
+                    let unicodes = written.as_ref().is_some_and(|g| !g.unicodes.is_empty());
+                    let mut glyph = glyph.clone();
+                    glyph.outline_mark = written.is_some_and(|g| g.outline_mark);
                     let offsets = offsets_written(&file.path, &file.text).unwrap_or_default();
-                    emit::glyph_source(glyph, written, &offsets)
+                    emit::glyph_source(&glyph, unicodes, &offsets)
                 }
                 SourceKind::MasterKerning(m) => {
                     emit::kerning_toml(&loaded.masters.get(*m)?.kerning)

@@ -1,4 +1,5 @@
-//! One glyph file -> [`Glyph`]: name, code points, advance, contours, components, anchors.
+//! One glyph file -> [`Glyph`]: name, code points, advance, `mark`, contours, components,
+//! anchors.
 //!
 //! Checks here need only the file itself; the checks across files (duplicate names and
 //! code points, component bases and cycles, points far outside the metrics) are in
@@ -25,6 +26,7 @@ const KEYS: &[&str] = &[
     "name",
     "unicode",
     "advance",
+    "mark",
     "contour",
     "component",
     "anchor",
@@ -37,6 +39,8 @@ pub(super) struct GlyphSpans {
     pub start: usize,
     /// The `name` value; 0 when the file has no `name` (a written value never starts at 0).
     pub name: usize,
+    /// The `mark` value; 0 when the file has none.
+    pub mark: usize,
     pub unicodes: Vec<usize>,
     pub bases: Vec<usize>,
     /// Per component: where its `offset` was written, `None` when it has none (then the
@@ -130,6 +134,16 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
     let advance = require(ctx, t, "advance", "advance = 500", at, &suggested)
         .and_then(|v| limits::advance(ctx, v));
 
+    let outline_mark = match get(t, "mark") {
+        None => false,
+        Some(v) => {
+            spans.mark = v.span().start;
+            let is_outline = mark_kind(ctx, v);
+            ok &= is_outline;
+            is_outline
+        }
+    };
+
     let mut contours = Vec::new();
     if let Some(v) = get(t, "contour") {
         for (ct, header) in tables(ctx, v, "contour", &mut ok) {
@@ -182,6 +196,21 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
         }
     }
 
+    if outline_mark {
+        if let Some(k) = anchors.iter().position(|a| a.attaches_to().is_some()) {
+            let (line, _) = ctx.line_col(spans.anchors[k]);
+            ctx.err(
+                spans.mark,
+                format!(
+                    "`mark = \"outline\"` says the outline places this mark, but it has the \
+                     anchor `{}` (line {line}) to attach by; keep one of the two",
+                    anchors[k].name
+                ),
+            );
+            ok = false;
+        }
+    }
+
     let name = name?;
     let complete = ok && advance.is_some();
     let advance = advance.unwrap_or(0.0);
@@ -198,12 +227,31 @@ pub(super) fn load_glyph(ctx: &mut Ctx<'_>) -> Option<Loaded> {
         contours,
         components,
         anchors,
+        outline_mark,
     };
     Some(Loaded {
         glyph,
         spans,
         complete,
     })
+}
+
+/// Whether the `mark` value is `"outline"`, the one kind of mark the key names (a mark
+/// placed by its outline); anything else is reported at the value.
+fn mark_kind(ctx: &mut Ctx<'_>, v: &Spanned<DeValue<'_>>) -> bool {
+    let found = match v.get_ref() {
+        DeValue::String(s) if s.as_ref() == "outline" => return true,
+        DeValue::String(s) => super::emit::string(s),
+        other => type_name(other).to_string(),
+    };
+    ctx.err(
+        v.span().start,
+        format!(
+            "`mark` must be \"outline\" (a mark placed by its own outline, with no `_` \
+             anchor), found {found}"
+        ),
+    );
+    false
 }
 
 /// A Unicode scalar value, or `None` with a diagnostic saying why `n` is not one.

@@ -406,6 +406,7 @@ mod tests {
                 contours: Vec::new(),
                 components: Vec::new(),
                 anchors: Vec::new(),
+                outline_mark: false,
             },
             complete: true,
             spans: GlyphSpans::default(),

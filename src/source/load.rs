@@ -401,6 +401,7 @@ fn model_masters(
             .filter_map(|d| {
                 let mut g = by_name.remove(&d.name)?;
                 g.unicodes.clone_from(&d.unicodes);
+                g.outline_mark = d.outline_mark;
                 Some(g)
             })
             .collect();

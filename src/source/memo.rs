@@ -59,13 +59,13 @@ const DELTA_SHARE: usize = 8;
 
 const HEADER: Header = Header {
     magic: b"XGLYPHSM",
-    version: 2,
+    version: 3,
     not_ours: "it is not an xglyph source memo",
 };
 
 const DELTA_HEADER: Header = Header {
     magic: b"XGLYPHSD",
-    version: 2,
+    version: 3,
     not_ours: "it is not an xglyph source memo delta",
 };
 
@@ -497,7 +497,8 @@ fn put_entry(out: &mut Vec<u8>, g: &Glyph, spans: &GlyphSpans) {
         put_f64(out, a.position.0);
         put_f64(out, a.position.1);
     }
-    put_offsets(out, &[spans.start, spans.name]);
+    out.push(u8::from(g.outline_mark));
+    put_offsets(out, &[spans.start, spans.name, spans.mark]);
     put_offsets(out, &spans.unicodes);
     put_offsets(out, &spans.bases);
     put_u32(out, spans.offsets.len());
@@ -571,8 +572,13 @@ fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
         let position = (r.f64()?, r.f64()?);
         anchors.push(Anchor { name, position });
     }
+    let outline_mark = match r.u8()? {
+        0 => false,
+        1 => true,
+        _ => return Err("an entry's mark is malformed"),
+    };
     let head = read_offsets(r)?;
-    let [start, name_at] = head[..] else {
+    let [start, name_at, mark_at] = head[..] else {
         return Err("an entry's spans are malformed");
     };
     let span_unicodes = read_offsets(r)?;
@@ -599,10 +605,12 @@ fn read_entry(r: &mut Reader<'_>) -> Result<(Glyph, GlyphSpans), &'static str> {
         contours,
         components,
         anchors,
+        outline_mark,
     };
     let spans = GlyphSpans {
         start,
         name: name_at,
+        mark: mark_at,
         unicodes: span_unicodes,
         bases,
         offsets,

@@ -10,7 +10,10 @@
 use norad::fontinfo::Os2Panose;
 use plist::Value;
 
-use super::lib::{kerning_order_value, KERNING_ORDER_KEY, TOLERANCE_KEY, VERSION_KEY};
+use super::lib::{
+    categories_value, kerning_order_value, CATEGORIES_KEY, KERNING_ORDER_KEY, TOLERANCE_KEY,
+    VERSION_KEY,
+};
 use crate::model::{FontInfo, DEFAULT_VENDOR};
 use crate::outline::OutlinedFont;
 
@@ -62,7 +65,8 @@ pub fn version_numbers(version: Option<&str>) -> (i32, u32) {
     }
 }
 
-/// The font lib: `public.glyphOrder`, and xglyph's own keys ([`super::lib`]).
+/// The font lib: `public.glyphOrder`, `public.openTypeCategories` for a font with a
+/// mark placed by its outline, and xglyph's own keys ([`super::lib`]).
 pub fn font_lib(font: &OutlinedFont) -> norad::Plist {
     let mut lib = norad::Plist::new();
     lib.insert(
@@ -80,6 +84,9 @@ pub fn font_lib(font: &OutlinedFont) -> norad::Plist {
     }
     if !font.kerning.is_empty() {
         lib.insert(KERNING_ORDER_KEY.into(), kerning_order_value(&font.kerning));
+    }
+    if let Some(categories) = categories_value(font) {
+        lib.insert(CATEGORIES_KEY.into(), categories);
     }
     lib
 }

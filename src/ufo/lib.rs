@@ -8,6 +8,9 @@
 //! | font  | `org.xglyph.tolerance`   | `font.toml`'s `tolerance` (real, font units)         |
 //! | font  | `org.xglyph.version`     | `font.toml`'s `version` text, when it has one        |
 //! | font  | `org.xglyph.kerningOrder`| the kerning pairs' source order: `[left, right]`s    |
+//! | font  | `public.openTypeCategories` | only when a glyph has `mark = "outline"`: every  |
+//! |       |                          | glyph but `.notdef` as xglyph's GDEF classes it,     |
+//! |       |                          | "mark" or "base" ([`categories_value`])              |
 //!
 //! Reals are written in the shortest form that reads back to the same `f64`, so the data
 //! round-trips exactly. The importer takes a glyph's `org.xglyph.xspline` instead of
@@ -28,6 +31,33 @@ pub const TOLERANCE_KEY: &str = "org.xglyph.tolerance";
 pub const VERSION_KEY: &str = "org.xglyph.version";
 /// Font lib key of the kerning pairs' order.
 pub const KERNING_ORDER_KEY: &str = "org.xglyph.kerningOrder";
+/// Font lib key of the glyphs' OpenType categories (the UFO spec's public key).
+pub const CATEGORIES_KEY: &str = "public.openTypeCategories";
+
+/// The value of [`CATEGORIES_KEY`] for `font`, when it has a mark placed by its outline
+/// (`mark = "outline"`): no anchor shows a compiler that such a glyph is a mark, and
+/// ufo2ft and fontc then take every GDEF class from this key, so every glyph but
+/// `.notdef` is listed: "mark" for a glyph with a `_` anchor, a combining code point or
+/// `mark = "outline"`, else "base". `None` for any other font (its classes follow from
+/// its anchors). Limit: a ligature of the font's own `features.fea` is listed as "base".
+pub fn categories_value(font: &crate::outline::OutlinedFont) -> Option<Value> {
+    if !font.glyphs.iter().any(|g| g.outline_mark) {
+        return None;
+    }
+    let categories = font
+        .glyphs
+        .iter()
+        .filter(|g| g.name != ".notdef")
+        .map(|g| {
+            let mark = g.outline_mark
+                || g.anchors.iter().any(|a| a.attaches_to().is_some())
+                || g.unicodes.iter().any(|&c| crate::source::is_combining(c));
+            let category = if mark { "mark" } else { "base" };
+            (g.name.clone(), Value::String(category.into()))
+        })
+        .collect();
+    Some(Value::Dictionary(categories))
+}
 
 /// The value of [`XSPLINE_KEY`] for these contours.
 pub fn xspline_value<'a>(contours: impl IntoIterator<Item = &'a Contour>) -> Value {

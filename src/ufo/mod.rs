@@ -15,6 +15,8 @@
 //!   compilers and checkers read.
 //! - The X-spline sources ride along in the libs ([`lib`]), so
 //!   [`crate::import::import_ufo`] gives back the same model: export then import is exact.
+//!   A font with a `mark = "outline"` glyph also gets `public.openTypeCategories`
+//!   ([`lib::categories_value`]): no anchor tells ufo2ft or fontc that the glyph is a mark.
 //!
 //! One call per master: [`export`] reads one outlined font, so a family exports each
 //! master's [`OutlinedFont`] in turn; [`designspace`] does that for a font with masters and

@@ -3,8 +3,9 @@
 //! Asserts, against outlines read here directly with ttf-parser: every imported X-spline
 //! within 0.75 T of the original (two-sided, dense sampling, T = 1/1000 em), fewer control
 //! points than the original's stored points, a report consistent with the written files,
-//! the round trip import -> load -> build within T of the original, and marks that come in
-//! with their GPOS anchors and sit where HarfBuzz puts them in the original.
+//! the round trip import -> load -> build within T of the original, marks that come in
+//! with their GPOS anchors and sit where HarfBuzz puts them in the original, and a mark
+//! the original places by its outline that comes in with `mark = "outline"`.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -503,9 +504,19 @@ fn marks_come_in_with_their_gpos_anchors_and_sit_where_harfbuzz_puts_them() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// GDEF glyph class of each glyph named in `argv[2]` (comma-separated) in the font
+/// `argv[1]` (0 for a glyph the class table leaves out), read with fontTools.
+const GDEF_CLASSES: &str = r#"
+import json, sys
+from fontTools.ttLib import TTFont
+classes = TTFont(sys.argv[1])["GDEF"].table.GlyphClassDef.classDefs
+print(json.dumps({n: classes.get(n, 0) for n in sys.argv[2].split(",")}))
+"#;
+
 #[test]
-fn a_combining_mark_without_gpos_anchors_is_named_in_the_report() {
-    // DejaVu positions its overlay tilde (U+0334) by its outline: no anchor comes in.
+fn a_mark_placed_by_its_outline_comes_in_with_mark_outline_and_shapes_as_in_dejavu() {
+    // DejaVu positions its overlay tilde (U+0334) by its outline: no GPOS anchor comes in,
+    // so it comes in with `mark = "outline"`, passes `check` and builds.
     let opts = ImportOptions {
         glyphs: Some(xglyph::import::font::parse_glyph_list("n,U+0308,U+0334").unwrap()),
         ..ImportOptions::default()
@@ -515,13 +526,81 @@ fn a_combining_mark_without_gpos_anchors_is_named_in_the_report() {
         .report
         .notes
         .iter()
-        .filter(|n| n.contains("combining"))
+        .filter(|n| n.contains("mark"))
         .collect();
     assert_eq!(
         notes,
         [
-            "1 glyph(s) mapped to combining marks have no anchor in the font's GPOS (`uni0334`): \
-             `check` asks each for a `_` anchor such as `_top` before the font builds"
+            "1 mark(s) with no `_` anchor in the font's GPOS came in with mark = \"outline\" \
+             (their outlines place them): `uni0334`"
         ]
     );
+    let by_name = |name: &str| imp.font.glyphs.iter().find(|g| g.name == name).unwrap();
+    let tilde = by_name("uni0334");
+    assert!(tilde.outline_mark && tilde.anchors.is_empty());
+    assert_eq!(tilde.advance, 0.0);
+    // The diaeresis attaches by its GPOS anchor; `n` is a base.
+    assert!(!by_name("uni0308").outline_mark && by_name("uni0308").is_mark());
+    assert!(!by_name("n").outline_mark && !by_name("n").is_mark());
+
+    let dir = temp_dir("outline-mark");
+    write(&imp, &dir);
+    let text = std::fs::read_to_string(dir.join("uni0334.toml")).unwrap();
+    assert!(
+        text.starts_with(
+            "name = \"uni0334\"\nunicode = 0x0334\nadvance = 0\nmark = \"outline\"\n\n[[contour]]"
+        ),
+        "{text}"
+    );
+    let (code, stdout, stderr) = crate::common::cli::xglyph(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stdout.ends_with("0 errors, 0 warnings\n"), "{stdout}");
+    let out = dir.join("out");
+    let (code, _, stderr) =
+        crate::common::cli::xglyph(&["build", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    // The UFO export comes back with the key (its `public.openTypeCategories`).
+    let ufo =
+        xglyph::import::import_ufo(&out.join("DejaVuSans-Book.ufo"), &ImportOptions::default())
+            .unwrap();
+    let back = ufo
+        .font
+        .glyphs
+        .iter()
+        .find(|g| g.name == "uni0334")
+        .unwrap();
+    assert!(back.outline_mark);
+    assert_eq!(ufo.font.glyphs.iter().filter(|g| g.outline_mark).count(), 1);
+    if !crate::common::tools::available(
+        crate::common::tools::python_imports("uharfbuzz, fontTools"),
+        "uharfbuzz/fontTools",
+        "pip install uharfbuzz fonttools",
+    ) {
+        return;
+    }
+    let built = out.join("DejaVuSans-Book.ttf");
+    let texts = "n\u{334},n\u{308},n\u{308}\u{334}";
+    let shaped: std::collections::BTreeMap<String, [Vec<[i64; 3]>; 2]> =
+        crate::common::tools::python_json(HB_MARKS, &[&DEJAVU, &built, &texts]);
+    let [original, ours] = &shaped["n\u{334}"];
+    assert_eq!(ours, original);
+    // Zero advance, not moved: the outline places it.
+    assert_eq!(ours[1], [0, 0, 0]);
+    // With a diaeresis too (reordered after the overlay, canonical class 230 after 1), the
+    // diaeresis attaches to the `n` across the overlay, a GDEF mark here, exactly as
+    // without it. DejaVu classes U+0334 a base, so there the diaeresis finds no anchor on
+    // it and stays put: the one place the import shapes differently, by design.
+    let [_, alone] = &shaped["n\u{308}"];
+    let [original, ours] = &shaped["n\u{308}\u{334}"];
+    assert_eq!(ours[..2], original[..2]);
+    assert_eq!(ours[2], alone[1]);
+    assert_eq!(ours[2], [0, -137, 0]);
+    assert_eq!(original[2], [0, 0, 0]);
+    let classes: std::collections::BTreeMap<String, u16> =
+        crate::common::tools::python_json(GDEF_CLASSES, &[&built, &"n,uni0308,uni0334"]);
+    let want: std::collections::BTreeMap<String, u16> = [("n", 1), ("uni0308", 3), ("uni0334", 3)]
+        .map(|(n, c)| (n.to_string(), c))
+        .into();
+    assert_eq!(classes, want);
+    let _ = std::fs::remove_dir_all(&dir);
 }

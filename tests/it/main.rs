@@ -22,6 +22,7 @@ mod import_svg;
 mod import_variable;
 mod ir;
 mod limits;
+mod mark_outline;
 mod masters;
 mod ocr;
 mod otf;

@@ -237,6 +237,7 @@ fn glyph(name: &str, unicodes: &[char], advance: f64, contours: Vec<Contour>) ->
         contours,
         components: Vec::new(),
         anchors: Vec::new(),
+        outline_mark: false,
     }
 }
 

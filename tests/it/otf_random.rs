@@ -49,6 +49,7 @@ proptest! {
             contours: vec![Contour::new(points).expect("a valid contour")],
             components: Vec::new(),
             anchors: Vec::new(),
+            outline_mark: false,
         };
         let font = font_with(glyph, tolerance);
         let outlines = outline_font(&font, tolerance);

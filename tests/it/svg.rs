@@ -273,6 +273,7 @@ fn triangle(name: &str, c: Option<char>) -> Glyph {
         .expect("a valid contour")],
         components: vec![],
         anchors: Vec::new(),
+        outline_mark: false,
     }
 }
 

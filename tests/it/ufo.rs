@@ -164,6 +164,8 @@ fn export_is_deterministic_and_holds_what_the_sources_say() {
         lib.contains("<key>public.glyphOrder</key>\n\t<array>\n\t\t<string>.notdef</string>"),
         "{lib}"
     );
+    // No `mark = "outline"` glyph: no categories (compilers infer classes from anchors).
+    assert!(!lib.contains("public.openTypeCategories"), "{lib}");
 }
 
 /// The glyph's own outline as the UFO holds it (norad reading the written files).

@@ -201,6 +201,7 @@ fn outlined(name: &str, c: char, advance: f64, path: BezPath) -> OutlinedGlyph {
         components: vec![],
         anchors: Vec::new(),
         placed_anchors: Vec::new(),
+        outline_mark: false,
         contours: vec![],
         path,
         max_error: 0.0,

@@ -190,6 +190,7 @@ fn build(
     let layout = layout_tables(&LayoutSource {
         names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
         unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
+        outline_marks: set.glyphs.iter().map(|g| g.outline_mark).collect(),
         anchors,
         kerning,
         regions: &regions,

@@ -34,6 +34,7 @@ pub fn square_ideographs(n: u32) -> Font {
                 contours: vec![square.clone()],
                 components: vec![],
                 anchors: Vec::new(),
+                outline_mark: false,
             }
         })
         .collect();
