@@ -12,19 +12,11 @@ use xglyph::source::{
     is_combining, load_family, load_font, load_glyph_text, offsets_written, place_in_font,
 };
 
-const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
-                    x_height = 500\ncap_height = 700\n";
+use crate::common::fonts::{small_font_folder, SMALL_FONT as FONT};
 
-/// A font folder in the temp dir holding `files` (name, text) and a `font.toml`.
+/// A fresh font folder with the small `font.toml` and `files`.
 fn font_dir(tag: &str, files: &[(&str, &str)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("xglyph-anchors-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("mkdir");
-    std::fs::write(dir.join("font.toml"), FONT).expect("font.toml");
-    for (name, text) in files {
-        std::fs::write(dir.join(name), text).expect("write");
-    }
-    dir
+    small_font_folder(&format!("anchors-{tag}"), files)
 }
 
 fn anchor(name: &str, x: f64, y: f64) -> Anchor {

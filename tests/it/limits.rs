@@ -12,21 +12,13 @@ use std::time::{Duration, Instant};
 use xglyph::commands::check;
 use xglyph::source::load_font;
 
-const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
-                    x_height = 500\ncap_height = 700\n";
+use crate::common::fonts::small_font_folder;
 const TRIANGLE: &str =
     "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
 
-/// A fresh font folder with `font.toml` and `files`.
-fn font_dir(name: &str, files: &[(&str, String)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("xglyph-limits-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("mkdir");
-    std::fs::write(dir.join("font.toml"), FONT).expect("write font.toml");
-    for (file, text) in files {
-        std::fs::write(dir.join(file), text).expect("write");
-    }
-    dir
+/// A fresh font folder with the small `font.toml` and `files`.
+fn font_dir(tag: &str, files: &[(&str, String)]) -> PathBuf {
+    small_font_folder(&format!("limits-{tag}"), files)
 }
 
 /// Diagnostics as `file:line:col: severity: message`, paths relative to `dir`.

@@ -15,8 +15,7 @@ use xglyph::outline::outline_font;
 use xglyph::source::emit::{glyph_toml, master_glyph_toml};
 use xglyph::source::{load_family, load_font, load_glyph_text};
 
-const FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\ndescender = -200\n\
-                    x_height = 500\ncap_height = 700\n";
+use crate::common::fonts::{small_font_folder, SMALL_FONT as FONT};
 
 const TRIANGLE: &str = "[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [100, 100, 0]]\n";
 
@@ -64,16 +63,9 @@ fn files() -> Vec<(&'static str, String)> {
     ]
 }
 
-/// A font folder in the temp dir with `font.toml` and `files`.
+/// A fresh font folder with the small `font.toml` and `files`.
 fn font_dir(tag: &str, files: &[(&str, String)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("xglyph-mark-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("mkdir");
-    std::fs::write(dir.join("font.toml"), FONT).expect("font.toml");
-    for (name, text) in files {
-        std::fs::write(dir.join(name), text).expect("write");
-    }
-    dir
+    small_font_folder(&format!("mark-{tag}"), files)
 }
 
 fn xglyph(args: &[&str], dir: &Path) -> std::process::Output {

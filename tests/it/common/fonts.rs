@@ -1,6 +1,6 @@
 //! Test fonts made in code.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use kurbo::BezPath;
 use skrifa::instance::{LocationRef, Size};
@@ -10,6 +10,23 @@ use skrifa::{FontRef, GlyphId, MetadataProvider};
 use xglyph::model::{Contour, Font, Glyph};
 use xglyph::source::load_font;
 use xglyph::xspline::ControlPoint;
+
+/// The `font.toml` of the small fonts the tests write: 1000 units per em.
+pub const SMALL_FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\n\
+                              descender = -200\nx_height = 500\ncap_height = 700\n";
+
+/// A fresh folder `xglyph-<tag>-<pid>` in the temp dir holding [`SMALL_FONT`] as
+/// `font.toml` and `files` (name, text).
+pub fn small_font_folder<S: AsRef<str>>(tag: &str, files: &[(&str, S)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xglyph-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("mkdir");
+    std::fs::write(dir.join("font.toml"), SMALL_FONT).expect("write font.toml");
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text.as_ref()).expect("write");
+    }
+    dir
+}
 
 /// The mini test font with its glyphs replaced by `n` squares mapped from U+4E00 on, and no
 /// kerning: a font without Latin, so no sheet label is in its own glyphs.
