@@ -77,7 +77,8 @@ pub(super) fn place_components(
                 let at = file.spans.bases[k];
                 let before =
                     propagate_anchors(&[], placed.iter().map(|(off, a)| (*off, a.as_slice())));
-                match attach(&c.base, &anchors, &before, k) {
+                let outline_mark = graph.bases[g][k].is_some_and(|b| glyphs[b].glyph.outline_mark);
+                match attach(&c.base, outline_mark, &anchors, &before, k) {
                     Ok(offset) => offset,
                     Err(message) => {
                         ctx.err(at, message);
@@ -107,13 +108,12 @@ pub fn place_in_font(font: &Font, glyph: &mut Glyph, offsets_written: &[bool]) {
     let index = font.index();
     let mut placed: Vec<((f64, f64), Vec<Anchor>)> = Vec::new();
     for (k, c) in glyph.components.iter_mut().enumerate() {
-        let anchors = index
-            .get(&c.base)
-            .map(|b| font.anchors_in(&index, b))
-            .unwrap_or_default();
+        let base = index.get(&c.base);
+        let anchors = base.map(|b| font.anchors_in(&index, b)).unwrap_or_default();
         if !offsets_written.get(k).copied().unwrap_or(true) {
             let before = propagate_anchors(&[], placed.iter().map(|(o, a)| (*o, a.as_slice())));
-            if let Ok(offset) = attach(&c.base, &anchors, &before, k) {
+            let outline_mark = base.is_some_and(|b| b.outline_mark);
+            if let Ok(offset) = attach(&c.base, outline_mark, &anchors, &before, k) {
                 c.offset = offset;
             }
         }
@@ -121,10 +121,12 @@ pub fn place_in_font(font: &Font, glyph: &mut Glyph, offsets_written: &[bool]) {
     }
 }
 
-/// The offset of component `k` (glyph `base`, with `anchors`) written without `offset`,
-/// given the anchors of the components `before` it; or the error message.
+/// The offset of component `k` (glyph `base`, with `anchors`; `outline_mark` when it says
+/// `mark = "outline"`) written without `offset`, given the anchors of the components
+/// `before` it; or the error message.
 fn attach(
     base: &str,
+    outline_mark: bool,
     anchors: &[Anchor],
     before: &[Anchor],
     k: usize,
@@ -136,6 +138,13 @@ fn attach(
     if marks.is_empty() {
         if k == 0 {
             return Ok((0.0, 0.0));
+        }
+        if outline_mark {
+            return Err(format!(
+                "component `{base}` has no `offset`, and it is a mark placed by its outline \
+                 (`mark = \"outline\"`), which no anchor places: write `offset = [x, y]` \
+                 (`[0, 0]` to overlay it where its outline is drawn)"
+            ));
         }
         return Err(format!(
             "component `{base}` has no `offset` and is not a mark (it has no `_` anchor such \

@@ -113,6 +113,44 @@ fn the_key_loads_and_check_accepts_a_combining_mark_with_it() {
 }
 
 #[test]
+fn a_later_component_placed_by_its_outline_needs_an_offset() {
+    let mut files = files();
+    files.push((
+        "nring.toml",
+        "advance = 500\n\n[[component]]\nbase = \"n\"\n\n[[component]]\n\
+         base = \"ringoverlay\"\n"
+            .to_string(),
+    ));
+    let dir = font_dir("component", &files);
+    let errors = load_font(&dir).expect_err("check fails");
+    let shown: Vec<String> = errors
+        .iter()
+        .map(|d| format!("{}:{}:{}: {}", d.path.display(), d.line, d.col, d.message))
+        .collect();
+    let file = dir.join("nring.toml");
+    assert_eq!(
+        shown,
+        [format!(
+            "{}:7:8: component `ringoverlay` has no `offset`, and it is a mark placed by its \
+             outline (`mark = \"outline\"`), which no anchor places: write `offset = [x, y]` \
+             (`[0, 0]` to overlay it where its outline is drawn)",
+            file.display()
+        )]
+    );
+    // With an offset it builds into the composite where its outline is drawn.
+    let with_offset = files[files.len() - 1].1.clone() + "offset = [0, 0]\n";
+    std::fs::write(&file, with_offset).expect("write");
+    let (font, _) = load_font(&dir).expect("check passes");
+    let nring = font
+        .glyphs
+        .iter()
+        .find(|g| g.name == "nring")
+        .expect("nring");
+    assert_eq!(nring.components[1].offset, (0.0, 0.0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn fmt_keeps_the_key_after_advance_and_the_emitter_writes_it() {
     let mut files = files();
     // The key before `unicode`, spaced oddly: `fmt` puts it after `advance`.
