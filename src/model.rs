@@ -226,6 +226,16 @@ pub fn propagate_anchors<'a>(
     out
 }
 
+/// Whether a glyph is in GDEF's Mark class (and a "mark" in a UFO's
+/// `public.openTypeCategories`): it attaches by a `_` anchor, its outline places it
+/// (`mark = "outline"`), or it is mapped to a combining code point, a mark with or without
+/// anchors (as glyphsLib's categories make it; FontBakery's `gdef_mark_chars`).
+pub fn classed_mark(unicodes: &[char], anchors: &[Anchor], outline_mark: bool) -> bool {
+    outline_mark
+        || anchors.iter().any(|a| a.attaches_to().is_some())
+        || unicodes.iter().any(|&c| crate::source::is_combining(c))
+}
+
 impl Glyph {
     /// Whether the glyph is a mark: it has an anchor whose name starts with `_`, or its
     /// outline places it ([`Glyph::outline_mark`]).

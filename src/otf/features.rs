@@ -615,10 +615,9 @@ fn glyph_classes(
         classes.insert(*g, mark);
     }
     for (gid, unicodes) in source.unicodes.iter().enumerate() {
-        // The combining blocks are marks whether or not they have anchors (as glyphsLib's
-        // categories make them; FontBakery's `gdef_mark_chars`).
+        let anchors = source.anchors[0].get(gid).copied().unwrap_or_default();
         let outline_mark = source.outline_marks.get(gid).copied().unwrap_or(false);
-        if outline_mark || unicodes.iter().any(|&c| crate::source::is_combining(c)) {
+        if crate::model::classed_mark(unicodes, anchors, outline_mark) {
             classes.insert(gid as u16, mark);
         }
     }

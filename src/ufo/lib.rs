@@ -37,9 +37,9 @@ pub const CATEGORIES_KEY: &str = "public.openTypeCategories";
 /// The value of [`CATEGORIES_KEY`] for `font`, when it has a mark placed by its outline
 /// (`mark = "outline"`): no anchor shows a compiler that such a glyph is a mark, and
 /// ufo2ft and fontc then take every GDEF class from this key, so every glyph but
-/// `.notdef` is listed: "mark" for a glyph with a `_` anchor, a combining code point or
-/// `mark = "outline"`, else "base". `None` for any other font (its classes follow from
-/// its anchors). Limit: a ligature of the font's own `features.fea` is listed as "base".
+/// `.notdef` is listed: "mark" as [`crate::model::classed_mark`] says, else "base".
+/// `None` for any other font (its classes follow from its anchors). Limit: a ligature of
+/// the font's own `features.fea` is listed as "base".
 pub fn categories_value(font: &crate::outline::OutlinedFont) -> Option<Value> {
     if !font.glyphs.iter().any(|g| g.outline_mark) {
         return None;
@@ -49,9 +49,7 @@ pub fn categories_value(font: &crate::outline::OutlinedFont) -> Option<Value> {
         .iter()
         .filter(|g| g.name != ".notdef")
         .map(|g| {
-            let mark = g.outline_mark
-                || g.anchors.iter().any(|a| a.attaches_to().is_some())
-                || g.unicodes.iter().any(|&c| crate::source::is_combining(c));
+            let mark = crate::model::classed_mark(&g.unicodes, &g.anchors, g.outline_mark);
             let category = if mark { "mark" } else { "base" };
             (g.name.clone(), Value::String(category.into()))
         })
