@@ -52,7 +52,19 @@ impl Placement {
 /// The same path for tiny-skia (f32); `None` when it is empty. Quadratics are kept as they
 /// are; every subpath is closed as in the source.
 pub fn skia_path(path: &BezPath) -> Option<tiny_skia::Path> {
-    let mut pb = PathBuilder::new();
+    // Sized up front: a builder grown point by point reallocates its vectors log2(n) times
+    // for every fill of a large glyph.
+    let points = path
+        .elements()
+        .iter()
+        .map(|el| match el {
+            PathEl::MoveTo(_) | PathEl::LineTo(_) => 1,
+            PathEl::QuadTo(..) => 2,
+            PathEl::CurveTo(..) => 3,
+            PathEl::ClosePath => 0,
+        })
+        .sum();
+    let mut pb = PathBuilder::with_capacity(path.elements().len(), points);
     let f = |p: Point| (p.x as f32, p.y as f32);
     for el in path.elements() {
         match *el {
@@ -88,8 +100,13 @@ fn paint(color: Color) -> Paint<'static> {
 /// Fills `path` (font units) at `at`: anti-aliased, nonzero rule.
 pub fn fill_glyph(pixmap: &mut PixmapMut<'_>, path: &BezPath, at: Placement, color: Color) {
     if let Some(p) = skia_path(path) {
-        pixmap.fill_path(&p, &paint(color), FillRule::Winding, at.transform(), None);
+        fill_skia(pixmap, &p, at, color);
     }
+}
+
+/// Fills a tiny-skia `path` (font units) at `at`: anti-aliased, nonzero rule.
+pub fn fill_skia(pixmap: &mut PixmapMut<'_>, path: &tiny_skia::Path, at: Placement, color: Color) {
+    pixmap.fill_path(path, &paint(color), FillRule::Winding, at.transform(), None);
 }
 
 /// Strokes `path` (font units) at `at` with a 1 px line (the width does not scale).

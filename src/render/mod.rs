@@ -9,6 +9,7 @@ pub mod labels;
 mod overlay;
 pub mod proof;
 pub mod sheet;
+mod stamp;
 
 use std::fmt;
 

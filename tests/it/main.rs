@@ -21,6 +21,7 @@ mod import_points;
 mod import_svg;
 mod import_variable;
 mod ir;
+mod labels;
 mod limits;
 mod mark_outline;
 mod masters;

@@ -232,7 +232,7 @@ fn a_font_that_fits_one_page_keeps_one_sheet() {
 
 /// Every file under `dir` but the fit cache and the reuse record, by relative path, with
 /// its bytes.
-fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+pub(crate) fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     fn walk(root: &Path, dir: &Path, out: &mut std::collections::BTreeMap<String, Vec<u8>>) {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
@@ -264,7 +264,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 }
 
 /// Runs `xglyph ARGS` with `RAYON_NUM_THREADS=threads`; panics unless it succeeds.
-fn run(threads: usize, args: &[&std::ffi::OsStr]) {
+pub(crate) fn run(threads: usize, args: &[&std::ffi::OsStr]) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_xglyph"))
         .args(args)
         .env("RAYON_NUM_THREADS", threads.to_string())
