@@ -7,7 +7,7 @@
 //! the path by whole pixels. The stamp takes the very f32 points of the fill and subtracts
 //! whole pixels (exact in f32 below 2^24), so it covers exactly the pixels the fill would,
 //! each by the same alpha, and [`Stamp::put`] blends them with the same integer formula as
-//! tiny-skia's low-precision pipeline. `tests/it/scale.rs` checks the bytes against the
+//! tiny-skia's low-precision pipeline. `tests/it/labels.rs` checks the bytes against the
 //! fill. Limits: only where the fill would be neither clipped nor tiled (the stamp lies
 //! inside the pixmap and its sides are below 8,192 px) and the colour is opaque: elsewhere
 //! [`Stamp::put`] draws nothing and says so, and the caller fills the path itself. Checked
