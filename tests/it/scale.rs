@@ -230,18 +230,19 @@ fn a_font_that_fits_one_page_keeps_one_sheet() {
     assert_eq!(whole.data(), page.data());
 }
 
-/// Every file under `dir` but the fit cache and the reuse record, by relative path, with
-/// its bytes.
+/// Every file under `dir` but the records of a build (fit cache, outputs, source memo, and
+/// their delta files, all named `.xglyph-…`), by relative path, with its bytes. (Whether a
+/// build writes a delta file depends on how many of its outputs were old enough to stamp.)
 pub(crate) fn output_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     fn walk(root: &Path, dir: &Path, out: &mut std::collections::BTreeMap<String, Vec<u8>>) {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
+            let record = path
+                .file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with(".xglyph-"));
             if path.is_dir() {
                 walk(root, &path, out);
-            } else if path.file_name() != Some(std::ffi::OsStr::new(xglyph::cache::CACHE_FILE))
-                && path.file_name() != Some(std::ffi::OsStr::new(xglyph::reuse::REUSE_FILE))
-                && path.file_name() != Some(std::ffi::OsStr::new(xglyph::source::MEMO_FILE))
-            {
+            } else if !record {
                 let rel = path
                     .strip_prefix(root)
                     .unwrap()

@@ -352,8 +352,11 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
     // output record (it now stamps the files, too fresh to stamp after the first build).
     let result = build(&font, &out);
     assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    // (The record may be written whole, or as a delta file when the first build could
+    // stamp most outputs already.)
     let without_record = |mut files: std::collections::BTreeMap<String, (u64, Vec<u8>)>| {
         files.remove(xglyph::reuse::REUSE_FILE);
+        files.remove(xglyph::reuse::DELTA_FILE);
         files
     };
     assert_eq!(without_record(inodes(&out)), without_record(first.clone()));
@@ -373,11 +376,8 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
     let second = inodes(&out);
     // The result is what a build into an empty folder writes (the fit cache aside: it
     // keeps the old fit of `A` too).
-    let not_cache = |n: &String| {
-        n != xglyph::cache::CACHE_FILE
-            && n != xglyph::reuse::REUSE_FILE
-            && n != xglyph::source::MEMO_FILE
-    };
+    // The records (fit cache, output record, source memo and their delta files).
+    let not_cache = |n: &String| !n.starts_with(".xglyph-");
     reference(&dir);
     let fresh: Vec<_> = inodes(&dir.join("reference"))
         .into_iter()
@@ -391,7 +391,7 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
         .collect();
     assert!(rebuilt == fresh, "the rebuild differs from a fresh build");
     let (mut replaced, mut kept) = (Vec::new(), Vec::new());
-    for (name, (ino, bytes)) in &second {
+    for (name, (ino, bytes)) in second.iter().filter(|(n, _)| not_cache(n)) {
         let (old_ino, old_bytes) = &first[name];
         if bytes == old_bytes {
             assert_eq!(ino, old_ino, "{name} has the same bytes but was replaced");
@@ -420,4 +420,25 @@ fn a_rebuild_replaces_only_the_files_whose_bytes_changed() {
     ] {
         assert!(kept.contains(&name), "{name} rewritten: {kept:?}");
     }
+}
+
+#[test]
+fn a_build_into_a_new_nested_folder_writes_the_outputs_and_no_temporary_name() {
+    let dir = scratch("new-nested");
+    let want = reference(&dir);
+    // A staged tree of a killed build (a PID that is gone), next to where OUT goes.
+    let mut child = Command::new("true").spawn().unwrap();
+    child.wait().unwrap();
+    let stale = dir.join(format!("new/.xglyph-{}-Ab3dE6gH9j.dir", child.id()));
+    fs::create_dir_all(stale.join("svg")).unwrap();
+    fs::write(stale.join("svg/A_.svg"), "half written").unwrap();
+    let out = dir.join("new/deeper/out");
+    let result = build(&dir.join("font"), &out);
+    assert_eq!(result.status.code(), Some(0), "{}", stderr(&result));
+    assert_eq!(outputs(&out), want);
+    // `new/` held the stale tree, removed when this build staged its own tree there; no
+    // temporary name is left anywhere.
+    let mut expected = vec!["deeper".to_string(), "deeper/out".to_string()];
+    expected.extend(names(&want).iter().map(|n| format!("deeper/out/{n}")));
+    assert_eq!(names(&tree(&dir.join("new"))), expected);
 }
