@@ -1,7 +1,7 @@
 //! The built-in face's stamps, cached per thread: the 20,902 labels of a CJK sheet draw
 //! 292,628 glyphs of 20 characters at only 3,740 distinct transforms (counted from its
-//! labels), so each (glyph, transform) is rasterised once and composited after that ([`crate::render::stamp`], byte-identical to
-//! filling it).
+//! labels), so each (glyph, transform) is rasterised once and composited after that
+//! ([`crate::render::stamp`], byte-identical to filling it).
 //!
 //! The key is the exact f32 transform tiny-skia would use (no quantised sub-pixel phase:
 //! the stamp must cover the pixels the fill would). A cache is per thread (no locking; a
