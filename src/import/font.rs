@@ -27,6 +27,8 @@ pub struct SourceFont {
     pub glyphs: Vec<SourceGlyph>,
     /// Characters asked for that the font does not map.
     pub missing: Vec<char>,
+    /// Notes on visible characters whose glyph the font leaves empty (imported empty).
+    pub empty: Vec<String>,
     /// The glyph id of each of `glyphs`, in the same order.
     pub ids: Vec<u16>,
 }
@@ -137,6 +139,7 @@ pub fn read_font(
     let mut glyphs = Vec::new();
     let mut ids = Vec::new();
     let mut used_names = std::collections::BTreeSet::new();
+    let mut empty = Vec::new();
     for (gid, unicodes) in by_glyph {
         let gid = GlyphId(gid);
         let name = glyph_name(&face, gid, unicodes[0], &used_names);
@@ -147,23 +150,30 @@ pub fn read_font(
                 format!("glyph `{name}` has no horizontal advance (damaged hmtx table)"),
             )
         })?;
-        let outline = glyph_outline(&face, gid);
-        // `None` is an empty glyph (space) or an outline ttf-parser could not read: an
-        // error for a visible character, an empty glyph otherwise.
-        if outline.is_none()
-            && unicodes
-                .iter()
-                .any(|c| c.is_alphanumeric() || c.is_ascii_graphic())
-        {
-            return Err(ImportError::at(
-                path,
-                format!(
-                    "glyph `{name}` (U+{:04X}) has no readable outline; the font may be damaged",
+        // ttf-parser gives `None` both for an empty glyph (a space, or a letter a font
+        // leaves blank) and for an outline it cannot read; skrifa, which reports read
+        // errors, tells the two apart.
+        let outline = match glyph_outline(&face, gid) {
+            Some(outline) => outline,
+            None if unicodes.iter().any(|&c| visible(c)) => {
+                let skrifa_font = skrifa::FontRef::from_index(data, index).ok();
+                if !skrifa_font.is_some_and(|f| stores_no_outline(&f, gid.0)) {
+                    return Err(ImportError::at(
+                        path,
+                        format!(
+                            "glyph `{name}` (U+{:04X}) has no readable outline; the font may be damaged",
+                            u32::from(unicodes[0])
+                        ),
+                    ));
+                }
+                empty.push(format!(
+                    "glyph `{name}` (U+{:04X}) is empty in the font",
                     u32::from(unicodes[0])
-                ),
-            ));
-        }
-        let outline = outline.unwrap_or_default();
+                ));
+                BezPath::new()
+            }
+            None => BezPath::new(),
+        };
         if !outline.is_finite() {
             return Err(ImportError::at(
                 path,
@@ -183,6 +193,7 @@ pub fn read_font(
         info,
         glyphs,
         missing,
+        empty,
         ids,
     })
 }
@@ -323,6 +334,28 @@ pub fn glyph_outline(face: &Face, glyph: GlyphId) -> Option<BezPath> {
     let mut pen = PathPen(BezPath::new());
     face.outline_glyph(glyph, &mut pen)?;
     Some(pen.0)
+}
+
+/// Whether the font stores an empty outline for `gid`, as for a space: an empty `loca`
+/// range (glyf), or a charstring that draws nothing (CFF, CFF2). Glyf data that draws
+/// nothing is not empty but unreadable: skrifa reads simple glyphs lazily and draws
+/// nothing, without an error, from a header whose arrays overrun the glyph.
+pub(super) fn stores_no_outline(font: &skrifa::FontRef, gid: u16) -> bool {
+    use skrifa::raw::tables::loca::LocaGlyph;
+    use skrifa::raw::TableProvider;
+    let id = skrifa::GlyphId::new(u32::from(gid));
+    if let Ok(glyf) = font.glyf() {
+        return font
+            .loca(None)
+            .is_ok_and(|loca| matches!(loca.get(id, &glyf), Some(LocaGlyph::Empty)));
+    }
+    super::variable::outline_at(font, gid, &skrifa::instance::Location::default())
+        .is_ok_and(|(outline, _)| outline.elements().is_empty())
+}
+
+/// A character a font would normally draw: its glyph is expected to have an outline.
+fn visible(c: char) -> bool {
+    c.is_alphanumeric() || c.is_ascii_graphic()
 }
 
 /// Collects ttf-parser's outline calls into a kurbo path.

@@ -203,6 +203,7 @@ pub fn import_font(
             u32::from(c)
         ));
     }
+    imported.report.notes.extend(source.empty);
     Ok(imported)
 }
 

@@ -155,6 +155,7 @@ pub fn import_variable_font(
         .iter()
         .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
         .collect();
+    notes.extend(source.empty.iter().cloned());
     if let Some(note) = inner_regions(&font) {
         notes.push(note);
     }
@@ -250,7 +251,7 @@ fn master_locations(font: &FontRef, ds: &Designspace) -> Vec<MasterAt> {
 }
 
 /// A glyph's outline (font units, y up) and advance at `coords`.
-fn outline_at(
+pub(super) fn outline_at(
     font: &FontRef,
     gid: u16,
     coords: &skrifa::instance::Location,
@@ -262,17 +263,24 @@ fn outline_at(
         .advance_width(id)
         .ok_or("no horizontal advance (damaged hmtx or HVAR table)")?;
     let mut pen = Pen(BezPath::new());
-    if let Some(glyph) = font.outline_glyphs().get(id) {
-        let adjusted = glyph
-            .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
-            .map_err(|e| format!("cannot read the outline ({e}); the font may be damaged"))?;
-        // Without HVAR, the advance varies by gvar's phantom points, which drawing applies.
-        if font.hvar().is_err() {
-            advance = adjusted.advance_width.unwrap_or(advance);
-        }
+    // skrifa gives no glyph (rather than an error) for glyf data it cannot read; an empty
+    // glyph is a glyph that draws nothing.
+    let glyph = font
+        .outline_glyphs()
+        .get(id)
+        .ok_or("cannot read the outline; the font may be damaged")?;
+    let adjusted = glyph
+        .draw(DrawSettings::unhinted(Size::unscaled(), location), &mut pen)
+        .map_err(|e| format!("cannot read the outline ({e}); the font may be damaged"))?;
+    // Without HVAR, the advance varies by gvar's phantom points, which drawing applies.
+    if font.hvar().is_err() {
+        advance = adjusted.advance_width.unwrap_or(advance);
     }
     if !pen.0.is_finite() {
         return Err("non-finite coordinates".into());
+    }
+    if pen.0.elements().is_empty() && font.glyf().is_ok() && !font::stores_no_outline(font, gid) {
+        return Err("cannot read the outline; the font may be damaged".into());
     }
     Ok((pen.0, f64::from(advance)))
 }

@@ -407,6 +407,93 @@ fn a_damaged_gpos_is_an_error_naming_the_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// DejaVu with the `glyf` data of the glyph for `c` changed by `edit`, which gets the
+/// bytes, the `loca` entries' offsets in them (`entry(gid)`), and the glyph's id.
+fn dejavu_with_glyph_edited(
+    c: char,
+    edit: impl FnOnce(&mut Vec<u8>, &dyn Fn(u16) -> usize, u16),
+) -> Vec<u8> {
+    let mut data = font_bytes();
+    let gid = ttf_parser::Face::parse(&data, 0)
+        .unwrap()
+        .glyph_index(c)
+        .unwrap()
+        .0;
+    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
+    let at = |d: &[u8], k: usize| u32::from_be_bytes(d[k..k + 4].try_into().unwrap()) as usize;
+    let table = |d: &[u8], tag: &[u8]| {
+        let r = (0..tables)
+            .map(|i| 12 + 16 * i)
+            .find(|&r| &d[r..r + 4] == tag)
+            .unwrap();
+        at(d, r + 8)
+    };
+    let (head, loca) = (table(&data, b"head"), table(&data, b"loca"));
+    assert_eq!(
+        &data[head + 50..head + 52],
+        &[0, 1],
+        "DejaVu's loca is long"
+    );
+    let entry = move |g: u16| loca + 4 * usize::from(g);
+    edit(&mut data, &entry, gid);
+    data
+}
+
+#[test]
+fn a_letter_the_font_leaves_empty_comes_in_empty_with_a_note() {
+    // `b`'s loca entry moved to its end: no glyf data, as a font's blank glyph has.
+    let data = dejavu_with_glyph_edited('b', |d, entry, gid| {
+        let end: [u8; 4] = d[entry(gid + 1)..entry(gid + 1) + 4].try_into().unwrap();
+        d[entry(gid)..entry(gid) + 4].copy_from_slice(&end);
+    });
+    let dir = temp_dir("empty-letter");
+    std::fs::create_dir_all(&dir).unwrap();
+    let font = dir.join("blank-b.ttf");
+    std::fs::write(&font, &data).unwrap();
+    let out = dir.join("out");
+    let stdout = crate::common::cli::import_ok(&[font.to_str().unwrap(), "--glyphs", "a-c"], &out);
+    assert!(
+        stdout.contains("\nnote: glyph `b` (U+0062) is empty in the font\n"),
+        "{stdout}"
+    );
+    let (font, _) = load_font(&out).unwrap();
+    let contours = |name: &str| font.glyph(name).unwrap().contours.len();
+    assert_eq!((contours("a"), contours("b"), contours("c")), (2, 0, 1));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_glyph_neither_reader_can_read_is_an_error_naming_it() {
+    // `b` claims 30,000 contours in a glyph of a few dozen bytes.
+    let data = dejavu_with_glyph_edited('b', |d, entry, gid| {
+        let glyf = {
+            let tables = usize::from(u16::from_be_bytes([d[4], d[5]]));
+            let r = (0..tables)
+                .map(|i| 12 + 16 * i)
+                .find(|&r| &d[r..r + 4] == b"glyf")
+                .unwrap();
+            u32::from_be_bytes(d[r + 8..r + 12].try_into().unwrap()) as usize
+        };
+        let start =
+            glyf + u32::from_be_bytes(d[entry(gid)..entry(gid) + 4].try_into().unwrap()) as usize;
+        d[start..start + 2].copy_from_slice(&30_000u16.to_be_bytes());
+    });
+    let dir = temp_dir("damaged-glyph");
+    std::fs::create_dir_all(&dir).unwrap();
+    let font = dir.join("damaged-b.ttf");
+    std::fs::write(&font, &data).unwrap();
+    let out = dir.join("out");
+    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "a-c"], &out);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: glyph `b` (U+0062) has no readable outline; the font may be damaged\n",
+            font.display()
+        )
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// HarfBuzz's positions (x advance, x offset, y offset) of each text of `argv[3]`
 /// (comma-separated) in the fonts `argv[1]` and `argv[2]`.
 const HB_MARKS: &str = r#"
