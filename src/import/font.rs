@@ -275,13 +275,25 @@ fn glyph_name(
 
 fn read_info(face: &Face) -> FontInfo {
     let upm = face.units_per_em();
+    // The US English record first, as fontTools' `getDebugName` takes it: a font's
+    // records in other languages are its localised names (WenQuanYi's Chinese family name
+    // comes first in its table), and the PostScript name is made from the family.
     let name = |ids: &[u16]| -> Option<String> {
         ids.iter().find_map(|&id| {
-            face.names()
-                .into_iter()
-                .filter(|n| n.name_id == id && n.is_unicode())
-                .find_map(|n| n.to_string())
-                .filter(|s| !s.trim().is_empty())
+            let mut any = None;
+            for n in face.names() {
+                if n.name_id != id || !n.is_unicode() {
+                    continue;
+                }
+                let Some(text) = n.to_string().filter(|s| !s.trim().is_empty()) else {
+                    continue;
+                };
+                if n.language() == ttf_parser::Language::English_UnitedStates {
+                    return Some(text);
+                }
+                any.get_or_insert(text);
+            }
+            any
         })
     };
     let measured_top = |c: char| -> Option<f64> {

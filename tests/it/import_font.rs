@@ -494,6 +494,64 @@ fn a_glyph_neither_reader_can_read_is_an_error_naming_it() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn the_names_come_from_the_english_records_when_others_come_first() {
+    // DejaVu's name table with a Traditional Chinese (0x404) family and copyright added:
+    // sorted by language, they come before the English ones, as in WenQuanYi Zen Hei.
+    use skrifa::raw::{FontRef, TableProvider};
+    use write_fonts::tables::name::{Name, NameRecord};
+    use write_fonts::types::NameId;
+    let data = font_bytes();
+    let font = FontRef::new(&data).unwrap();
+    let name = font.name().unwrap();
+    let mut records: Vec<NameRecord> = name
+        .name_record()
+        .iter()
+        .map(|r| {
+            let text: String = r.string(name.string_data()).unwrap().chars().collect();
+            NameRecord::new(
+                r.platform_id(),
+                r.encoding_id(),
+                r.language_id(),
+                r.name_id(),
+                text.into(),
+            )
+        })
+        .collect();
+    for (id, text) in [(0, "版權"), (1, "德加武無襯線")] {
+        records.push(NameRecord::new(
+            3,
+            1,
+            0x404,
+            NameId::new(id),
+            text.to_string().into(),
+        ));
+    }
+    records.sort_by_key(|r| (r.platform_id, r.encoding_id, r.language_id, r.name_id));
+    let mut builder = write_fonts::FontBuilder::new();
+    for r in font.table_directory.table_records() {
+        builder.add_raw(
+            r.tag(),
+            font.table_data(r.tag()).unwrap().as_bytes().to_vec(),
+        );
+    }
+    builder.add_table(&Name::new(records)).unwrap();
+    let dir = temp_dir("names");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("names.ttf");
+    std::fs::write(&path, builder.build()).unwrap();
+    let out = dir.join("out");
+    crate::common::cli::import_ok(&[path.to_str().unwrap(), "--glyphs", "A"], &out);
+    let (font, _) = load_font(&out).unwrap();
+    assert_eq!(font.info.family, "DejaVu Sans");
+    let copyright = font.info.copyright.unwrap_or_default();
+    assert!(
+        copyright.starts_with("Copyright (c) 2003 by Bitstream, Inc."),
+        "{copyright}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// HarfBuzz's positions (x advance, x offset, y offset) of each text of `argv[3]`
 /// (comma-separated) in the fonts `argv[1]` and `argv[2]`.
 const HB_MARKS: &str = r#"
