@@ -95,6 +95,32 @@ fn swept(path: &BezPath, eps: f64, inside: impl Fn(i32) -> bool) -> BezPath {
         return path.clone();
     }
     let contours = topology.contours(|winding| inside(*winding));
+    oriented(&contours, eps)
+}
+
+/// The intersection of the regions `a` and `b` fill by the nonzero rule, oriented as
+/// [`remove_overlaps`] leaves a union; boundaries within about `tolerance` of the inputs'.
+/// Empty when they do not meet; `a` unchanged when either is not made of closed, finite
+/// subpaths. For SVG clip paths.
+pub fn intersect_regions(a: &BezPath, b: &BezPath, tolerance: f64) -> BezPath {
+    use linesweeper::topology::{BinaryWindingNumber, OneOfTwo};
+    if a.elements().is_empty() || b.elements().is_empty() {
+        return BezPath::new();
+    }
+    let eps = tolerance.max(1e-9);
+    let paths = [(a, OneOfTwo::A), (b, OneOfTwo::B)];
+    let Ok(topology) =
+        Topology::<BinaryWindingNumber>::from_paths_with_correctness(paths, eps, ReallyCorrect)
+    else {
+        return a.clone();
+    };
+    let contours = topology.contours(|w| w.shape_a != 0 && w.shape_b != 0);
+    oriented(&contours, eps)
+}
+
+/// The sweep's contours as one path: outer contours counter-clockwise, holes clockwise,
+/// without slivers.
+fn oriented(contours: &linesweeper::topology::Contours, eps: f64) -> BezPath {
     let mut out = BezPath::new();
     for contour in contours.contours() {
         // linesweeper's orientation agrees with kurbo's: positive area for an outer

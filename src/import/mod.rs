@@ -334,6 +334,7 @@ pub fn import_svgs(
     let mut glyphs = Vec::new();
     let mut names = std::collections::BTreeSet::new();
     let mut stems = std::collections::BTreeSet::new();
+    let mut notes = Vec::new();
     for (path, data) in files {
         let stem = path
             .file_stem()
@@ -350,6 +351,13 @@ pub fn import_svgs(
         }
         stems.insert(stem.clone());
         let drawing = svg::read_svg(path, data, em_box)?;
+        if drawing.outside > 0 {
+            notes.push(format!(
+                "{}: {} path(s) wholly outside the canvas left out (no viewer shows them)",
+                path.display(),
+                drawing.outside
+            ));
+        }
         let cp = match opts.codepoints.get(&stem) {
             Some(&c) => c,
             None => loop {
@@ -383,7 +391,9 @@ pub fn import_svgs(
         tolerance: BUILD_SHARE * tolerance,
         ..FontInfo::with_em(family.unwrap_or_else(|| "Imported Icons".to_string()), upm)
     };
-    import_glyphs(&glyphs, info, tolerance, &opts.progress)
+    let mut imported = import_glyphs(&glyphs, info, tolerance, &opts.progress)?;
+    imported.report.notes.extend(notes);
+    Ok(imported)
 }
 
 pub(crate) fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, ImportError> {

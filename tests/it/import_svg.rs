@@ -245,3 +245,23 @@ fn svg_strokes_render_like_the_originals() {
     );
     assert_renders_like_originals(&names, &files, &built);
 }
+
+#[test]
+fn svg_clip_paths_keep_only_what_shows() {
+    // Clip paths: a rectangle, an even-odd ring, one in the clipped shape's own box, one
+    // with its own transform and its own clip path; and a square wholly outside the
+    // canvas, left out with a note.
+    let names = ["clip.svg"];
+    let (files, font, built) = import_and_build(&names, &ImportOptions::default());
+    // The half disc, the ring (2), the disc and the diamond's lower corner.
+    assert_eq!(font.glyphs[0].contours.len(), 5);
+    assert_renders_like_originals(&names, &files, &built);
+    let imp = import_svgs(&files, &ImportOptions::default()).unwrap();
+    assert_eq!(
+        imp.report.notes,
+        vec![format!(
+            "{}: 1 path(s) wholly outside the canvas left out (no viewer shows them)",
+            files[0].0.display()
+        )]
+    );
+}
