@@ -207,8 +207,8 @@ fn fonts_from_a_collection() {
         return;
     }
     let dir = temp_dir("ttc");
-    // The family is the font's first Unicode name record: the Chinese one here.
-    for (face, family) in [("0", "文泉驛正黑"), ("1", "文泉驛等寬正黑")] {
+    // The family is the font's US English name record, though its Chinese ones come first.
+    for (face, family) in [("0", "WenQuanYi Zen Hei"), ("1", "WenQuanYi Zen Hei Mono")] {
         let out = dir.join(format!("face{face}"));
         import_ok(&[WQY, "--face", face, "--glyphs", "一"], &out);
         let info = std::fs::read_to_string(out.join("font.toml")).unwrap();
