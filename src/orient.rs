@@ -19,11 +19,11 @@
 //! test samples points, not the whole boundary: a contour that leaves its container only
 //! between two samples (a crossing narrower than half a segment) counts as nested.
 
-use kurbo::{BezPath, ParamCurve, PathEl, Point, Rect, Shape};
+use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, PathSeg, Point, Rect, Shape};
 
 /// Version of what [`reversals`] returns: bump it whenever orientation changes (the fit
 /// cache stores each glyph's reversals under it).
-pub const ORIENT_VERSION: u32 = 1;
+pub const ORIENT_VERSION: u32 = 2;
 
 /// Orients closed contours (one subpath each) and joins them into one path.
 pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
@@ -75,7 +75,8 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         .filter_map(|(i, c)| Some((i, first_point(c)?)))
         .collect();
     let contains = |j: usize, i: usize| {
-        probe_points(&contours[i]).all(|p| boxes[j].contains(p) && contours[j].winding(p) != 0)
+        probe_points(&contours[i])
+            .all(|p| boxes[j].contains(p) && winding(contours[j].elements(), p) != 0)
     };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
@@ -90,7 +91,7 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         depths[i] = active
             .iter()
             .filter(|&&j| j != i && boxes[j].y0 <= p.y && p.y <= boxes[j].y1)
-            .filter(|&&j| contours[j].winding(p) != 0 && contains(j, i))
+            .filter(|&&j| winding(contours[j].elements(), p) != 0 && contains(j, i))
             .count();
     }
     depths
@@ -98,6 +99,112 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
 
 /// The contour's bounding box, grown by a hair so that rounding in the box (computed from
 /// curve extrema) never excludes a point the winding test would count.
+/// The winding number of the path `path` (its elements) around `p`: +1 inside a counter-clockwise contour (y up),
+/// as kurbo's `Shape::winding`, but exact at the segments' ends.
+///
+/// Written here rather than taken from kurbo: kurbo cuts each segment at its extrema with
+/// `subsegment`, which evaluates the ends again (`p0 + (p1 - p0) · 1` need not be `p1`),
+/// so a point level with a vertex can be counted by neither or by both of the segments
+/// that meet there. Measured: an SVG icon's counter, whose corner lies at y = 0.6 level
+/// with a corner of the outer contour, got winding 0 and was filled. Here a segment keeps
+/// its own ends, is cut only at its interior y extrema, and a crossing counts when
+/// `p.y` lies in `[low, high)` of the piece.
+pub fn winding(path: &[PathEl], p: Point) -> i32 {
+    kurbo::segments(path.iter().copied())
+        .map(|seg| segment_winding(seg, p))
+        .sum()
+}
+
+/// One segment's share of [`winding`]: a sum over its pieces monotonic in y.
+fn segment_winding(seg: PathSeg, p: Point) -> i32 {
+    let cubic = match seg {
+        PathSeg::Line(line) => {
+            let (a, b) = (line.p0, line.p1);
+            let hull = (a.x.min(b.x), a.x.max(b.x));
+            return piece_winding(a, b, hull, p, || {
+                a.x + (b.x - a.x) * ((p.y - a.y) / (b.y - a.y))
+            });
+        }
+        PathSeg::Quad(quad) => quad.raise(),
+        PathSeg::Cubic(cubic) => cubic,
+    };
+    let xs = [cubic.p0.x, cubic.p1.x, cubic.p2.x, cubic.p3.x];
+    let hull = (
+        xs.iter().copied().fold(f64::INFINITY, f64::min),
+        xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
+    // The y extrema inside (0, 1): roots of the derivative's y, a quadratic in t.
+    let (y0, y1, y2, y3) = (cubic.p0.y, cubic.p1.y, cubic.p2.y, cubic.p3.y);
+    let (a, b, c) = (
+        3.0 * (-y0 + 3.0 * y1 - 3.0 * y2 + y3),
+        6.0 * (y0 - 2.0 * y1 + y2),
+        3.0 * (y1 - y0),
+    );
+    let mut cuts: Vec<f64> = kurbo::common::solve_quadratic(c, b, a)
+        .into_iter()
+        .filter(|t| *t > 0.0 && *t < 1.0)
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    let mut total = 0;
+    let mut start = (0.0, cubic.p0);
+    for end in cuts
+        .into_iter()
+        .map(|t| (t, cubic.eval(t)))
+        .chain(std::iter::once((1.0, cubic.p3)))
+    {
+        total += piece_winding(start.1, end.1, hull, p, || {
+            crossing_x(&cubic, start, end, p.y)
+        });
+        start = end;
+    }
+    total
+}
+
+/// The winding around `p` of one piece monotonic in y, from `a` to `b` (the curve's own
+/// points), whose x lies within `hull`; `x_at` gives its x at `p.y`.
+fn piece_winding(
+    a: Point,
+    b: Point,
+    hull: (f64, f64),
+    p: Point,
+    x_at: impl FnOnce() -> f64,
+) -> i32 {
+    let (sign, low, high) = if b.y > a.y {
+        (-1, a.y, b.y)
+    } else if b.y < a.y {
+        (1, b.y, a.y)
+    } else {
+        return 0;
+    };
+    if !(low <= p.y && p.y < high) || p.x < hull.0 {
+        return 0;
+    }
+    if p.x >= hull.1 || p.x >= x_at() {
+        sign
+    } else {
+        0
+    }
+}
+
+/// The x where the cubic, monotonic in y between `start` and `end` (parameter, point),
+/// reaches `y` (within that y range): bisection on the parameter, to the last bit.
+fn crossing_x(cubic: &CubicBez, start: (f64, Point), end: (f64, Point), y: f64) -> f64 {
+    let rising = end.1.y > start.1.y;
+    let (mut lo, mut hi) = (start.0, end.0);
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if (cubic.eval(mid).y < y) == rising {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    cubic.eval(0.5 * (lo + hi)).x
+}
+
 fn padded_box(path: &BezPath) -> Rect {
     let r = path.bounding_box();
     let size = r.x0.abs().max(r.x1.abs()).max(r.y0.abs()).max(r.y1.abs());
@@ -134,7 +241,9 @@ mod tests {
                 contours
                     .iter()
                     .enumerate()
-                    .filter(|&(j, other)| j != i && probe_points(c).all(|p| other.winding(p) != 0))
+                    .filter(|&(j, other)| {
+                        j != i && probe_points(c).all(|p| winding(other.elements(), p) != 0)
+                    })
                     .count()
             })
             .collect()
@@ -224,6 +333,62 @@ mod tests {
         // Both bars counter-clockwise: the overlap is filled twice under nonzero.
         let path = orient_contours(contours[..2].to_vec());
         assert_eq!(path.winding(Point::new(50.0, 50.0)), 2);
+    }
+
+    #[test]
+    fn winding_agrees_with_kurbo_away_from_vertex_levels() {
+        // Lines, quadratics and cubics with S-bends and loops, probed on a grid whose rows
+        // are at no vertex's height: there kurbo's winding is exact too.
+        let mut path = BezPath::new();
+        path.move_to((0.0, 0.0));
+        path.curve_to((300.0, -200.0), (-100.0, 400.0), (200.0, 300.0));
+        path.quad_to((400.0, 500.0), (250.0, 100.0));
+        path.curve_to((500.0, 300.0), (100.0, -150.0), (320.0, 20.0));
+        path.line_to((150.0, -60.0));
+        path.close_path();
+        path.extend(circle(120.0, 120.0, 50.0).reverse_subpaths());
+        let mut nonzero = 0;
+        for i in 0..=80 {
+            for j in 0..=80 {
+                let p = Point::new(
+                    -60.0 + 7.3 * f64::from(i),
+                    -160.0 + 8.1 * f64::from(j) + 0.0137,
+                );
+                assert_eq!(winding(path.elements(), p), path.winding(p), "{p:?}");
+                nonzero += usize::from(path.winding(p) != 0);
+            }
+        }
+        assert!(nonzero > 1000, "{nonzero}");
+    }
+
+    #[test]
+    fn a_point_level_with_a_vertex_is_counted_once() {
+        // The outer contour of an imported icon (decimal coordinates): a point level with
+        // its corners at y = 0.6, where cutting the left edge at its ends moved its end to
+        // y = 0.6000000000000227, was outside by kurbo's winding and is inside here.
+        let mut outer = BezPath::new();
+        outer.move_to((0.0, 661.9));
+        outer.line_to((0.0, 0.6));
+        outer.curve_to((0.45, -15.02), (1.2, -31.51), (11.75, -54.3));
+        outer.line_to((987.53, -55.84));
+        outer.curve_to((998.92, -31.85), (999.55, -14.91), (1000.0, 0.6));
+        outer.line_to((1000.0, 661.9));
+        outer.close_path();
+        for x in [0.5, 125.0, 500.0, 875.0, 999.5] {
+            assert_eq!(winding(outer.elements(), Point::new(x, 0.6)), 1, "x = {x}");
+        }
+        assert_eq!(winding(outer.elements(), Point::new(-1.0, 0.6)), 0);
+        assert_eq!(winding(outer.elements(), Point::new(1001.0, 0.6)), 0);
+        // A counter with a corner on that level nests in it, and is turned clockwise.
+        let hole = square(125.0, 0.6, 500.0);
+        assert_eq!(nesting_depths(&[outer.clone(), hole.clone()]), [0, 1]);
+        let path = orient_contours(vec![outer, hole]);
+        let turns: Vec<bool> = path
+            .elements()
+            .split_inclusive(|e| matches!(e, PathEl::ClosePath))
+            .map(|els| BezPath::from_vec(els.to_vec()).area() > 0.0)
+            .collect();
+        assert_eq!(turns, [true, false]);
     }
 
     #[test]

@@ -186,7 +186,7 @@ impl<'a> Pieces<'a> {
                 .iter()
                 .enumerate()
                 .filter(|(j, other)| *j != k && other.bounds.contains(at))
-                .map(|(_, other)| other.elements.winding(at))
+                .map(|(_, other)| crate::orient::winding(other.elements, at))
                 .sum();
             let area = contour.elements.area();
             if area == 0.0 {
