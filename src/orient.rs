@@ -1,7 +1,8 @@
 //! Contour orientation for the nonzero fill rule.
 //!
 //! A contour's nesting depth is the number of other contours that contain it wholly: each
-//! of its on-curve points and segment midpoints has a nonzero winding number in the other.
+//! of its on-curve points and segment midpoints has a nonzero winding number in the other
+//! or lies on it (a counter may touch its outer contour at a corner).
 //! Even depth is an outer contour and runs counter-clockwise in y-up font units; odd depth
 //! is a counter and runs clockwise, whatever the author's direction. Contours that cross
 //! (some of their points inside the other, some outside) do not nest: both keep the depth
@@ -19,7 +20,9 @@
 //! test samples points, not the whole boundary: a contour that leaves its container only
 //! between two samples (a crossing narrower than half a segment) counts as nested.
 
-use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, PathSeg, Point, Rect, Shape};
+use kurbo::{
+    BezPath, CubicBez, ParamCurve, ParamCurveNearest, PathEl, PathSeg, Point, Rect, Shape,
+};
 
 /// Version of what [`reversals`] returns: bump it whenever orientation changes (the fit
 /// cache stores each glyph's reversals under it).
@@ -75,8 +78,7 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         .filter_map(|(i, c)| Some((i, first_point(c)?)))
         .collect();
     let contains = |j: usize, i: usize| {
-        probe_points(&contours[i])
-            .all(|p| boxes[j].contains(p) && winding(contours[j].elements(), p) != 0)
+        probe_points(&contours[i]).all(|p| boxes[j].contains(p) && encloses(&contours[j], p))
     };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
@@ -91,7 +93,7 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         depths[i] = active
             .iter()
             .filter(|&&j| j != i && boxes[j].y0 <= p.y && p.y <= boxes[j].y1)
-            .filter(|&&j| winding(contours[j].elements(), p) != 0 && contains(j, i))
+            .filter(|&&j| encloses(&contours[j], p) && contains(j, i))
             .count();
     }
     depths
@@ -205,6 +207,21 @@ fn crossing_x(cubic: &CubicBez, start: (f64, Point), end: (f64, Point), y: f64) 
     cubic.eval(0.5 * (lo + hi)).x
 }
 
+/// Whether `p` lies inside the contour `path` or on it (within a billionth of the
+/// coordinates' size): a counter whose corner touches its outer contour (frequent in CJK
+/// fonts) still nests. On the boundary the winding number is undefined, and a point there
+/// would otherwise be decided by rounding.
+fn encloses(path: &BezPath, p: Point) -> bool {
+    if winding(path.elements(), p) != 0 {
+        return true;
+    }
+    let eps = 1e-9 * (1.0 + p.x.abs().max(p.y.abs()));
+    path.segments().any(|seg| {
+        seg.bounding_box().inflate(eps, eps).contains(p)
+            && seg.nearest(p, 1e-12).distance_sq <= eps * eps
+    })
+}
+
 fn padded_box(path: &BezPath) -> Rect {
     let r = path.bounding_box();
     let size = r.x0.abs().max(r.x1.abs()).max(r.y0.abs()).max(r.y1.abs());
@@ -241,9 +258,7 @@ mod tests {
                 contours
                     .iter()
                     .enumerate()
-                    .filter(|&(j, other)| {
-                        j != i && probe_points(c).all(|p| winding(other.elements(), p) != 0)
-                    })
+                    .filter(|&(j, other)| j != i && probe_points(c).all(|p| encloses(other, p)))
                     .count()
             })
             .collect()
@@ -389,6 +404,33 @@ mod tests {
             .map(|els| BezPath::from_vec(els.to_vec()).area() > 0.0)
             .collect();
         assert_eq!(turns, [true, false]);
+    }
+
+    #[test]
+    fn a_counter_touching_its_outer_contour_at_a_corner_nests() {
+        // As in WenQuanYi's U+9007: the counter's corner lies on a vertex of the outer
+        // contour, where a line and a cubic meet; and a second counter touches an edge.
+        let mut outer = BezPath::new();
+        outer.move_to((0.0, 0.0));
+        outer.line_to((100.0, 0.0));
+        outer.curve_to((100.0, 20.0), (90.0, 40.0), (100.0, 50.0));
+        outer.line_to((100.0, 100.0));
+        outer.line_to((0.0, 100.0));
+        outer.close_path();
+        let mut corner = BezPath::new();
+        corner.move_to((60.0, 40.0));
+        corner.line_to((100.0, 50.0));
+        corner.line_to((60.0, 60.0));
+        corner.close_path();
+        let mut edge = BezPath::new();
+        edge.move_to((10.0, 70.0));
+        edge.line_to((0.0, 80.0));
+        edge.line_to((10.0, 90.0));
+        edge.close_path();
+        let contours = vec![outer, corner, edge];
+        let depths = nesting_depths(&contours);
+        assert_eq!(depths, depths_by_definition(&contours));
+        assert_eq!(depths, [0, 1, 1]);
     }
 
     #[test]
