@@ -188,7 +188,9 @@ pub fn import_font(
         tolerance: BUILD_SHARE * tolerance,
         ..source.info
     };
-    let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress)?;
+    let mut imported = import_glyphs(&source.glyphs, info, tolerance, &opts.progress, &|_| {
+        Some(path)
+    })?;
     imported.font.kerning = kerning.pairs.into_iter().next().unwrap_or_default();
     imported.report.notes.extend(kerning.note);
     anchors.give(imported.font.glyphs.iter_mut());
@@ -391,7 +393,13 @@ pub fn import_svgs(
         tolerance: BUILD_SHARE * tolerance,
         ..FontInfo::with_em(family.unwrap_or_else(|| "Imported Icons".to_string()), upm)
     };
-    let mut imported = import_glyphs(&glyphs, info, tolerance, &opts.progress)?;
+    let files_by_name: BTreeMap<&str, &Path> = glyphs
+        .iter()
+        .map(|g| g.name.as_str())
+        .zip(files.iter().map(|(path, _)| path.as_path()))
+        .collect();
+    let origin = |name: &str| files_by_name.get(name).copied();
+    let mut imported = import_glyphs(&glyphs, info, tolerance, &opts.progress, &origin)?;
     imported.report.notes.extend(notes);
     Ok(imported)
 }
@@ -402,12 +410,13 @@ pub(crate) fn check_tolerance(tolerance: Option<f64>, upm: u16) -> Result<f64, I
 
 /// Fits every glyph, in parallel on rayon's pool (each glyph alone, so the result does
 /// not depend on the thread count); glyphs sorted by name in the model, the report in
-/// the same order.
-fn import_glyphs(
+/// the same order. `origin` names the file a glyph came from, for messages.
+fn import_glyphs<'p>(
     sources: &[SourceGlyph],
     info: FontInfo,
     tolerance: f64,
     progress: &Progress,
+    origin: &dyn Fn(&str) -> Option<&'p Path>,
 ) -> Result<Imported, ImportError> {
     let grid = grid_for(tolerance);
     let done = AtomicUsize::new(0);
@@ -423,7 +432,10 @@ fn import_glyphs(
         .collect();
     fitted.sort_by(|a, b| crate::model::glyph_order(&a.glyph.name, &b.glyph.name));
     for f in &fitted {
-        check_fitted_limits(&f.glyph)?;
+        check_fitted_limits(&f.glyph).map_err(|e| match origin(&f.glyph.name) {
+            Some(path) => ImportError::at(path, e.message),
+            None => e,
+        })?;
     }
     let (glyphs, rows): (Vec<Glyph>, Vec<GlyphReport>) =
         fitted.into_iter().map(|f| (f.glyph, f.report)).unzip();

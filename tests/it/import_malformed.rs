@@ -296,7 +296,7 @@ fn drawings_beyond_the_source_limits_are_refused() {
     let err = import_svgs(&files, &ImportOptions::default()).unwrap_err();
     let text = err.to_string();
     assert!(
-        text.starts_with("glyph `far` needs a control point at "),
+        text.starts_with("far.svg: glyph `far` needs a control point at "),
         "{text}"
     );
     assert!(
