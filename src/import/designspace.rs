@@ -121,13 +121,32 @@ pub fn import_designspace(
     }
     let mut designspace = designspace;
     for i in &doc.instances {
-        let name = i
+        let given = i
             .stylename
             .clone()
             .or_else(|| i.name.clone())
-            .unwrap_or_default();
-        let location = location(&designspace, &i.location)
-            .map_err(|m| fail(format!("instance `{name}`: {m}")))?;
+            .filter(|n| !n.trim().is_empty());
+        let location = location(&designspace, &i.location).map_err(|m| {
+            fail(format!(
+                "instance `{}`: {m}",
+                given.as_deref().unwrap_or("")
+            ))
+        })?;
+        // An instance without a style name is named by its place, e.g. `Weight 350`.
+        let name = given.unwrap_or_else(|| {
+            designspace
+                .axes
+                .iter()
+                .map(|a| {
+                    format!(
+                        "{} {}",
+                        a.name,
+                        crate::source::emit::number(location.get(a))
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        });
         designspace.instances.push(NamedInstance { name, location });
     }
     Ok(ImportedFamily {

@@ -29,6 +29,7 @@
 pub mod anchors;
 pub mod contour;
 pub mod designspace;
+pub mod fea;
 pub mod fit;
 pub mod font;
 pub mod kerning;

@@ -19,7 +19,8 @@
 //! unnamed one is left out and counted in the report); a glyph `public.openTypeCategories`
 //! calls "mark" that has no `_` anchor comes in with `mark = "outline"` (the other
 //! categories are not read: xglyph classes glyphs itself); `features.fea` comes in (written
-//! next to the glyph files; `check` compiles it). Limits: guidelines, images and other
+//! next to the glyph files; `check` compiles it) with its includes inlined and renamed
+//! glyphs renamed ([`super::fea`]). Limits: guidelines, images and other
 //! layers are not imported (the model has no place for them); a glyph name outside the
 //! OpenType `post` rule is renamed as SVG file names are (`names::glyph_name_from`), in components and
 //! kerning too.
@@ -59,6 +60,13 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     let names = glyph_names(&ufo).map_err(|m| ImportError::at(path, m))?;
     let layer = ufo.default_layer();
     let glyphs: Vec<&norad::Glyph> = layer.iter().collect();
+    if glyphs.is_empty() {
+        // The sources of a font need at least one glyph (`check` refuses an empty folder).
+        return Err(ImportError::at(
+            path,
+            "the UFO has no glyphs in its default layer",
+        ));
+    }
     let grid = grid_for(tolerance);
     // Lib X-splines within this distance of the outline are current: the import
     // tolerance, or the exporting build's tolerance plus the 1/1000-unit rounding of the
@@ -130,18 +138,29 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     }
     let marks = categorised_marks(&ufo, &names);
     for g in glyphs.iter_mut() {
-        g.outline_mark = marks.contains(g.name.as_str()) && !g.attaches_by_anchor();
+        // A glyph mapped to a combining mark is a mark whatever the lib says (`check`
+        // requires it); without a `_` anchor its outline places it.
+        let combining = g.unicodes.iter().any(|&c| crate::source::is_combining(c));
+        g.outline_mark = (marks.contains(g.name.as_str()) || combining) && !g.attaches_by_anchor();
     }
     let kerning = kerning(&ufo, &names);
+    let features = if ufo.features.trim().is_empty() {
+        None
+    } else {
+        let next_to = path.parent().unwrap_or(Path::new("."));
+        let text = super::fea::stand_alone(&ufo.features, &[next_to, path], &names)
+            .map_err(|m| ImportError::at(path, m))?;
+        Some(FeatureFile {
+            path: path.join("features.fea"),
+            text,
+        })
+    };
     Ok(Imported {
         font: Font {
             info,
             glyphs,
             kerning,
-            features: (!ufo.features.trim().is_empty()).then(|| FeatureFile {
-                path: path.join("features.fea"),
-                text: ufo.features.clone(),
-            }),
+            features,
         },
         report: Report {
             rows,
@@ -181,6 +200,14 @@ fn font_info(ufo: &norad::Font, upm: u16, tolerance: f64, opts: &ImportOptions) 
             .map(String::from)
     };
     let version = version_text(fi.version_major, fi.version_minor, lib_string(VERSION_KEY));
+    // A fontinfo without vertical metrics (or with ones that cross) gets the usual
+    // 0.8 / -0.2 em, as a font's damaged hhea does: the sources need ascender > descender.
+    let (ascender, descender) = match (fi.ascender, fi.descender) {
+        (Some(a), Some(d)) if a > d => (a, d),
+        (Some(a), None) if a > defaults.descender => (a, defaults.descender),
+        (None, Some(d)) if defaults.ascender > d => (defaults.ascender, d),
+        _ => (defaults.ascender, defaults.descender),
+    };
     FontInfo {
         family: opts
             .family
@@ -189,8 +216,8 @@ fn font_info(ufo: &norad::Font, upm: u16, tolerance: f64, opts: &ImportOptions) 
             .unwrap_or(defaults.family),
         style: fi.style_name.clone().unwrap_or(defaults.style),
         units_per_em: upm,
-        ascender: fi.ascender.unwrap_or(defaults.ascender),
-        descender: fi.descender.unwrap_or(defaults.descender),
+        ascender,
+        descender,
         x_height: fi.x_height.unwrap_or(defaults.x_height),
         cap_height: fi.cap_height.unwrap_or(defaults.cap_height),
         tolerance: ufo

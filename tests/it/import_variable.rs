@@ -268,9 +268,14 @@ fn a_foreign_designspace_imports_compatibly() {
         ufo.save(foreign.join(format!("XglyphSans-{style}.ufo")))
             .unwrap();
     }
-    std::fs::copy(
-        built.join("XglyphSans.designspace"),
+    // An instance without a style name or name, as in fontmake's test designspaces: it is
+    // named by its place.
+    let doc = std::fs::read_to_string(built.join("XglyphSans.designspace")).unwrap();
+    let unnamed = r#"familyname="Xglyph Sans" stylename="SemiBold" name="Xglyph Sans SemiBold""#;
+    assert!(doc.contains(unnamed));
+    std::fs::write(
         foreign.join("XglyphSans.designspace"),
+        doc.replace(unnamed, r#"familyname="Xglyph Sans""#),
     )
     .unwrap();
     // Fitted alone, the two masters come out with different point counts.
@@ -313,6 +318,11 @@ fn a_foreign_designspace_imports_compatibly() {
             .unwrap();
         assert!(error <= 0.75 * TOLERANCE, "{line}");
     }
+    let info = std::fs::read_to_string(out.join("font.toml")).unwrap();
+    assert!(
+        info.contains("[[instance]]\nname = \"Weight 600\"\nlocation = { wght = 600 }\n"),
+        "{info}"
+    );
     let (code, out_text, err) = xglyph(&["check", s(&out)]);
     assert_eq!(code, 0, "{out_text}{err}");
 }

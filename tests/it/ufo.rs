@@ -539,3 +539,81 @@ fn cli_import_of_the_export_equals_the_formatted_sources() {
     ));
     assert!(!dir.path().join("other").exists());
 }
+
+/// A UFO as other tools leave them (from ufo2ft's and fontmake's test data): zero vertical
+/// metrics, a hyphenated glyph name, a combining mark without anchors, and features that
+/// include a file next to the UFO. The import writes sources that `check` accepts.
+#[test]
+fn a_sparse_foreign_ufo_comes_in_as_sources_that_check() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut ufo = norad::Font::new();
+    ufo.font_info.units_per_em =
+        Some(norad::fontinfo::NonNegativeIntegerOrFloat::new(1000.0).unwrap());
+    ufo.font_info.family_name = Some("Sparse".into());
+    // Zero metrics, as fontTools' defaults leave them in test UFOs.
+    ufo.font_info.ascender = Some(0.0);
+    ufo.font_info.descender = Some(0.0);
+    let mut beh = norad::Glyph::new("beh-ar");
+    beh.width = 500.0;
+    beh.codepoints.insert('\u{0628}');
+    let pt =
+        |x: f64, y: f64| norad::ContourPoint::new(x, y, norad::PointType::Line, false, None, None);
+    beh.contours.push(norad::Contour::new(
+        vec![
+            pt(50.0, 0.0),
+            pt(450.0, 0.0),
+            pt(450.0, 100.0),
+            pt(50.0, 100.0),
+        ],
+        None,
+    ));
+    let mut cgj = norad::Glyph::new("cgj");
+    cgj.codepoints.insert('\u{034F}');
+    ufo.default_layer_mut().insert_glyph(beh);
+    ufo.default_layer_mut().insert_glyph(cgj);
+    ufo.features = "include(shared.fea);\nfeature ss01 { sub beh-ar by beh-ar; } ss01;\n".into();
+    let path = dir.path().join("Sparse.ufo");
+    ufo.save(&path).expect("saves");
+    std::fs::write(dir.path().join("shared.fea"), "@arabic = [beh-ar];\n").unwrap();
+
+    let src = dir.path().join("src");
+    let (code, _, err) = crate::common::cli::xglyph(&[
+        "import",
+        path.to_str().unwrap(),
+        "-o",
+        src.to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    let info = std::fs::read_to_string(src.join("font.toml")).unwrap();
+    assert!(
+        info.contains("\nascender = 800\ndescender = -200\n"),
+        "{info}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(src.join("features.fea")).unwrap(),
+        "@arabic = [beh_ar];\n\nfeature ss01 { sub beh_ar by beh_ar; } ss01;\n"
+    );
+    assert!(std::fs::read_to_string(src.join("cgj.toml"))
+        .unwrap()
+        .contains("mark = \"outline\""));
+    let (code, out, err) = crate::common::cli::xglyph(&["check", src.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+
+    // A UFO without glyphs cannot become sources: refused, naming it.
+    let empty = dir.path().join("Empty.ufo");
+    norad::Font::new().save(&empty).expect("saves");
+    let (code, out, err) = crate::common::cli::xglyph(&[
+        "import",
+        empty.to_str().unwrap(),
+        "-o",
+        dir.path().join("empty-src").to_str().unwrap(),
+    ]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: the UFO has no glyphs in its default layer\n",
+            empty.display()
+        )
+    );
+}
