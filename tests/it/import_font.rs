@@ -382,20 +382,11 @@ fn kerning_equals_harfbuzz_on_every_pair() {
 fn a_damaged_gpos_is_an_error_naming_the_file() {
     // DejaVu with its GPOS lookup list offset pointed past the end of the table.
     let mut data = font_bytes();
-    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
-    let record = (0..tables)
-        .map(|i| 12 + 16 * i)
-        .find(|&r| &data[r..r + 4] == b"GPOS")
-        .expect("DejaVu has GPOS");
-    let at = |k: usize| u32::from_be_bytes(data[k..k + 4].try_into().unwrap()) as usize;
-    let (offset, length) = (at(record + 8), at(record + 12));
+    let (offset, length) = table(&data, b"GPOS");
     let lookup_list = offset + 8;
     data[lookup_list..lookup_list + 2].copy_from_slice(&(length as u16 + 16).to_be_bytes());
-    let dir = temp_dir("damaged-gpos");
-    std::fs::create_dir_all(&dir).unwrap();
-    let font = dir.join("damaged.ttf");
-    std::fs::write(&font, &data).unwrap();
-    let out = dir.join("out");
+    let (font, out) = written("damaged-gpos", "damaged.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
     let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "A-C"], &out);
     assert_eq!(
         err,
@@ -405,6 +396,17 @@ fn a_damaged_gpos_is_an_error_naming_the_file() {
         )
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The offset and length of table `tag` in the font bytes `data`.
+fn table(data: &[u8], tag: &[u8; 4]) -> (usize, usize) {
+    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
+    let record = (0..tables)
+        .map(|i| 12 + 16 * i)
+        .find(|&r| &data[r..r + 4] == tag)
+        .expect("DejaVu has the table");
+    let at = |k: usize| u32::from_be_bytes(data[k..k + 4].try_into().unwrap()) as usize;
+    (at(record + 8), at(record + 12))
 }
 
 /// DejaVu with the `glyf` data of the glyph for `c` changed by `edit`, which gets the
@@ -419,16 +421,8 @@ fn dejavu_with_glyph_edited(
         .glyph_index(c)
         .unwrap()
         .0;
-    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
-    let at = |d: &[u8], k: usize| u32::from_be_bytes(d[k..k + 4].try_into().unwrap()) as usize;
-    let table = |d: &[u8], tag: &[u8]| {
-        let r = (0..tables)
-            .map(|i| 12 + 16 * i)
-            .find(|&r| &d[r..r + 4] == tag)
-            .unwrap();
-        at(d, r + 8)
-    };
-    let (head, loca) = (table(&data, b"head"), table(&data, b"loca"));
+    let (head, _) = table(&data, b"head");
+    let (loca, _) = table(&data, b"loca");
     assert_eq!(
         &data[head + 50..head + 52],
         &[0, 1],
@@ -439,6 +433,16 @@ fn dejavu_with_glyph_edited(
     data
 }
 
+/// The font bytes `data` written as `name` in a fresh folder for the test `case`: the
+/// font's path and an output folder next to it.
+fn written(case: &str, name: &str, data: &[u8]) -> (PathBuf, PathBuf) {
+    let dir = temp_dir(case);
+    std::fs::create_dir_all(&dir).unwrap();
+    let font = dir.join(name);
+    std::fs::write(&font, data).unwrap();
+    (font, dir.join("out"))
+}
+
 #[test]
 fn a_letter_the_font_leaves_empty_comes_in_empty_with_a_note() {
     // `b`'s loca entry moved to its end: no glyf data, as a font's blank glyph has.
@@ -446,11 +450,8 @@ fn a_letter_the_font_leaves_empty_comes_in_empty_with_a_note() {
         let end: [u8; 4] = d[entry(gid + 1)..entry(gid + 1) + 4].try_into().unwrap();
         d[entry(gid)..entry(gid) + 4].copy_from_slice(&end);
     });
-    let dir = temp_dir("empty-letter");
-    std::fs::create_dir_all(&dir).unwrap();
-    let font = dir.join("blank-b.ttf");
-    std::fs::write(&font, &data).unwrap();
-    let out = dir.join("out");
+    let (font, out) = written("empty-letter", "blank-b.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
     let stdout = crate::common::cli::import_ok(&[font.to_str().unwrap(), "--glyphs", "a-c"], &out);
     assert!(
         stdout.contains("\nnote: glyph `b` (U+0062) is empty in the font\n"),
@@ -466,23 +467,13 @@ fn a_letter_the_font_leaves_empty_comes_in_empty_with_a_note() {
 fn a_glyph_neither_reader_can_read_is_an_error_naming_it() {
     // `b` claims 30,000 contours in a glyph of a few dozen bytes.
     let data = dejavu_with_glyph_edited('b', |d, entry, gid| {
-        let glyf = {
-            let tables = usize::from(u16::from_be_bytes([d[4], d[5]]));
-            let r = (0..tables)
-                .map(|i| 12 + 16 * i)
-                .find(|&r| &d[r..r + 4] == b"glyf")
-                .unwrap();
-            u32::from_be_bytes(d[r + 8..r + 12].try_into().unwrap()) as usize
-        };
+        let (glyf, _) = table(d, b"glyf");
         let start =
             glyf + u32::from_be_bytes(d[entry(gid)..entry(gid) + 4].try_into().unwrap()) as usize;
         d[start..start + 2].copy_from_slice(&30_000u16.to_be_bytes());
     });
-    let dir = temp_dir("damaged-glyph");
-    std::fs::create_dir_all(&dir).unwrap();
-    let font = dir.join("damaged-b.ttf");
-    std::fs::write(&font, &data).unwrap();
-    let out = dir.join("out");
+    let (font, out) = written("damaged-glyph", "damaged-b.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
     let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "a-c"], &out);
     assert_eq!(
         err,
