@@ -99,10 +99,9 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
     depths
 }
 
-/// The contour's bounding box, grown by a hair so that rounding in the box (computed from
-/// curve extrema) never excludes a point the winding test would count.
-/// The winding number of the path `path` (its elements) around `p`: +1 inside a counter-clockwise contour (y up),
-/// as kurbo's `Shape::winding`, but exact at the segments' ends.
+/// The winding number of the path `path` (its elements) around `p`: +1 inside a
+/// counter-clockwise contour (y up), as kurbo's `Shape::winding`, but exact at the
+/// segments' ends.
 ///
 /// Written here rather than taken from kurbo: kurbo cuts each segment at its extrema with
 /// `subsegment`, which evaluates the ends again (`p0 + (p1 - p0) · 1` need not be `p1`),
@@ -222,6 +221,8 @@ fn encloses(path: &BezPath, p: Point) -> bool {
     })
 }
 
+/// The contour's bounding box, grown by a hair so that rounding in the box (computed from
+/// curve extrema) never excludes a point the winding test would count.
 fn padded_box(path: &BezPath) -> Rect {
     let r = path.bounding_box();
     let size = r.x0.abs().max(r.x1.abs()).max(r.y0.abs()).max(r.y1.abs());

@@ -161,7 +161,8 @@ pub fn read_font(
                     return Err(ImportError::at(
                         path,
                         format!(
-                            "glyph `{name}` (U+{:04X}) has no readable outline; the font may be damaged",
+                            "glyph `{name}` (U+{:04X}) has no readable outline; \
+                             the font may be damaged",
                             u32::from(unicodes[0])
                         ),
                     ));

@@ -162,7 +162,9 @@ impl Ink {
         if ink.elements().is_empty() {
             return;
         }
-        if ink.bounding_box().intersect(self.canvas).area() > 0.0 {
+        // Non-finite ink is kept, for `read_svg` to refuse.
+        let bounds = ink.bounding_box();
+        if !bounds.is_finite() || bounds.intersect(self.canvas).area() > 0.0 {
             self.parts.extend(ink.iter());
         } else {
             self.outside += 1;

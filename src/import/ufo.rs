@@ -20,10 +20,10 @@
 //! calls "mark" that has no `_` anchor comes in with `mark = "outline"` (the other
 //! categories are not read: xglyph classes glyphs itself); `features.fea` comes in (written
 //! next to the glyph files; `check` compiles it) with its includes inlined and renamed
-//! glyphs renamed ([`super::fea`]). Limits: guidelines, images and other
-//! layers are not imported (the model has no place for them); a glyph name outside the
-//! OpenType `post` rule is renamed as SVG file names are (`names::glyph_name_from`), in components and
-//! kerning too.
+//! glyphs renamed ([`super::fea`]). Limits: guidelines, images and other layers are not
+//! imported (the model has no place for them); a glyph name outside the OpenType `post`
+//! rule is renamed as SVG file names are (`names::glyph_name_from`), in components,
+//! kerning and features too.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
