@@ -141,10 +141,9 @@ fn segment_winding(seg: PathSeg, p: Point) -> i32 {
         6.0 * (y0 - 2.0 * y1 + y2),
         3.0 * (y1 - y0),
     );
-    let mut cuts: Vec<f64> = kurbo::common::solve_quadratic(c, b, a)
-        .into_iter()
-        .filter(|t| *t > 0.0 && *t < 1.0)
-        .collect();
+    // At most two roots, kept in place: no allocation per segment on this hot path.
+    let mut cuts = kurbo::common::solve_quadratic(c, b, a);
+    cuts.retain(|t| *t > 0.0 && *t < 1.0);
     cuts.sort_by(f64::total_cmp);
     let mut total = 0;
     let mut start = (0.0, cubic.p0);

@@ -338,6 +338,7 @@ pub fn import_svgs(
     let mut names = std::collections::BTreeSet::new();
     let mut stems = std::collections::BTreeSet::new();
     let mut notes = Vec::new();
+    let mut files_by_name: BTreeMap<String, &Path> = BTreeMap::new();
     for (path, data) in files {
         let stem = path
             .file_stem()
@@ -353,6 +354,7 @@ pub fn import_svgs(
             ));
         }
         stems.insert(stem.clone());
+        files_by_name.insert(name.clone(), path.as_path());
         let drawing = svg::read_svg(path, data, em_box)?;
         if drawing.outside > 0 {
             notes.push(format!(
@@ -394,11 +396,6 @@ pub fn import_svgs(
         tolerance: BUILD_SHARE * tolerance,
         ..FontInfo::with_em(family.unwrap_or_else(|| "Imported Icons".to_string()), upm)
     };
-    let files_by_name: BTreeMap<&str, &Path> = glyphs
-        .iter()
-        .map(|g| g.name.as_str())
-        .zip(files.iter().map(|(path, _)| path.as_path()))
-        .collect();
     let origin = |name: &str| files_by_name.get(name).copied();
     let mut imported = import_glyphs(&glyphs, info, tolerance, &opts.progress, &origin)?;
     imported.report.notes.extend(notes);
