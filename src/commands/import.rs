@@ -20,7 +20,7 @@ use crate::terminal::{out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
-    /// One font (.ttf, .otf, or a collection .ttc, .otc), one UFO folder (.ufo), one
+    /// One font (.ttf, .otf, .woff, .woff2, or a collection .ttc, .otc), one UFO folder (.ufo), one
     /// designspace (.designspace: a font with masters), or one or more SVG drawings (.svg,
     /// one glyph each).
     #[arg(required = true)]
@@ -69,20 +69,25 @@ fn kind(path: &Path) -> Result<Kind, ImportError> {
         .map(|e| e.to_string_lossy().to_lowercase())
         .unwrap_or_default();
     match ext.as_str() {
-        "ttf" | "otf" | "ttc" | "otc" => Ok(Kind::Font),
+        "ttf" | "otf" | "ttc" | "otc" | "woff" | "woff2" => Ok(Kind::Font),
         "svg" => Ok(Kind::Svg),
         "ufo" => Ok(Kind::Ufo),
         "designspace" => Ok(Kind::Designspace),
         _ => Err(ImportError::at(
             path,
-            "unknown input type; expected a .ttf, .otf, .ttc, .otc, .svg or .designspace file \
-             or a .ufo folder",
+            "unknown input type; expected a font (.ttf, .otf, .ttc, .otc, .woff, .woff2), \
+             a .svg or .designspace file or a .ufo folder",
         )),
     }
 }
 
 fn read(path: &Path) -> Result<Vec<u8>, ImportError> {
     std::fs::read(path).map_err(|e| ImportError::at(path, format!("cannot read: {e}")))
+}
+
+/// A font file's bytes, unpacked when it is WOFF or WOFF2.
+fn read_font(path: &Path) -> Result<Vec<u8>, ImportError> {
+    import::webfont::unpacked(read(path)?).map_err(|message| ImportError::at(path, message))
 }
 
 pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
@@ -92,7 +97,7 @@ pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
         match kind(one) {
             Ok(Kind::Designspace) => return import_family(&args, Progress(progress)),
             Ok(Kind::Font) => {
-                let data = read(one)?;
+                let data = read_font(one)?;
                 if import::variable::is_variable(&data, args.face.unwrap_or(0)) {
                     return import_variable(&args, &data, Progress(progress));
                 }
@@ -272,7 +277,7 @@ pub fn import_inputs(
         refuse_svg_flags(args)?;
         opts.glyphs = args.glyphs.as_deref().map(parse_glyph_list).transpose()?;
         let path = &args.inputs[0];
-        return import::import_font(path, &read(path)?, &opts);
+        return import::import_font(path, &read_font(path)?, &opts);
     }
     if args.glyphs.is_some() {
         return Err(ImportError::plain(

@@ -1,7 +1,7 @@
 //! Importers: existing outlines -> editable X-spline sources.
 //!
 //! ```text
-//! font.rs (ttf-parser) | svg.rs (usvg)  ->  original BezPath per glyph
+//! webfont.rs (WOFF, WOFF2 unpacked) -> font.rs (ttf-parser) | svg.rs (usvg)  ->  original BezPath per glyph
 //! ufo.rs (norad): X-splines from the lib when an xglyph export wrote them, else as above
 //!   -> contour.rs (closed contours, corners, edges, smooth stretches)
 //!   -> fit.rs (X-spline control points within the fit target)
@@ -38,6 +38,7 @@ pub mod report;
 pub mod svg;
 pub mod ufo;
 pub mod variable;
+pub mod webfont;
 
 pub use ufo::import_ufo;
 

@@ -239,3 +239,111 @@ fn fonts_from_a_collection() {
     }
     assert!(!dir.join("none").exists() && !dir.join("single").exists());
 }
+
+/// Every file `dir` holds, by name, with its bytes.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    listing(dir)
+        .into_iter()
+        .map(|name| {
+            let bytes = std::fs::read(dir.join(&name)).unwrap();
+            (name, bytes)
+        })
+        .collect()
+}
+
+/// The one file in `dir` whose name ends with `ext`.
+fn only_with_ext(dir: &Path, ext: &str) -> PathBuf {
+    let found: Vec<String> = listing(dir)
+        .into_iter()
+        .filter(|n| n.ends_with(ext))
+        .collect();
+    assert_eq!(found.len(), 1, "{ext} in {}: {found:?}", dir.display());
+    dir.join(&found[0])
+}
+
+#[test]
+fn web_fonts_come_in_as_the_fonts_they_wrap() {
+    let dir = temp_dir("webfonts");
+    // xglyph's own WOFF2 (glyf and loca transformed) against its TTF of the same build.
+    let src = dir.join("src");
+    import_ok(&[DEJAVU, "--glyphs", "a-z,&"], &src);
+    let built = dir.join("built");
+    let (code, _, err) = xglyph(&[
+        "build",
+        src.to_str().unwrap(),
+        "-o",
+        built.to_str().unwrap(),
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    let mut pairs = vec![(
+        only_with_ext(&built, ".ttf"),
+        only_with_ext(&built, ".woff2"),
+    )];
+    // WOFF (zlib) and WOFF2 as fontTools writes them, from the DejaVu fixture itself.
+    let have_tools = crate::common::tools::available(
+        crate::common::tools::python_imports("fontTools, brotli"),
+        "fontTools with brotli",
+        "pip install fonttools brotli",
+    );
+    if have_tools {
+        for flavor in ["woff", "woff2"] {
+            let packed = dir.join(format!("DejaVuSans.{flavor}"));
+            let script = "import sys; from fontTools.ttLib import TTFont\n\
+                          f = TTFont(sys.argv[1]); f.flavor = sys.argv[2]; f.save(sys.argv[3])";
+            crate::common::tools::run(
+                Command::new("python3")
+                    .args(["-c", script, DEJAVU, flavor])
+                    .arg(&packed),
+            );
+            pairs.push((PathBuf::from(DEJAVU), packed));
+        }
+    }
+    for (i, (plain, packed)) in pairs.iter().enumerate() {
+        let (a, b) = (
+            dir.join(format!("plain{i}")),
+            dir.join(format!("packed{i}")),
+        );
+        let args = |font: &Path| {
+            vec![
+                font.to_str().unwrap().to_string(),
+                "--glyphs".into(),
+                "a-z,&".into(),
+            ]
+        };
+        let plain_args = args(plain);
+        let packed_args = args(packed);
+        let report = import_ok(
+            &plain_args.iter().map(String::as_str).collect::<Vec<_>>(),
+            &a,
+        );
+        let packed_report = import_ok(
+            &packed_args.iter().map(String::as_str).collect::<Vec<_>>(),
+            &b,
+        );
+        assert!(report.contains("total: 27 glyphs"), "{report}");
+        assert_eq!(
+            packed_report.replace(b.to_str().unwrap(), "OUT"),
+            report.replace(a.to_str().unwrap(), "OUT"),
+            "{}",
+            packed.display()
+        );
+        assert!(
+            contents(&a) == contents(&b),
+            "{} differs from {}",
+            packed.display(),
+            plain.display()
+        );
+    }
+    // A damaged WOFF2: exit 1, the file and what is wrong, nothing written.
+    let woff2 = std::fs::read(&pairs[0].1).unwrap();
+    let cut = dir.join("cut.woff2");
+    std::fs::write(&cut, &woff2[..woff2.len() / 2]).unwrap();
+    let err = crate::common::cli::import_fails(&[cut.to_str().unwrap()], &dir.join("cut"));
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: cannot unpack this WOFF2 file; it may be damaged\n",
+            cut.display()
+        )
+    );
+}
