@@ -131,19 +131,30 @@ pub fn intersect_regions(a: &BezPath, b: &BezPath, tolerance: f64) -> BezPath {
 
 /// The sweep's contours as one path: outer contours counter-clockwise, holes clockwise,
 /// without slivers.
+///
+/// linesweeper walks every contour with the region on the same hand, the loops it splits
+/// off where a contour touches itself included, so one sign of area marks every outer
+/// contour and the other every hole. Its `outer` flag is not used: where a hole touches
+/// itself at a vertex (remixicon's `ruler-2-line`: a ruler's teeth), it marks the larger
+/// loop outer, and trusting the flag filled that hole. The sign is read from the contour of
+/// largest area, which is outer whatever the convention (a hole lies inside a larger one).
 fn oriented(contours: &linesweeper::topology::Contours, eps: f64) -> BezPath {
+    let with_area: Vec<(&BezPath, f64)> = contours
+        .contours()
+        .map(|contour| (&contour.path, contour.path.area()))
+        .filter(|&(_, area)| area != 0.0)
+        .collect();
+    let outer_sign = with_area
+        .iter()
+        .map(|&(_, area)| area)
+        .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .map_or(1.0, f64::signum);
     let mut out = BezPath::new();
-    for contour in contours.contours() {
-        // linesweeper's orientation agrees with kurbo's: positive area for an outer
-        // contour. Checked per contour, so a change of convention cannot flip the font.
-        let area = contour.path.area();
-        if area == 0.0 {
-            continue;
-        }
-        if (area > 0.0) == contour.outer {
-            push_without_slivers(&mut out, &contour.path, eps);
+    for (path, _) in with_area {
+        if outer_sign > 0.0 {
+            push_without_slivers(&mut out, path, eps);
         } else {
-            push_without_slivers(&mut out, &contour.path.reverse_subpaths(), eps);
+            push_without_slivers(&mut out, &path.reverse_subpaths(), eps);
         }
     }
     out
@@ -534,6 +545,29 @@ mod tests {
             both += usize::from(want);
         }
         assert!(both > 50, "the probes reach the intersection ({both})");
+    }
+
+    #[test]
+    fn a_hole_touching_itself_at_a_vertex_stays_a_hole() {
+        // A square with a comb-shaped hole (clockwise) that passes through (30, 70) twice:
+        // the small square above-left of it is a loop of the hole, and the two squares
+        // beside that loop are teeth of the outer. A bar overlapping the square's bottom
+        // edge makes the sweep's output the result.
+        let path = BezPath::from_svg(
+            "M0,0 L100,0 L100,100 L0,100 Z \
+             M10,10 L10,50 L30,50 L30,70 L10,70 L10,90 L30,90 L30,70 L50,70 L50,90 \
+             L90,90 L90,10 Z M60,-10 L120,-10 L120,5 L60,5 Z",
+        )
+        .expect("a valid path");
+        let union = remove_overlaps(&path, 1e-4);
+        let areas: Vec<f64> = subpaths(&union).iter().map(|p| p.area()).collect();
+        let filled: f64 = areas.iter().filter(|a| **a > 0.0).sum();
+        let holes: f64 = areas.iter().filter(|a| **a < 0.0).sum();
+        // The square and the bar's 700 outside it; the hole's 80 x 80 less two teeth.
+        assert!((filled - 10_700.0).abs() < 1e-6, "{areas:?}");
+        assert!((holes + 5_600.0).abs() < 1e-6, "{areas:?}");
+        let area = path.bounding_box().inflate(5.0, 5.0);
+        assert_eq!(differences(&union, &path, area, 0.5, 0.01), 0);
     }
 
     #[test]
