@@ -350,17 +350,36 @@ pub fn glyph_outline(face: &Face, glyph: GlyphId) -> Option<BezPath> {
 }
 
 /// Whether the font stores an empty outline for `gid`, as for a space: an empty `loca`
-/// range (glyf), or a charstring that draws nothing (CFF, CFF2). Glyf data that draws
-/// nothing is not empty but unreadable: skrifa reads simple glyphs lazily and draws
-/// nothing, without an error, from a header whose arrays overrun the glyph.
+/// range or a simple glyph whose points, read whole, all lie on one spot (glyf; Material
+/// Icons keeps its digits as one point at the origin), or a charstring that draws nothing
+/// (CFF, CFF2). Other glyf data that draws nothing is not empty but unreadable: skrifa
+/// reads simple glyphs lazily and draws nothing, without an error, from a header whose
+/// arrays overrun the glyph.
 pub(super) fn stores_no_outline(font: &skrifa::FontRef, gid: u16) -> bool {
+    use skrifa::raw::tables::glyf::Glyph;
     use skrifa::raw::tables::loca::LocaGlyph;
     use skrifa::raw::TableProvider;
     let id = skrifa::GlyphId::new(u32::from(gid));
     if let Ok(glyf) = font.glyf() {
-        return font
-            .loca(None)
-            .is_ok_and(|loca| matches!(loca.get(id, &glyf), Some(LocaGlyph::Empty)));
+        let Ok(loca) = font.loca(None) else {
+            return false;
+        };
+        return match loca.get(id, &glyf) {
+            Some(LocaGlyph::Empty) => true,
+            Some(LocaGlyph::Glyph(Glyph::Simple(simple))) => {
+                // A header whose arrays overrun the glyph reads as fewer contours.
+                let contours = usize::try_from(simple.number_of_contours()).unwrap_or(0);
+                let n = simple.num_points();
+                if contours == 0 || simple.end_pts_of_contours().len() != contours || n == 0 {
+                    return false;
+                }
+                let mut points = vec![skrifa::raw::types::Point::<i32>::default(); n];
+                let mut flags = vec![skrifa::raw::tables::glyf::PointFlags::default(); n];
+                simple.read_points_fast(&mut points, &mut flags).is_ok()
+                    && points.windows(2).all(|pair| pair[0] == pair[1])
+            }
+            _ => false,
+        };
     }
     super::variable::outline_at(font, gid, &skrifa::instance::Location::default())
         .is_ok_and(|(outline, _)| outline.elements().is_empty())

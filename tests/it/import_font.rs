@@ -464,6 +464,31 @@ fn a_letter_the_font_leaves_empty_comes_in_empty_with_a_note() {
 }
 
 #[test]
+fn a_letter_drawn_as_one_point_comes_in_empty_with_a_note() {
+    // `b` as Material Icons stores its letters: one contour of one point at the origin
+    // (1 contour, a zero box, end point 0, no instructions, one flag: on-curve, x and y
+    // unchanged). It outlines nothing; before, the import stopped at it as damaged.
+    let data = dejavu_with_glyph_edited('b', |d, entry, gid| {
+        let (glyf, _) = table(d, b"glyf");
+        let start =
+            glyf + u32::from_be_bytes(d[entry(gid)..entry(gid) + 4].try_into().unwrap()) as usize;
+        let one_point = [0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x31];
+        d[start..start + one_point.len()].copy_from_slice(&one_point);
+    });
+    let (font, out) = written("point-letter", "point-b.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
+    let stdout = crate::common::cli::import_ok(&[font.to_str().unwrap(), "--glyphs", "a-c"], &out);
+    assert!(
+        stdout.contains("\nnote: glyph `b` (U+0062) is empty in the font\n"),
+        "{stdout}"
+    );
+    let (font, _) = load_font(&out).unwrap();
+    let contours = |name: &str| font.glyph(name).unwrap().contours.len();
+    assert_eq!((contours("a"), contours("b"), contours("c")), (2, 0, 1));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_glyph_neither_reader_can_read_is_an_error_naming_it() {
     // `b` claims 30,000 contours in a glyph of a few dozen bytes.
     let data = dejavu_with_glyph_edited('b', |d, entry, gid| {
