@@ -229,8 +229,8 @@ fn command_line_errors_write_nothing() {
         ),
         (
             &["notes.txt"],
-            "error: notes.txt: unknown input type; expected a .ttf, .otf, .ttc, .otc, .svg or \
-             .designspace file or a .ufo folder\n"
+            "error: notes.txt: unknown input type; expected a font (.ttf, .otf, .ttc, .otc, \
+             .woff, .woff2), a .svg or .designspace file or a .ufo folder\n"
                 .into(),
         ),
     ];
