@@ -55,6 +55,10 @@ pub const PRIMARY: Settings = Settings {
 /// [`ALTERNATIVES`] to be tried at that count.
 const ALTERNATIVES_REACH: f64 = 2.0;
 
+/// Point counts the search walks down one at a time from its first guess before it takes
+/// doubling steps.
+const DOWN_ONE_BY_ONE: usize = 2;
+
 /// Tried before the [`ALTERNATIVES`], with one point fewer than the search found, where an
 /// open stretch has two or more interior points and ends at a corner of the original. A
 /// run of two TrueType quadratics mostly needs three held points, and two free ones at
@@ -891,13 +895,35 @@ fn fit_stretch(
     let guess = curves.clamp(min_inner + 1, max_inner);
     let fit = attempt(guess);
     if fit.error <= target {
+        // Down one point at a time (a TrueType stretch mostly stops within two), then by
+        // doubling steps: an outline drawn with many short curves (a stroke's round caps
+        // and joins, 4 cubics per half turn) needs far fewer points than curves. Then
+        // bisect between the fewest that held and the most known to miss.
         let (mut hi, mut hi_fit) = (guess, fit);
+        let mut lo = min_inner;
+        let mut step = 1;
+        let mut walked = 0;
         while hi - 1 > min_inner {
-            let lower = attempt(hi - 1);
+            let m = hi.saturating_sub(step).max(min_inner + 1);
+            let lower = attempt(m);
             if lower.error > target {
+                lo = m;
                 break;
             }
-            (hi, hi_fit) = (hi - 1, lower);
+            (hi, hi_fit) = (m, lower);
+            walked += 1;
+            if walked >= DOWN_ONE_BY_ONE {
+                step *= 2;
+            }
+        }
+        while hi - lo > 1 && lo > min_inner {
+            let mid = (lo + hi) / 2;
+            let fit = attempt(mid);
+            if fit.error <= target {
+                (hi, hi_fit) = (mid, fit);
+            } else {
+                lo = mid;
+            }
         }
         return Search {
             below: below(hi),
