@@ -2,9 +2,12 @@
 //!
 //! A contour's nesting depth is the number of other contours that contain it wholly: each
 //! of its on-curve points and segment midpoints has a nonzero winding number in the other
-//! or lies on it (a counter may touch its outer contour at a corner).
+//! or lies on it (a counter may touch its outer contour at a corner). A contour that runs
+//! the other way round from another may also reach outside it by [`SLACK`] of its size and
+//! still nest: a counter drawn touching its outer contour that fitting moved across it.
 //! Even depth is an outer contour and runs counter-clockwise in y-up font units; odd depth
-//! is a counter and runs clockwise, whatever the author's direction. Contours that cross
+//! is a counter and runs clockwise, whatever the author's direction (which only decides
+//! whether the slack applies). Contours that cross
 //! (some of their points inside the other, some outside) do not nest: both keep the depth
 //! of their surroundings, so two overlapping strokes are both filled and their overlap too,
 //! as a type designer draws them before overlap removal.
@@ -26,7 +29,7 @@ use kurbo::{
 
 /// Version of what [`reversals`] returns: bump it whenever orientation changes (the fit
 /// cache stores each glyph's reversals under it).
-pub const ORIENT_VERSION: u32 = 2;
+pub const ORIENT_VERSION: u32 = 3;
 
 /// Orients closed contours (one subpath each) and joins them into one path.
 pub fn orient_contours(contours: Vec<BezPath>) -> BezPath {
@@ -66,19 +69,46 @@ pub fn join_reversed(contours: &[BezPath], reversed: &[bool]) -> BezPath {
     BezPath::from_vec(out)
 }
 
-/// For each contour, how many of the others contain it wholly: a nonzero winding number
-/// around each of its on-curve points and segment midpoints (0 for a contour without points).
+/// How far outside another contour, as a share of that contour's size (the larger side of
+/// its box), a contour may reach and still nest in it when it runs the other way round: a
+/// counter drawn touching its outer contour that the fitting moved across it by a hair.
+/// Found on an SVG icon (Font Awesome's `buy-n-large`: the B, a counter, touches the
+/// ellipse around it, and after the import's fit one corner lay 0.3 units outside it, so
+/// the B was filled). 1e-3 of a CJK glyph's 1,000-unit box is one unit.
+pub const SLACK: f64 = 1e-3;
+
+/// For each contour, how many of the others contain it: a nonzero winding number around
+/// each of its on-curve points and segment midpoints (0 for a contour without points), or,
+/// for a contour running the other way round, around each of them or within [`SLACK`] of
+/// the other's boundary.
 pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
     let boxes: Vec<Rect> = contours.iter().map(padded_box).collect();
+    let slacks: Vec<f64> = boxes
+        .iter()
+        .map(|b| SLACK * b.width().max(b.height()))
+        .collect();
+    let reach: Vec<Rect> = boxes
+        .iter()
+        .zip(&slacks)
+        .map(|(b, &slack)| b.inflate(slack, slack))
+        .collect();
     let mut by_left: Vec<usize> = (0..contours.len()).collect();
-    by_left.sort_by(|&a, &b| boxes[a].x0.total_cmp(&boxes[b].x0));
+    by_left.sort_by(|&a, &b| reach[a].x0.total_cmp(&reach[b].x0));
     let mut probes: Vec<(usize, Point)> = contours
         .iter()
         .enumerate()
         .filter_map(|(i, c)| Some((i, first_point(c)?)))
         .collect();
+    // kurbo's area is positive for counter-clockwise contours in y-up coordinates.
+    let ccw: Vec<bool> = contours.iter().map(|c| c.area() > 0.0).collect();
+    let inside = |j: usize, p: Point| boxes[j].contains(p) && encloses(&contours[j], p);
     let contains = |j: usize, i: usize| {
-        probe_points(&contours[i]).all(|p| boxes[j].contains(p) && encloses(&contours[j], p))
+        if probe_points(&contours[i]).all(|p| inside(j, p)) {
+            return true;
+        }
+        // Only a counter (the other direction) may reach out by the slack.
+        ccw[i] != ccw[j]
+            && probe_points(&contours[i]).all(|p| inside(j, p) || near(&contours[j], p, slacks[j]))
     };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
@@ -86,17 +116,25 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
     let mut entering = by_left.into_iter().peekable();
     let mut active: Vec<usize> = Vec::new();
     for (i, p) in probes {
-        while let Some(j) = entering.next_if(|&j| boxes[j].x0 <= p.x) {
+        while let Some(j) = entering.next_if(|&j| reach[j].x0 <= p.x) {
             active.push(j);
         }
-        active.retain(|&j| boxes[j].x1 >= p.x);
+        active.retain(|&j| reach[j].x1 >= p.x);
         depths[i] = active
             .iter()
-            .filter(|&&j| j != i && boxes[j].y0 <= p.y && p.y <= boxes[j].y1)
-            .filter(|&&j| encloses(&contours[j], p) && contains(j, i))
+            .filter(|&&j| j != i && reach[j].y0 <= p.y && p.y <= reach[j].y1)
+            .filter(|&&j| contains(j, i))
             .count();
     }
     depths
+}
+
+/// Whether `p` lies within `distance` of the contour `path`'s boundary.
+fn near(path: &BezPath, p: Point, distance: f64) -> bool {
+    path.segments().any(|seg| {
+        seg.bounding_box().inflate(distance, distance).contains(p)
+            && seg.nearest(p, 1e-9).distance_sq <= distance * distance
+    })
 }
 
 /// The winding number of the path `path` (its elements) around `p`: +1 inside a
@@ -258,7 +296,18 @@ mod tests {
                 contours
                     .iter()
                     .enumerate()
-                    .filter(|&(j, other)| j != i && probe_points(c).all(|p| encloses(other, p)))
+                    .filter(|&(j, other)| {
+                        let slack = SLACK * {
+                            let b = padded_box(other);
+                            b.width().max(b.height())
+                        };
+                        let counter = (c.area() > 0.0) != (other.area() > 0.0);
+                        j != i
+                            && (probe_points(c).all(|p| encloses(other, p))
+                                || counter
+                                    && probe_points(c)
+                                        .all(|p| encloses(other, p) || near(other, p, slack)))
+                    })
                     .count()
             })
             .collect()
@@ -431,6 +480,30 @@ mod tests {
         let depths = nesting_depths(&contours);
         assert_eq!(depths, depths_by_definition(&contours));
         assert_eq!(depths, [0, 1, 1]);
+    }
+
+    #[test]
+    fn a_counter_reaching_out_by_less_than_the_slack_nests() {
+        // The outer square is 100 units: the slack is 0.1. A clockwise counter whose right
+        // edge lies 0.05 outside nests; counter-clockwise (an overlapping stroke), or 0.5
+        // outside, it crosses and does not.
+        let rect = |x1: f64| kurbo::Rect::new(10.0, 10.0, x1, 50.0).to_path(0.1);
+        let clockwise = |x1: f64| rect(x1).reverse_subpaths();
+        assert!(
+            rect(100.05).area() > 0.0,
+            "kurbo's rectangles run counter-clockwise"
+        );
+        let cases = [
+            (clockwise(100.05), [0, 1]),
+            (rect(100.05), [0, 0]),
+            (clockwise(100.5), [0, 0]),
+            (clockwise(99.0), [0, 1]),
+        ];
+        for (counter, want) in cases {
+            let contours = vec![square(0.0, 0.0, 100.0), counter];
+            assert_eq!(nesting_depths(&contours), want, "{}", contours[1].to_svg());
+            assert_eq!(depths_by_definition(&contours), want);
+        }
     }
 
     #[test]
