@@ -106,9 +106,11 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
         if probe_points(&contours[i]).all(|p| inside(j, p)) {
             return true;
         }
-        // Only a counter (the other direction) may reach out by the slack.
+        // Only a counter (the other direction) may reach out by the slack, and only one that
+        // lies inside somewhere (not a sliver beside the other, within the slack of it).
         ccw[i] != ccw[j]
             && probe_points(&contours[i]).all(|p| inside(j, p) || near(&contours[j], p, slacks[j]))
+            && probe_points(&contours[i]).any(|p| winding(contours[j].elements(), p) != 0)
     };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
@@ -306,7 +308,8 @@ mod tests {
                             && (probe_points(c).all(|p| encloses(other, p))
                                 || counter
                                     && probe_points(c)
-                                        .all(|p| encloses(other, p) || near(other, p, slack)))
+                                        .all(|p| encloses(other, p) || near(other, p, slack))
+                                    && probe_points(c).any(|p| winding(other.elements(), p) != 0))
                     })
                     .count()
             })
@@ -498,6 +501,13 @@ mod tests {
             (rect(100.05), [0, 0]),
             (clockwise(100.5), [0, 0]),
             (clockwise(99.0), [0, 1]),
+            // Wholly outside, within the slack of the right edge: a sliver, not a counter.
+            (
+                kurbo::Rect::new(100.02, 10.0, 100.08, 50.0)
+                    .to_path(0.1)
+                    .reverse_subpaths(),
+                [0, 0],
+            ),
         ];
         for (counter, want) in cases {
             let contours = vec![square(0.0, 0.0, 100.0), counter];
