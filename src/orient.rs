@@ -107,10 +107,18 @@ pub fn nesting_depths(contours: &[BezPath]) -> Vec<usize> {
             return true;
         }
         // Only a counter (the other direction) may reach out by the slack, and only one that
-        // lies inside somewhere (not a sliver beside the other, within the slack of it).
-        ccw[i] != ccw[j]
-            && probe_points(&contours[i]).all(|p| inside(j, p) || near(&contours[j], p, slacks[j]))
-            && probe_points(&contours[i]).any(|p| winding(contours[j].elements(), p) != 0)
+        // lies inside somewhere (not a sliver beside the other, within the slack of it). A
+        // point on the boundary is within the slack.
+        if ccw[i] == ccw[j] {
+            return false;
+        }
+        let mut inside_somewhere = false;
+        let within = probe_points(&contours[i]).all(|p| {
+            let strictly = boxes[j].contains(p) && winding(contours[j].elements(), p) != 0;
+            inside_somewhere |= strictly;
+            strictly || near(&contours[j], p, slacks[j])
+        });
+        within && inside_somewhere
     };
     probes.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
 
