@@ -1,9 +1,11 @@
 //! The design space of a font with masters: axes, named instances, master locations, and
 //! how a position blends the masters.
 //!
-//! Locations are in **user coordinates** (e.g. `wght = 650`), keyed by axis tag. Each axis
-//! normalises user values to -1..0..1 around its default, as OpenType `fvar` does
-//! (piecewise linear, no `avar` mapping yet).
+//! Locations are in **user coordinates** (e.g. `wght = 650`), keyed by axis tag. An axis
+//! may map user values to design values (`map`, a designspace `<map>`, OpenType `avar`); the
+//! masters blend linearly in design values. Each axis normalises to -1..0..1 around its
+//! default as OpenType does: `fvar` normalisation of the design values, which is the user
+//! normalisation followed by `avar`.
 //!
 //! Limit: every master other than the default lies **on one axis** (all other coordinates at
 //! their defaults). Masters on the same axis split it into tents, so a position blends the
@@ -26,20 +28,95 @@ pub struct Axis {
     pub default: f64,
     /// Largest user value.
     pub max: f64,
+    /// The axis map: `(user, design)` pairs, both strictly increasing, from `min` to `max`;
+    /// design values are piecewise linear in between. Empty: design = user (linear).
+    pub map: Vec<(f64, f64)>,
 }
 
 impl Axis {
-    /// `user` normalised to -1..1: `min` → -1, `default` → 0, `max` → 1, linear in between,
-    /// clamped to the axis range.
+    /// `user` normalised to -1..1 in design space: `min` → -1, `default` → 0, `max` → 1,
+    /// linear in the design values in between, clamped to the axis range. This is where the
+    /// masters blend, OpenType's normalised coordinate after `avar`.
     pub fn normalize(&self, user: f64) -> f64 {
-        let v = user.clamp(self.min, self.max);
-        if v < self.default {
-            (v - self.default) / (self.default - self.min)
-        } else if v > self.default {
-            (v - self.default) / (self.max - self.default)
-        } else {
-            0.0
+        if self.map.is_empty() {
+            return self.normalize_user(user);
         }
+        let v = self.design(user.clamp(self.min, self.max));
+        normalize_between(
+            v,
+            self.design(self.min),
+            self.design(self.default),
+            self.design(self.max),
+        )
+    }
+
+    /// `user` normalised linearly in user values (OpenType's coordinate before `avar`).
+    pub fn normalize_user(&self, user: f64) -> f64 {
+        normalize_between(
+            user.clamp(self.min, self.max),
+            self.min,
+            self.default,
+            self.max,
+        )
+    }
+
+    /// The design value of `user` (itself without a map; the end pairs beyond the map).
+    pub fn design(&self, user: f64) -> f64 {
+        piecewise(self.map.iter().copied(), user)
+    }
+
+    /// The user value of `design`: the inverse of [`Axis::design`].
+    pub fn user(&self, design: f64) -> f64 {
+        piecewise(self.map.iter().map(|&(u, d)| (d, u)), design)
+    }
+
+    /// The `avar` segment map of this axis: `(user, design)` normalised pairs, one per map
+    /// entry (with -1, 0 and 1 always present). Identity pairs for an axis without a map.
+    pub fn normalized_map(&self) -> Vec<(f64, f64)> {
+        let mut pairs: Vec<(f64, f64)> = vec![(-1.0, -1.0), (0.0, 0.0), (1.0, 1.0)];
+        pairs.extend(
+            self.map
+                .iter()
+                .map(|&(u, _)| (self.normalize_user(u), self.normalize(u))),
+        );
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pairs.dedup_by(|a, b| a.0 == b.0);
+        pairs
+    }
+}
+
+/// `v` normalised against `min`, `default`, `max` (each side linear; 0 for an empty side).
+fn normalize_between(v: f64, min: f64, default: f64, max: f64) -> f64 {
+    if v < default {
+        (v - default) / (default - min)
+    } else if v > default {
+        (v - default) / (max - default)
+    } else {
+        0.0
+    }
+}
+
+/// The piecewise-linear function through `pairs` (sorted by input, strictly increasing) at
+/// `x`; the identity when there are none. Beyond the ends it keeps the end's offset, as
+/// fontTools' `piecewiseLinearMap` does (xglyph's maps span the axis, so this is only for
+/// values clamped to it).
+fn piecewise(pairs: impl Iterator<Item = (f64, f64)> + Clone, x: f64) -> f64 {
+    let mut prev: Option<(f64, f64)> = None;
+    for (a, b) in pairs.clone() {
+        if x == a {
+            return b;
+        }
+        if x < a {
+            return match prev {
+                Some((a0, b0)) => b0 + (x - a0) / (a - a0) * (b - b0),
+                None => x + (b - a),
+            };
+        }
+        prev = Some((a, b));
+    }
+    match prev {
+        Some((a, b)) => x + (b - a),
+        None => x,
     }
 }
 
@@ -232,6 +309,7 @@ mod tests {
                 min: 400.0,
                 default: 400.0,
                 max: 700.0,
+                map: vec![],
             }],
             instances: vec![],
         }
@@ -249,12 +327,61 @@ mod tests {
             min: 100.0,
             default: 400.0,
             max: 900.0,
+            map: vec![],
         };
         assert_eq!(a.normalize(100.0), -1.0);
         assert_eq!(a.normalize(250.0), -0.5);
         assert_eq!(a.normalize(400.0), 0.0);
         assert_eq!(a.normalize(650.0), 0.5);
         assert_eq!(a.normalize(1000.0), 1.0);
+    }
+
+    /// Weight 100..400..900 whose design values crowd the heavy end: 600 is 80 % of the
+    /// way to the Black master in design space, though 40 % in user values.
+    fn mapped() -> Axis {
+        Axis {
+            tag: "wght".into(),
+            name: "Weight".into(),
+            min: 100.0,
+            default: 400.0,
+            max: 900.0,
+            map: vec![(100.0, 0.0), (400.0, 50.0), (600.0, 90.0), (900.0, 100.0)],
+        }
+    }
+
+    #[test]
+    fn a_map_normalises_in_design_values() {
+        let a = mapped();
+        assert_eq!(a.design(750.0), 95.0);
+        assert_eq!(a.user(95.0), 750.0);
+        assert_eq!(a.normalize(600.0), 0.8);
+        assert_eq!(a.normalize_user(600.0), 0.4);
+        assert_eq!(a.normalize(750.0), 0.9);
+        assert_eq!(a.normalize(250.0), -0.5);
+        assert_eq!(a.normalize(100.0), -1.0);
+        assert_eq!(a.normalize(2000.0), 1.0);
+        assert_eq!(
+            a.normalized_map(),
+            vec![(-1.0, -1.0), (0.0, 0.0), (0.4, 0.8), (1.0, 1.0)]
+        );
+        let mut linear = mapped();
+        linear.map.clear();
+        assert_eq!(
+            linear.normalized_map(),
+            vec![(-1.0, -1.0), (0.0, 0.0), (1.0, 1.0)]
+        );
+        assert_eq!(linear.design(650.0), 650.0);
+    }
+
+    #[test]
+    fn masters_blend_along_the_map() {
+        let ds = Designspace {
+            axes: vec![mapped()],
+            instances: vec![],
+        };
+        let regions = ds.regions(&[at(100.0), at(900.0)]).unwrap();
+        let w = ds.weights(&regions, &at(600.0));
+        assert!((w[0] - 0.2).abs() < 1e-12 && w[1] == 0.0 && (w[2] - 0.8).abs() < 1e-12);
     }
 
     #[test]
@@ -312,6 +439,7 @@ mod tests {
             min: 75.0,
             default: 100.0,
             max: 100.0,
+            map: vec![],
         });
         let mut corner = at(700.0);
         corner.0.insert("wdth".into(), 75.0);

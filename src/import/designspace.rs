@@ -12,10 +12,10 @@
 //! default and each other source measured against the blended outlines. Limits: the
 //! sources' outlines of such a glyph must have one Bézier structure (else the error names
 //! the glyph); a glyph taken from xglyph's lib in one source and fitted in another must
-//! come out compatible by itself (else the error names the glyph and master). Discrete axes, axis maps (`avar`),
-//! sources on a layer other than the default, and rules are not supported (an error says
-//! which); locations are read as user coordinates (`uservalue`, else `xvalue`, which equals
-//! it without a map).
+//! //! come out compatible by itself (else the error names the glyph and master). Axis maps
+//! become the axes' `map`; locations are read as user coordinates (`uservalue`, else
+//! `xvalue` through the inverse map). Discrete axes, `<mappings>` (avar 2), sources on a
+//! layer other than the default, and rules are not supported (an error says which).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -208,32 +208,71 @@ fn refit_compatible(
     Ok(())
 }
 
-/// The continuous axes of `doc`.
+/// The continuous axes of `doc`, with their maps (`<map input="user" output="design">`).
 fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
+    if doc.axis_mappings.as_ref().is_some_and(|m| !m.mappings.is_empty()) {
+        return Err("`<mappings>` (avar 2, mapping between axes) are not supported".into());
+    }
     doc.axes
         .iter()
         .map(|a| {
-            if a.map.as_ref().is_some_and(|m| !m.is_empty()) {
-                return Err(format!("axis `{}` has a map (avar), which is not supported", a.name));
-            }
-            match (a.minimum, a.maximum) {
-                (Some(min), Some(max)) => Ok(Axis {
-                    tag: a.tag.clone(),
-                    name: a.name.clone(),
-                    min,
-                    default: a.default,
-                    max,
-                }),
-                _ => Err(format!(
+            let (Some(min), Some(max)) = (a.minimum, a.maximum) else {
+                return Err(format!(
                     "axis `{}` is discrete (values, no minimum and maximum), which is not supported",
                     a.name
-                )),
+                ));
+            };
+            let mut axis = Axis {
+                tag: a.tag.clone(),
+                name: a.name.clone(),
+                min,
+                default: a.default,
+                max,
+                map: vec![],
+            };
+            if let Some(map) = a.map.as_ref().filter(|m| !m.is_empty()) {
+                axis.map = axis_map(&axis, map)?;
             }
+            Ok(axis)
         })
         .collect()
 }
 
-/// A location by axis tag; an axis the dimensions leave out is at its default.
+/// A designspace axis map as xglyph's: sorted by user value, from the axis `min` to its
+/// `max` (an end the map leaves out is placed as fontTools extrapolates it, keeping the
+/// nearest entry's offset), design values strictly increasing.
+fn axis_map(axis: &Axis, map: &[norad::designspace::AxisMapping]) -> Result<Vec<(f64, f64)>, String> {
+    let mut pairs: Vec<(f64, f64)> = map.iter().map(|m| (m.input, m.output)).collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pairs.dedup_by(|a, b| a == b);
+    let given = Axis {
+        map: pairs.clone(),
+        ..axis.clone()
+    };
+    pairs.retain(|&(u, _)| (axis.min..=axis.max).contains(&u));
+    for end in [axis.min, axis.max] {
+        if !pairs.iter().any(|&(u, _)| u == end) {
+            pairs.push((end, given.design(end)));
+        }
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some(w) = pairs.windows(2).find(|w| w[1].0 <= w[0].0 || w[1].1 <= w[0].1) {
+        return Err(format!(
+            "axis `{}` has a map that does not increase (user {} -> design {}, then user {} -> \
+             design {}); xglyph's axis maps must increase in both",
+            axis.name,
+            crate::source::emit::number(w[0].0),
+            crate::source::emit::number(w[0].1),
+            crate::source::emit::number(w[1].0),
+            crate::source::emit::number(w[1].1)
+        ));
+    }
+    Ok(pairs)
+}
+
+/// A location by axis tag, in user values; an axis the dimensions leave out is at its
+/// default. A dimension's `uservalue` is taken as it is, its `xvalue` (design) through the
+/// inverse of the axis map.
 fn location(ds: &Designspace, dims: &[Dimension]) -> Result<Location, String> {
     let mut location = Location::default();
     for d in dims {
@@ -244,7 +283,7 @@ fn location(ds: &Designspace, dims: &[Dimension]) -> Result<Location, String> {
             .ok_or_else(|| format!("the location names the unknown axis `{}`", d.name))?;
         let value = d
             .uservalue
-            .or(d.xvalue)
+            .or(d.xvalue.map(|x| axis.user(x)))
             .ok_or_else(|| format!("the location on `{}` has no value", d.name))?;
         location.0.insert(axis.tag.clone(), value);
     }

@@ -13,7 +13,9 @@
 //! master against the blend of their Bézier outlines, which is what the font's own
 //! interpolation gives when its variations peak at the axis ends.
 //!
-//! Limits: a non-linear `avar` is refused (the design space has no axis map yet); variation
+//! Axis maps: `avar` becomes each axis's `map`, in user units ([`read_axis_maps`]).
+//!
+//! Limits: an `avar` that does not increase is refused; `avar` 2 is not read; variation
 //! regions that peak inside an axis (intermediate masters) or at corners of two axes are
 //! not taken: the masters at the ends interpolate linearly, and such a font is reported
 //! with a note. Kerning comes from GPOS at each master's location ([`super::kerning`]).
@@ -24,6 +26,7 @@ use kurbo::BezPath;
 use rayon::prelude::*;
 use skrifa::instance::{LocationRef, Size};
 use skrifa::outline::{DrawSettings, OutlinePen};
+use skrifa::raw::types::F2Dot14;
 use skrifa::raw::TableProvider;
 use skrifa::{FontRef, MetadataProvider};
 
@@ -55,13 +58,12 @@ pub fn import_variable_font(
     let fail = |m: String| ImportError::at(path, m);
     let font = FontRef::from_index(data, opts.face)
         .map_err(|e| fail(format!("not a readable TrueType/OpenType font ({e})")))?;
-    check_avar(&font).map_err(fail)?;
     let name = |id| {
         font.localized_strings(id)
             .english_or_first()
             .map(|s| s.chars().collect::<String>())
     };
-    let axes: Vec<Axis> = font
+    let mut axes: Vec<Axis> = font
         .axes()
         .iter()
         .map(|a| Axis {
@@ -70,8 +72,10 @@ pub fn import_variable_font(
             min: f64::from(a.min_value()),
             default: f64::from(a.default_value()),
             max: f64::from(a.max_value()),
+            map: vec![],
         })
         .collect();
+    read_axis_maps(&font, &mut axes).map_err(fail)?;
     let instances: Vec<NamedInstance> = font
         .named_instances()
         .iter()
@@ -307,31 +311,72 @@ fn check_gvar(font: &FontRef, source: &font::SourceFont) -> Result<(), String> {
     Ok(())
 }
 
-/// Refuses an `avar` that maps some axis non-linearly (the design space has no axis map).
-fn check_avar(font: &FontRef) -> Result<(), String> {
+/// The axis maps of `avar`, in the axes' user units: each segment map's pairs become
+/// `(user, design)` pairs whose design values use the user scale (an axis end maps to
+/// itself), written with the fewest decimals that give back the same F2Dot14 coordinates,
+/// so that a rebuild writes the same `avar`. An axis whose map is the identity gets none;
+/// a map that is not strictly increasing is refused (xglyph's maps must invert).
+fn read_axis_maps(font: &FontRef, axes: &mut [Axis]) -> Result<(), String> {
     let Ok(avar) = font.avar() else {
         return Ok(());
     };
-    let axes = font.axes();
     for (i, maps) in avar.axis_segment_maps().iter().enumerate() {
         let maps = maps.map_err(|e| format!("cannot read the avar table ({e})"))?;
-        if let Some(m) = maps
+        let Some(axis) = axes.get_mut(i) else {
+            break;
+        };
+        let pairs: Vec<(F2Dot14, F2Dot14)> = maps
             .axis_value_maps()
             .iter()
-            .find(|m| m.from_coordinate() != m.to_coordinate())
-        {
-            let tag = axes
-                .get(i)
-                .map_or_else(|| format!("#{i}"), |a| a.tag().to_string());
-            return Err(format!(
-                "avar maps axis `{tag}` non-linearly ({} -> {}); xglyph's design space has no \
-                 axis map yet, so this font cannot be imported with its masters",
-                m.from_coordinate().to_f32(),
-                m.to_coordinate().to_f32()
-            ));
+            .map(|m| (m.from_coordinate(), m.to_coordinate()))
+            .collect();
+        if pairs.iter().all(|(from, to)| from == to) {
+            continue;
         }
+        let mut map: Vec<(f64, f64)> = Vec::with_capacity(pairs.len() + 3);
+        for (from, to) in pairs {
+            let user = nicest(axis, from);
+            let design = nicest(axis, to);
+            if map.last().is_some_and(|&(u, d)| user <= u || design <= d) {
+                return Err(format!(
+                    "avar maps axis `{}` without increasing ({} -> {} after {:?}); xglyph's \
+                     axis maps must increase, so this font cannot be imported with its masters",
+                    axis.tag,
+                    from.to_f32(),
+                    to.to_f32(),
+                    map.last().map(|&(u, d)| (axis.normalize_user(u), axis.normalize_user(d)))
+                ));
+            }
+            map.push((user, design));
+        }
+        let ends = [(axis.min, axis.min), (axis.max, axis.max)];
+        if map.first().is_some_and(|&(u, _)| u > axis.min) {
+            map.insert(0, ends[0]);
+        }
+        if map.last().is_some_and(|&(u, _)| u < axis.max) {
+            map.push(ends[1]);
+        }
+        axis.map = map;
     }
     Ok(())
+}
+
+/// The user value of the normalised coordinate `v` on `axis` with the fewest decimals (up
+/// to 6) that normalises back to `v`.
+fn nicest(axis: &Axis, v: F2Dot14) -> f64 {
+    let x = f64::from(v.to_f32());
+    let exact = if x < 0.0 {
+        axis.default + x * (axis.default - axis.min)
+    } else {
+        axis.default + x * (axis.max - axis.default)
+    };
+    (0..=6)
+        .map(|digits| {
+            let scale = 10f64.powi(digits);
+            (exact * scale).round() / scale
+        })
+        .find(|&u| F2Dot14::from_f32(axis.normalize_user(u) as f32) == v)
+        .unwrap_or(exact)
 }
 
 /// A note when gvar has variation regions that peak inside an axis or on two axes at once,

@@ -202,7 +202,7 @@ struct AxisSpans {
 }
 
 fn load_axis(ctx: &mut Ctx<'_>, t: &DeTable<'_>, header: usize) -> Option<(Axis, AxisSpans)> {
-    let suggested = check_keys(ctx, t, &["tag", "name", "min", "default", "max"]);
+    let suggested = check_keys(ctx, t, &["tag", "name", "min", "default", "max", "map"]);
     let tag = require(ctx, t, "tag", "tag = \"wght\"", header, &suggested).and_then(|v| {
         let tag = string(ctx, v, "tag")?;
         let printable = tag.bytes().all(|b| (0x20..=0x7E).contains(&b));
@@ -257,6 +257,10 @@ fn load_axis(ctx: &mut Ctx<'_>, t: &DeTable<'_>, header: usize) -> Option<(Axis,
         );
         return None;
     }
+    let map = match get(t, "map") {
+        Some(v) => axis_map(ctx, v, min, max)?,
+        None => Vec::new(),
+    };
     Some((
         Axis {
             tag,
@@ -264,6 +268,7 @@ fn load_axis(ctx: &mut Ctx<'_>, t: &DeTable<'_>, header: usize) -> Option<(Axis,
             min,
             default,
             max,
+            map,
         },
         AxisSpans {
             tag: tag_at,
@@ -271,6 +276,100 @@ fn load_axis(ctx: &mut Ctx<'_>, t: &DeTable<'_>, header: usize) -> Option<(Axis,
             max: max_at,
         },
     ))
+}
+
+/// An axis `map`: `[user, design]` pairs from `min` to `max`, both values strictly
+/// increasing (so that the map can be inverted, as a designspace's sources need), or `None`
+/// with a diagnostic at the entry to fix.
+fn axis_map(
+    ctx: &mut Ctx<'_>,
+    v: &Spanned<DeValue<'_>>,
+    min: f64,
+    max: f64,
+) -> Option<Vec<(f64, f64)>> {
+    const SHAPE: &str = "a list of [user, design] pairs such as [[400, 0], [550, 70], [700, 100]]";
+    let DeValue::Array(entries) = v.get_ref() else {
+        ctx.err(
+            v.span().start,
+            format!("`map` must be {SHAPE}, found {}", type_name(v.get_ref())),
+        );
+        return None;
+    };
+    let mut pairs: Vec<(f64, f64, usize)> = Vec::with_capacity(entries.len());
+    let mut ok = true;
+    for e in entries {
+        let at = e.span().start;
+        match e.get_ref() {
+            DeValue::Array(p) if p.len() == 2 => {
+                match (number(ctx, &p[0], "map"), number(ctx, &p[1], "map")) {
+                    (Some(u), Some(d)) => pairs.push((u, d, at)),
+                    _ => ok = false,
+                }
+            }
+            other => {
+                let found = match other {
+                    DeValue::Array(p) => format!("an array of {} values", p.len()),
+                    other => type_name(other).to_string(),
+                };
+                ctx.err(at, format!("`map` must be {SHAPE}, found {found}"));
+                ok = false;
+            }
+        }
+    }
+    if !ok {
+        return None;
+    }
+    let user = |x: f64| emit::number(x);
+    let (Some(&(first, _, first_at)), Some(&(last, _, last_at))) = (pairs.first(), pairs.last())
+    else {
+        ctx.err(
+            v.span().start,
+            format!("`map` must be {SHAPE}, found an empty list; leave it out for a linear axis"),
+        );
+        return None;
+    };
+    for w in pairs.windows(2) {
+        let ((u0, d0, _), (u1, d1, at)) = (w[0], w[1]);
+        let (what, was, is) = if u1 <= u0 {
+            ("user", u0, u1)
+        } else if d1 <= d0 {
+            ("design", d0, d1)
+        } else {
+            continue;
+        };
+        ctx.err(
+            at,
+            format!(
+                "`map` {what} values must increase: {} follows {}",
+                user(is),
+                user(was)
+            ),
+        );
+        return None;
+    }
+    if first != min {
+        ctx.err(
+            first_at,
+            format!(
+                "`map` must start at the axis `min` = {}, found user value {}",
+                user(min),
+                user(first)
+            ),
+        );
+        return None;
+    }
+    if last != max {
+        ctx.err(
+            last_at,
+            format!(
+                "`map` must end at the axis `max` = {}, found user value {}",
+                user(max),
+                user(last)
+            ),
+        );
+        return None;
+    }
+    Some(pairs.into_iter().map(|(u, d, _)| (u, d)).collect())
 }
 
 /// A `[[master]]`: the spec, and where its `name` and `location` were written.

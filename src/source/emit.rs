@@ -67,6 +67,14 @@ pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[M
         let _ = writeln!(out, "min = {}", number(a.min));
         let _ = writeln!(out, "default = {}", number(a.default));
         let _ = writeln!(out, "max = {}", number(a.max));
+        if !a.map.is_empty() {
+            let pairs: Vec<String> = a
+                .map
+                .iter()
+                .map(|&(u, d)| format!("[{}, {}]", number(u), number(d)))
+                .collect();
+            let _ = writeln!(out, "map = [{}]", pairs.join(", "));
+        }
     }
     for m in masters {
         let _ = writeln!(out, "\n[[master]]");

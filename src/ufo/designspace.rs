@@ -14,8 +14,8 @@
 //! kerning, components (with this master's offsets), anchors and the X-spline sources (the
 //! glyph lib key of [`super::lib`]) are the master's own.
 //!
-//! Locations are written as design coordinates (`xvalue`) equal to the user coordinates:
-//! the axes have no `avar` mapping yet, so the two spaces are the same. Instances carry no
+//! Locations are written as design coordinates (`xvalue`): the user coordinates through the
+//! axis `map` (written as `<map>`), equal to them on an axis without one. Instances carry no
 //! `filename` (fontmake then names their UFOs itself when asked for static instances).
 
 use std::collections::{HashMap, HashSet};
@@ -91,6 +91,12 @@ pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocumen
             default: a.default,
             minimum: Some(a.min),
             maximum: Some(a.max),
+            map: (!a.map.is_empty()).then(|| {
+                a.map
+                    .iter()
+                    .map(|&(input, output)| designspace::AxisMapping { input, output })
+                    .collect()
+            }),
             ..designspace::Axis::default()
         })
         .collect();
@@ -132,13 +138,13 @@ pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocumen
 }
 
 /// A location on every axis (an axis it leaves out is at its default), as design
-/// coordinates equal to the user ones.
+/// coordinates.
 fn dimensions(ds: &Designspace, location: &Location) -> Vec<Dimension> {
     ds.axes
         .iter()
         .map(|a| Dimension {
             name: a.name.clone(),
-            xvalue: Some(location.get(a) + 0.0),
+            xvalue: Some(a.design(location.get(a)) + 0.0),
             ..Dimension::default()
         })
         .collect()
@@ -210,13 +216,14 @@ mod tests {
     }
 
     #[test]
-    fn axes_sources_and_instances_in_the_xml() {
+    fn axes_maps_sources_and_instances_in_the_xml() {
         let axis = Axis {
             tag: "wght".into(),
             name: "Weight".into(),
             min: 400.0,
             default: 400.0,
             max: 700.0,
+            map: vec![(400.0, 0.0), (500.0, 40.0), (700.0, 100.0)],
         };
         let at = |v: f64| Location([("wght".to_string(), v)].into_iter().collect());
         let family = OutlinedFamily {
@@ -254,24 +261,28 @@ mod tests {
         let want = "<?xml version='1.0' encoding='UTF-8'?>
 <designspace format=\"5.0\">
   <axes>
-    <axis name=\"Weight\" tag=\"wght\" default=\"400\" minimum=\"400\" maximum=\"700\"/>
+    <axis name=\"Weight\" tag=\"wght\" default=\"400\" minimum=\"400\" maximum=\"700\">
+      <map input=\"400\" output=\"0\"/>
+      <map input=\"500\" output=\"40\"/>
+      <map input=\"700\" output=\"100\"/>
+    </axis>
   </axes>
   <sources>
     <source familyname=\"Xglyph Sans\" stylename=\"Regular\" name=\"master.Regular\" filename=\"A-Regular.ufo\">
       <location>
-        <dimension name=\"Weight\" xvalue=\"400\"/>
+        <dimension name=\"Weight\" xvalue=\"0\"/>
       </location>
     </source>
     <source familyname=\"Xglyph Sans\" stylename=\"Bold\" name=\"master.Bold\" filename=\"A-Bold.ufo\">
       <location>
-        <dimension name=\"Weight\" xvalue=\"700\"/>
+        <dimension name=\"Weight\" xvalue=\"100\"/>
       </location>
     </source>
   </sources>
   <instances>
     <instance familyname=\"Xglyph Sans\" stylename=\"Medium\" name=\"Xglyph Sans Medium\">
       <location>
-        <dimension name=\"Weight\" xvalue=\"500\"/>
+        <dimension name=\"Weight\" xvalue=\"40\"/>
       </location>
     </instance>
   </instances>

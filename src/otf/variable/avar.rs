@@ -1,40 +1,73 @@
-//! `avar`: the axis mappings. xglyph's axes are linear (user values normalise piecewise
-//! linearly around the default, [`crate::designspace::Axis::normalize`]), so each axis gets
-//! the identity map -1 → -1, 0 → 0, 1 → 1. The table is written anyway: FontBakery's
-//! `mandatory_avar_table` asks every variable font for one, so that an instancer never
-//! guesses the mapping.
+//! `avar`: the axis maps. Each axis's segment map takes the user-normalised coordinate to
+//! the design-normalised one where the masters blend ([`Axis::normalized_map`]): the identity
+//! -1 → -1, 0 → 0, 1 → 1 for an axis without a `map`. The table is written for linear axes
+//! too: FontBakery's `mandatory_avar_table` asks every variable font for one, so that an
+//! instancer never guesses the mapping.
 
 use write_fonts::tables::avar::{Avar, AxisValueMap, SegmentMaps};
 use write_fonts::types::F2Dot14;
 
-/// The identity `avar` for `axis_count` axes.
-pub fn avar(axis_count: usize) -> Avar {
-    let identity = || {
+use crate::designspace::Axis;
+
+/// The `avar` of `axes`, one segment map each.
+pub fn avar(axes: &[Axis]) -> Avar {
+    let segments = |a: &Axis| {
+        let pairs = a.normalized_map();
         SegmentMaps::new(
-            [-1.0, 0.0, 1.0]
+            pairs
                 .iter()
-                .map(|&v| AxisValueMap::new(F2Dot14::from_f32(v), F2Dot14::from_f32(v)))
+                .map(|&(from, to)| {
+                    AxisValueMap::new(F2Dot14::from_f32(from as f32), F2Dot14::from_f32(to as f32))
+                })
                 .collect(),
         )
     };
-    Avar::new((0..axis_count).map(|_| identity()).collect())
+    Avar::new(axes.iter().map(segments).collect())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn one_identity_map_per_axis() {
-        let a = avar(2);
-        assert_eq!(a.axis_segment_maps.len(), 2);
-        for m in &a.axis_segment_maps {
-            let pairs: Vec<(f32, f32)> = m
-                .axis_value_maps
-                .iter()
-                .map(|v| (v.from_coordinate.to_f32(), v.to_coordinate.to_f32()))
-                .collect();
-            assert_eq!(pairs, [(-1.0, -1.0), (0.0, 0.0), (1.0, 1.0)]);
+    fn pairs(a: &Avar) -> Vec<Vec<(f32, f32)>> {
+        a.axis_segment_maps
+            .iter()
+            .map(|m| {
+                m.axis_value_maps
+                    .iter()
+                    .map(|v| (v.from_coordinate.to_f32(), v.to_coordinate.to_f32()))
+                    .collect()
+            })
+            .collect()
+    }
+
+    fn axis(tag: &str, map: Vec<(f64, f64)>) -> Axis {
+        Axis {
+            tag: tag.into(),
+            name: tag.into(),
+            min: 100.0,
+            default: 400.0,
+            max: 900.0,
+            map,
         }
+    }
+
+    #[test]
+    fn a_linear_axis_maps_to_itself() {
+        let a = avar(&[axis("wght", vec![]), axis("wdth", vec![])]);
+        let identity = vec![(-1.0, -1.0), (0.0, 0.0), (1.0, 1.0)];
+        assert_eq!(pairs(&a), vec![identity.clone(), identity]);
+    }
+
+    #[test]
+    fn a_map_becomes_its_normalised_pairs() {
+        // 100..400 is linear in design values; 650 lies at 0.5 in user values and at 0.8
+        // in design values (0.8 as F2Dot14 is 13107/16384).
+        let map = vec![(100.0, 10.0), (400.0, 40.0), (650.0, 80.0), (900.0, 90.0)];
+        let a = avar(&[axis("wght", map)]);
+        assert_eq!(
+            pairs(&a),
+            vec![vec![(-1.0, -1.0), (0.0, 0.0), (0.5, 13107.0 / 16384.0), (1.0, 1.0)]]
+        );
     }
 }

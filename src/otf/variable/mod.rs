@@ -6,7 +6,8 @@
 //!   advances;
 //! - `HVAR` ([`hvar`]) with the same advance deltas;
 //! - `fvar` ([`fvar`]) with the axes and named instances, `STAT` ([`stat`]) and their names
-//!   ([`naming`]) in `name`; an identity `avar` ([`avar`]);
+//!   ([`naming`]) in `name`; `avar` ([`avar`]) with the axis maps (the identity for a
+//!   linear axis);
 //! - the layout of `otf/features.rs` (fea-rs): kerning and mark anchors with
 //!   VariationIndex devices into `GDEF`'s item variation store.
 //!
@@ -19,8 +20,7 @@
 //! `gvar` omits the deltas that interpolation of untouched points infers exactly ([`iup`]),
 //! so instances are the same as with every delta written.
 //!
-//! Limits: axis maps are linear (`avar` is the identity);
-//! no legacy `kern` table (it cannot vary); the OS/2 weight class is the default's `wght`.
+//! Limits: no legacy `kern` table (it cannot vary); the OS/2 weight class is the default's `wght`.
 
 mod avar;
 mod fvar;
@@ -212,7 +212,7 @@ fn build(
         .add_table(&stat::stat(designspace, &names)?)
         .map_err(table_err)?;
     builder
-        .add_table(&avar::avar(usize::from(axis_count)))
+        .add_table(&avar::avar(&designspace.axes))
         .map_err(table_err)?;
     builder
         .add_table(&gvar::gvar(&regions, axis_count, &point_deltas)?)
