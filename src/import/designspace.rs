@@ -210,7 +210,11 @@ fn refit_compatible(
 
 /// The continuous axes of `doc`, with their maps (`<map input="user" output="design">`).
 fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
-    if doc.axis_mappings.as_ref().is_some_and(|m| !m.mappings.is_empty()) {
+    if doc
+        .axis_mappings
+        .as_ref()
+        .is_some_and(|m| !m.mappings.is_empty())
+    {
         return Err("`<mappings>` (avar 2, mapping between axes) are not supported".into());
     }
     doc.axes
@@ -241,7 +245,10 @@ fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
 /// A designspace axis map as xglyph's: sorted by user value, from the axis `min` to its
 /// `max` (an end the map leaves out is placed as fontTools extrapolates it, keeping the
 /// nearest entry's offset), design values strictly increasing.
-fn axis_map(axis: &Axis, map: &[norad::designspace::AxisMapping]) -> Result<Vec<(f64, f64)>, String> {
+fn axis_map(
+    axis: &Axis,
+    map: &[norad::designspace::AxisMapping],
+) -> Result<Vec<(f64, f64)>, String> {
     let mut pairs: Vec<(f64, f64)> = map.iter().map(|m| (m.input, m.output)).collect();
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
     pairs.dedup_by(|a, b| a == b);
@@ -256,7 +263,10 @@ fn axis_map(axis: &Axis, map: &[norad::designspace::AxisMapping]) -> Result<Vec<
         }
     }
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    if let Some(w) = pairs.windows(2).find(|w| w[1].0 <= w[0].0 || w[1].1 <= w[0].1) {
+    if let Some(w) = pairs
+        .windows(2)
+        .find(|w| w[1].0 <= w[0].0 || w[1].1 <= w[0].1)
+    {
         return Err(format!(
             "axis `{}` has a map that does not increase (user {} -> design {}, then user {} -> \
              design {}); xglyph's axis maps must increase in both",

@@ -333,21 +333,33 @@ fn read_axis_maps(font: &FontRef, axes: &mut [Axis]) -> Result<(), String> {
         if pairs.iter().all(|(from, to)| from == to) {
             continue;
         }
-        let mut map: Vec<(f64, f64)> = Vec::with_capacity(pairs.len() + 3);
+        let mut map: Vec<(f64, f64)> = Vec::with_capacity(pairs.len() + 2);
+        let mut previous: Option<(F2Dot14, F2Dot14)> = None;
         for (from, to) in pairs {
-            let user = nicest(axis, from);
-            let design = nicest(axis, to);
-            if map.last().is_some_and(|&(u, d)| user <= u || design <= d) {
-                return Err(format!(
-                    "avar maps axis `{}` without increasing ({} -> {} after {:?}); xglyph's \
-                     axis maps must increase, so this font cannot be imported with its masters",
-                    axis.tag,
-                    from.to_f32(),
-                    to.to_f32(),
-                    map.last().map(|&(u, d)| (axis.normalize_user(u), axis.normalize_user(d)))
-                ));
+            let (user, design) = (nicest(axis, from), nicest(axis, to));
+            match map.last() {
+                // -1 -> -1 on an axis whose min is its default lands on 0 -> 0.
+                Some(&last) if last == (user, design) => {
+                    previous = Some((from, to));
+                    continue;
+                }
+                Some(&(u, d)) if user <= u || design <= d => {
+                    let (f0, t0) = previous.unwrap_or((from, to));
+                    return Err(format!(
+                        "avar maps axis `{}` flat or backwards ({} -> {}, then {} -> {}); \
+                         xglyph's axis maps must increase, so this font cannot be imported \
+                         with its masters",
+                        axis.tag,
+                        f0.to_f32(),
+                        t0.to_f32(),
+                        from.to_f32(),
+                        to.to_f32()
+                    ));
+                }
+                _ => {}
             }
             map.push((user, design));
+            previous = Some((from, to));
         }
         let ends = [(axis.min, axis.min), (axis.max, axis.max)];
         if map.first().is_some_and(|&(u, _)| u > axis.min) {

@@ -452,6 +452,7 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
         min: 400.0,
         default: 400.0,
         max: 700.0,
+        map: vec![],
     });
     let location = Location(BTreeMap::from([("wght".to_string(), 700.0)]));
     let region = designspace

@@ -215,7 +215,7 @@ fn a_damaged_variable_font_is_an_error_naming_the_file() {
         "{err}"
     );
     assert!(err.ends_with("the font may be damaged\n"), "{err}");
-    // A non-linear avar: the design space has no axis map.
+    // An avar that goes flat: an axis map must increase, to be inverted.
     let mut builder = write_fonts::FontBuilder::new();
     for r in font.table_directory.table_records() {
         builder.add_raw(
@@ -229,7 +229,7 @@ fn a_damaged_variable_font_is_an_error_naming_the_file() {
     let avar = Avar::new(vec![SegmentMaps::new(vec![
         map(-1.0, -1.0),
         map(0.0, 0.0),
-        map(0.5, 0.25),
+        map(0.5, 0.0),
         map(1.0, 1.0),
     ])]);
     builder.add_table(&avar).unwrap();
@@ -240,8 +240,9 @@ fn a_damaged_variable_font_is_an_error_naming_the_file() {
     assert_eq!(
         err,
         format!(
-            "error: {}: avar maps axis `wght` non-linearly (0.5 -> 0.25); xglyph's design \
-             space has no axis map yet, so this font cannot be imported with its masters\n",
+            "error: {}: avar maps axis `wght` flat or backwards (0 -> 0, then 0.5 -> 0); \
+             xglyph's axis maps must increase, so this font cannot be imported with its \
+             masters\n",
             path.display()
         )
     );

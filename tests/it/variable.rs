@@ -51,6 +51,7 @@ fn wght(min: f64, default: f64, max: f64) -> Axis {
         min,
         default,
         max,
+        map: vec![],
     }
 }
 
@@ -289,6 +290,46 @@ fn tiny() -> OutlinedFamily {
     )
 }
 
+/// [`tiny`] with a non-linear axis map, so `avar` is not the identity: between Light and
+/// the default the design values run slow, then fast up to SemiBold, slow again to Bold;
+/// named instances between the masters (Book, Medium, ExtraBold) sit where the map bends.
+fn tiny_mapped() -> OutlinedFamily {
+    let mut fam = tiny();
+    let ds = &mut fam.designspace;
+    ds.axes[0].map = vec![
+        (100.0, 0.0),
+        (300.0, 15.0),
+        (400.0, 40.0),
+        (500.0, 90.0),
+        (600.0, 100.0),
+        (800.0, 125.0),
+        (900.0, 130.0),
+    ];
+    ds.instances.insert(1, instance("Book", 300.0));
+    ds.instances.insert(3, instance("Medium", 500.0));
+    ds.instances.push(instance("ExtraBold", 760.0));
+    fam.default.info.family = "Tiny Mapped".into();
+    let locations: Vec<Location> = fam.masters.iter().map(|m| m.location.clone()).collect();
+    let regions = fam.designspace.regions(&locations).expect("valid masters");
+    for (m, r) in fam.masters.iter_mut().zip(regions) {
+        m.region = r;
+    }
+    fam
+}
+
+#[test]
+fn the_axis_map_moves_the_blend() {
+    // Without this the mapped family's checks could pass with an identity `avar`.
+    let (mapped, linear) = (tiny_mapped(), tiny());
+    for (w, moved) in [(300.0, true), (500.0, true), (760.0, true), (600.0, false)] {
+        let a = &blend(&mapped, &at(w))[0].path;
+        let b = &blend(&linear, &at(w))[0].path;
+        let d = paths::two_sided(a, b, 48);
+        eprintln!("`o` at wght {w}: mapped and linear blends {d:.2} units apart");
+        assert_eq!(d > 5.0, moved, "wght {w}: {d}");
+    }
+}
+
 /// One glyph of the family blended at `location`: the exact cubic outline and the advance
 /// the font holds there (each master's advance rounded, then blended).
 struct Blended {
@@ -420,6 +461,7 @@ fn ots_accepts_the_variable_fonts() {
         ("glyphs/", typeface().clone()),
         ("bundled", bundled().clone()),
         ("tiny", tiny()),
+        ("tiny mapped", tiny_mapped()),
     ] {
         let bytes = variable_ttf(&fam).unwrap();
         let dir = write_temp(&bytes);
@@ -440,7 +482,9 @@ fn ots_accepts_the_variable_fonts() {
         let clean = std::fs::read(dir.path().join("clean.ttf")).unwrap();
         let face = Face::parse(&clean, 0).unwrap();
         let tables = face.raw_face();
-        for tag in [b"fvar", b"gvar", b"HVAR", b"STAT", b"GDEF", b"GPOS"] {
+        for tag in [
+            b"fvar", b"avar", b"gvar", b"HVAR", b"STAT", b"GDEF", b"GPOS",
+        ] {
             assert!(
                 tables.table(ttf_parser::Tag::from_bytes(tag)).is_some(),
                 "{name}: OTS output lacks {}",
@@ -553,6 +597,9 @@ fn instancer_outlines_and_advances_match_the_blend() {
     eprintln!("bundled: worst instancer distance {worst:.3}");
     let worst_tiny = check_instances(&tiny(), &[100.0, 250.0, 400.0, 500.0, 600.0, 750.0, 900.0]);
     eprintln!("tiny: worst instancer distance {worst_tiny:.3}");
+    let positions = [100.0, 250.0, 300.0, 450.0, 500.0, 550.0, 760.0, 900.0];
+    let worst_mapped = check_instances(&tiny_mapped(), &positions);
+    eprintln!("tiny mapped: worst instancer distance {worst_mapped:.3}");
 }
 
 #[test]
@@ -560,7 +607,7 @@ fn gpos_kerning_varies_with_the_masters() {
     if no_fonttools() {
         return;
     }
-    for fam in [bundled().clone(), tiny()] {
+    for fam in [bundled().clone(), tiny(), tiny_mapped()] {
         let bytes = variable_ttf(&fam).unwrap();
         let order = glyph_order(&fam.default).unwrap();
         let ps = |model: &str| {
@@ -572,6 +619,12 @@ fn gpos_kerning_varies_with_the_masters() {
         };
         let mut wghts = vec![fam.designspace.axes[0].default];
         wghts.extend(fam.masters.iter().map(|m| m.location.0["wght"]));
+        wghts.extend(
+            fam.designspace
+                .instances
+                .iter()
+                .map(|i| i.location.0["wght"]),
+        );
         let read = instances(&bytes, &wghts);
         for (&w, (_, pairs)) in wghts.iter().zip(&read) {
             let expected: Pairs = blended_kerning(&fam, &at(w))
@@ -667,6 +720,11 @@ fn skrifa_reads_outlines_and_advances_at_positions() {
     eprintln!("bundled: skrifa worst outline distance {d:.3}, advance {a:.4}");
     let (d, a) = check_skrifa(&tiny(), &[100.0, 175.0, 400.0, 480.0, 600.0, 820.0, 900.0]);
     eprintln!("tiny: skrifa worst outline distance {d:.3}, advance {a:.4}");
+    let (d, a) = check_skrifa(
+        &tiny_mapped(),
+        &[100.0, 200.0, 300.0, 350.0, 500.0, 530.0, 760.0, 900.0],
+    );
+    eprintln!("tiny mapped: skrifa worst outline distance {d:.3}, advance {a:.4}");
 }
 
 #[test]
@@ -758,6 +816,7 @@ fn chromium_lays_out_each_named_instance_to_the_blended_width() {
     for (fam, text) in [
         (bundled().clone(), "AVATAR WAVE HHH Tokyo"),
         (tiny(), "lolloool"),
+        (tiny_mapped(), "lolloool"),
     ] {
         let bytes = variable_ttf(&fam).unwrap();
         let dir = tempfile::tempdir().unwrap();
@@ -804,14 +863,17 @@ fn chromium_lays_out_each_named_instance_to_the_blended_width() {
             let kerning = blended_kerning(&fam, &inst.location);
             let glyphs: Vec<&String> = text.chars().map(|c| &names[&c]).collect();
             let index = |n: &str| fam.default.glyphs.iter().position(|g| g.name == n).unwrap();
-            let advances: f64 = glyphs.iter().map(|n| blended[index(n)].advance).sum();
+            // HarfBuzz applies HVAR and GPOS deltas rounded to whole units.
+            let advances: f64 = glyphs
+                .iter()
+                .map(|n| blended[index(n)].advance.round())
+                .sum();
             let kerns: f64 = glyphs
                 .windows(2)
                 .map(|p| {
                     kerning
                         .get(&(p[0].clone(), p[1].clone()))
-                        .copied()
-                        .unwrap_or(0.0)
+                        .map_or(0.0, |k| k.round())
                 })
                 .sum();
             let expected = advances + kerns;
