@@ -7,8 +7,9 @@ Prints what fontTools.designspaceLib reads (`axes: …`, `sources: …`, `instan
 the Rust test to compare with the sources), then checks, printing each measured figure:
 - every source UFO opens with ufoLib2 and has the same glyphs, in the same order, with the
   same number of points per contour as the default master (the UFOs interpolate);
-- each compiled font has xglyph's fvar axes (tag, min, default, max) and named instances
-  (subfamily name and coordinates), glyph set and cmap;
+- each compiled font has xglyph's fvar axes (tag, min, default, max), avar segment maps
+  (within one F2Dot14 step), named instances (subfamily name and coordinates), glyph set
+  and cmap;
 - advances at each master (fontTools.varLib.instancer) equal xglyph's there and the master
   UFO's widths;
 - kerning at each master equals xglyph's there;
@@ -44,6 +45,31 @@ def fvar_instances(font):
         (str(name.getDebugName(i.subfamilyNameID)), tuple(i.coordinates[t] for t in tags))
         for i in font["fvar"].instances
     ]
+
+
+def avar(font):
+    """Each axis's segment map, as {from: to}; the identity when the font has no avar."""
+    tags = [a.axisTag for a in font["fvar"].axes]
+    if "avar" not in font:
+        return {t: {-1.0: -1.0, 0.0: 0.0, 1.0: 1.0} for t in tags}
+    return {t: dict(font["avar"].segments[t]) for t in tags}
+
+
+def same_avar(a, b):
+    """The same segment maps, each coordinate within one F2Dot14 step (compilers round
+    the normalised values their own way)."""
+    step = 1.0 / 16384
+    ma, mb = avar(a), avar(b)
+    if ma.keys() != mb.keys():
+        return False
+    for tag in ma:
+        pa, pb = sorted(ma[tag].items()), sorted(mb[tag].items())
+        if len(pa) != len(pb):
+            return False
+        for (fa, ta), (fb, tb) in zip(pa, pb):
+            if abs(fa - fb) > step or abs(ta - tb) > step:
+                return False
+    return True
 
 
 def at(path, wght):
@@ -86,7 +112,8 @@ def main():
               f"{s.filename}: {len(ufo)} glyphs, same contours and points as the default master")
 
     ours = TTFont(ours_path)
-    masters = {s.location["Weight"]: ufo for s, ufo in zip(doc.sources, ufos)}
+    # Source locations are design values; the instancer takes user values.
+    masters = {doc.map_backward(s.location)["Weight"]: ufo for s, ufo in zip(doc.sources, ufos)}
     ours_at = {w: at(ours_path, w) for w in sorted(set(positions) | set(masters))}
     rounding = math.sqrt(2) / 2
     upm = default.info.unitsPerEm
@@ -95,6 +122,7 @@ def main():
         label = path.rsplit("/", 1)[-1]
         font = TTFont(path)
         check(fvar_axes(font) == fvar_axes(ours), f"{label}: fvar axes {fvar_axes(font)}")
+        check(same_avar(font, ours), f"{label}: avar {avar(font)}")
         check(fvar_instances(font) == fvar_instances(ours), f"{label}: named instances {fvar_instances(font)}")
         check(sorted(font.getGlyphOrder()) == sorted(ours.getGlyphOrder()), f"{label}: glyph set ({len(font.getGlyphOrder())} glyphs)")
         check(font.getBestCmap() == ours.getBestCmap(), f"{label}: cmap ({len(font.getBestCmap())} code points)")

@@ -5,6 +5,7 @@
 mod common;
 
 mod anchors;
+mod axis_map;
 mod build;
 mod cache;
 mod compatible;

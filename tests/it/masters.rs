@@ -397,6 +397,53 @@ fn font_toml_axis_master_and_instance_errors() {
          defaults on more than one axis; each master must lie on one axis (the others at their \
          defaults)",
     );
+    // Axis maps: each error at the entry to fix (line 18 is the inserted `map`).
+    let map_cases: &[(&str, &str, &str)] = &[
+        (
+            "map-shape",
+            "map = [[400, 0], [550], [700, 100]]",
+            "font/font.toml:18:18: error: `map` must be a list of [user, design] pairs such as \
+             [[400, 0], [550, 70], [700, 100]], found an array of 1 values",
+        ),
+        (
+            "map-user-order",
+            "map = [[400, 0], [550, 70], [500, 80], [700, 100]]",
+            "font/font.toml:18:29: error: `map` user values must increase: 500 follows 550",
+        ),
+        (
+            "map-design-order",
+            "map = [[400, 0], [550, 70], [600, 60], [700, 100]]",
+            "font/font.toml:18:29: error: `map` design values must increase: 60 follows 70",
+        ),
+        (
+            "map-start",
+            "map = [[450, 0], [700, 100]]",
+            "font/font.toml:18:8: error: `map` must start at the axis `min` = 400, found user \
+             value 450",
+        ),
+        (
+            "map-end",
+            "map = [[400, 0], [650, 100]]",
+            "font/font.toml:18:18: error: `map` must end at the axis `max` = 700, found user \
+             value 650",
+        ),
+        (
+            "map-number",
+            "map = [[400, 0], [700, \"heavy\"]]",
+            "font/font.toml:18:24: error: `map` must be a number, found string",
+        ),
+        (
+            "map-empty",
+            "map = []",
+            "font/font.toml:18:7: error: `map` must be a list of [user, design] pairs such as \
+             [[400, 0], [550, 70], [700, 100]], found an empty list; leave it out for a linear \
+             axis",
+        ),
+    ];
+    for (name, map, error) in map_cases {
+        let edit = format!("max = 700\n{map}\n");
+        assert_one_error(name, &[("font.toml", "max = 700\n", &edit)], error);
+    }
     assert_one_error(
         "dup-instance",
         &[("font.toml", "name = \"Medium\"", "name = \"Regular\"")],
