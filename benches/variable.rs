@@ -24,6 +24,7 @@ fn family() -> OutlinedFamily {
             min: 400.0,
             default: 400.0,
             max: 700.0,
+            map: vec![],
         }],
         instances: vec![],
     };
