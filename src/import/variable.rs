@@ -7,18 +7,18 @@
 //!   -> a model::Family (axes and named instances from fvar, one folder per master)
 //! ```
 //!
-//! Masters: the default location and, per axis, each end that differs from the default
-//! (`wght` 100..400..900 gives Thin, Regular and Black). The masters' outlines are
-//! measured against their originals, and the midpoint between the default and each other
-//! master against the blend of their Bézier outlines, which is what the font's own
-//! interpolation gives when its variations peak at the axis ends.
+//! Masters: the default location, per axis each end that differs from the default
+//! (`wght` 100..400..900 gives Thin, Regular and Black), and each place inside an axis
+//! where a `gvar` variation peaks (an intermediate master, as Noto Sans has at Bold). The
+//! masters' outlines are measured against their originals, and the midpoint between the
+//! default and each other master against the blend of their Bézier outlines.
 //!
 //! Axis maps: `avar` becomes each axis's `map`, in user units ([`read_axis_maps`]).
 //!
 //! Limits: an `avar` that does not increase is refused; `avar` 2 is not read; variation
-//! regions that peak inside an axis (intermediate masters) or at corners of two axes are
-//! not taken: the masters at the ends interpolate linearly, and such a font is reported
-//! with a note. Kerning comes from GPOS at each master's location ([`super::kerning`]).
+//! regions on two axes at once (corner masters), or spanning other positions than the
+//! masters', are not reproduced (the masters interpolate along each axis), and such a font
+//! is reported with a note; CFF2 fonts get masters at the axis ends only. Kerning comes from GPOS at each master's location ([`super::kerning`]).
 
 use std::path::Path;
 
@@ -98,7 +98,8 @@ pub fn import_variable_font(
     }
     let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
     check_gvar(&font, &source).map_err(fail)?;
-    let masters = master_locations(&font, &designspace);
+    let peaks = gvar_peaks(&font, designspace.axes.len());
+    let masters = master_locations(&font, &designspace, &peaks.inner);
     // Read before the glyphs are fitted: a damaged GPOS fails at once.
     let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
         masters.iter().map(|m| m.coords.coords()).collect();
@@ -160,8 +161,13 @@ pub fn import_variable_font(
         .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
         .collect();
     notes.extend(source.empty.iter().cloned());
-    if let Some(note) = inner_regions(&font) {
-        notes.push(note);
+    if !peaks.reproduced {
+        notes.push(
+            "gvar has variations on several axes at once (corner masters), or spanning other \
+             positions than its masters'; the masters interpolate along each axis and do not \
+             reproduce them"
+                .to_string(),
+        );
     }
     notes.extend(kerning.note);
     notes.extend(anchors.note);
@@ -210,9 +216,10 @@ pub fn import_variable_font(
     })
 }
 
-/// The default location, then each axis end other than the default, named after the
-/// named instance there when there is one (else `Weight 900`).
-fn master_locations(font: &FontRef, ds: &Designspace) -> Vec<MasterAt> {
+/// The default location, then each axis end other than the default, then each peak
+/// inside an axis (`inner`, per axis), named after the named instance there when there is
+/// one (else `Weight 900`).
+fn master_locations(font: &FontRef, ds: &Designspace, inner: &[Vec<F2Dot14>]) -> Vec<MasterAt> {
     let at = |location: Location| {
         let settings: Vec<(skrifa::Tag, f32)> = ds
             .axes
@@ -236,22 +243,46 @@ fn master_locations(font: &FontRef, ds: &Designspace) -> Vec<MasterAt> {
         coords: at(default.clone()),
         location: default,
     }];
-    for a in &ds.axes {
-        for end in [a.min, a.max] {
-            if end == a.default {
-                continue;
-            }
-            let location = Location([(a.tag.clone(), end)].into_iter().collect());
-            let name = named(&location)
-                .unwrap_or_else(|| format!("{} {}", a.name, crate::source::emit::number(end)));
-            out.push(MasterAt {
-                name,
-                coords: at(location.clone()),
-                location,
-            });
-        }
+    let mut places: Vec<(&Axis, f64)> = Vec::new();
+    for (a, peaks) in ds.axes.iter().zip(inner) {
+        let mut users: Vec<f64> = [a.min, a.max]
+            .into_iter()
+            .filter(|&end| end != a.default)
+            .chain(peaks.iter().map(|&p| user_at_peak(a, p)))
+            .collect();
+        users.sort_by(f64::total_cmp);
+        places.extend(users.into_iter().map(|u| (a, u)));
+    }
+    for (a, user) in places {
+        let location = Location([(a.tag.clone(), user)].into_iter().collect());
+        let name = named(&location)
+            .unwrap_or_else(|| format!("{} {}", a.name, crate::source::emit::number(user)));
+        out.push(MasterAt {
+            name,
+            coords: at(location.clone()),
+            location,
+        });
     }
     out
+}
+
+/// The user value on `axis` whose normalised design coordinate is `peak` (after the axis
+/// map), with the fewest decimals that give back the same F2Dot14 coordinate.
+fn user_at_peak(axis: &Axis, peak: F2Dot14) -> f64 {
+    let p = f64::from(peak.to_f32());
+    let (lo, default, hi) = (
+        axis.design(axis.min),
+        axis.design(axis.default),
+        axis.design(axis.max),
+    );
+    let design = if p < 0.0 {
+        default + p * (default - lo)
+    } else {
+        default + p * (hi - default)
+    };
+    fewest_decimals(axis.user(design), |u| {
+        F2Dot14::from_f32(axis.normalize(u) as f32) == peak
+    })
 }
 
 /// A glyph's outline (font units, y up) and advance at `coords`.
@@ -373,8 +404,8 @@ fn read_axis_maps(font: &FontRef, axes: &mut [Axis]) -> Result<(), String> {
     Ok(())
 }
 
-/// The user value of the normalised coordinate `v` on `axis` with the fewest decimals (up
-/// to 6) that normalises back to `v`.
+/// The user value of the normalised coordinate `v` on `axis` (before any map) with the
+/// fewest decimals that normalises back to `v`.
 fn nicest(axis: &Axis, v: F2Dot14) -> f64 {
     let x = f64::from(v.to_f32());
     let exact = if x < 0.0 {
@@ -382,36 +413,99 @@ fn nicest(axis: &Axis, v: F2Dot14) -> f64 {
     } else {
         axis.default + x * (axis.max - axis.default)
     };
+    fewest_decimals(exact, |u| {
+        F2Dot14::from_f32(axis.normalize_user(u) as f32) == v
+    })
+}
+
+/// `exact` rounded to the fewest decimals (up to 6) for which `same` holds; `exact` when
+/// none does. Font tables store F2Dot14 coordinates, so the values a designer wrote come
+/// back from them only this way.
+fn fewest_decimals(exact: f64, same: impl Fn(f64) -> bool) -> f64 {
     (0..=6)
         .map(|digits| {
             let scale = 10f64.powi(digits);
             (exact * scale).round() / scale
         })
-        .find(|&u| F2Dot14::from_f32(axis.normalize_user(u) as f32) == v)
+        .find(|&u| same(u))
         .unwrap_or(exact)
 }
 
-/// A note when gvar has variation regions that peak inside an axis or on two axes at once,
-/// which the masters at the axis ends do not reproduce.
-fn inner_regions(font: &FontRef) -> Option<String> {
-    let gvar = font.gvar().ok()?;
-    let count = font.maxp().ok()?.num_glyphs();
-    let inner = (0..count).any(|g| {
+/// What `gvar`'s variation regions need as masters.
+struct Peaks {
+    /// Per axis, the peaks strictly inside it (normalised, sorted): intermediate masters.
+    inner: Vec<Vec<F2Dot14>>,
+    /// Whether masters at the axis ends and at `inner` reproduce every region: each region
+    /// lies on one axis, and its start, peak and end are all master positions (or 0), so
+    /// that it is linear between neighbouring masters.
+    reproduced: bool,
+}
+
+/// The single-axis peaks of every glyph's `gvar` tuples and whether masters there
+/// reproduce the font ([`Peaks`]). Without `gvar` (CFF2): no inner peaks.
+fn gvar_peaks(font: &FontRef, axis_count: usize) -> Peaks {
+    let mut peaks = Peaks {
+        inner: vec![Vec::new(); axis_count],
+        reproduced: true,
+    };
+    let (Ok(gvar), Ok(maxp)) = (font.gvar(), font.maxp()) else {
+        return peaks;
+    };
+    // (axis, start, peak, end) of every single-axis region, in F2Dot14 units.
+    let mut regions: std::collections::BTreeSet<(usize, i16, i16, i16)> = Default::default();
+    for g in 0..maxp.num_glyphs() {
         let Ok(Some(data)) = gvar.glyph_variation_data(skrifa::GlyphId::new(u32::from(g))) else {
-            return false;
+            continue;
         };
-        data.tuples().any(|t| {
+        for t in data.tuples() {
             let peak = t.peak();
-            let on: Vec<f32> = peak.values.iter().map(|v| v.get().to_f32()).collect();
-            on.iter().filter(|&&v| v != 0.0).count() > 1
-                || on.iter().any(|&v| v != 0.0 && v.abs() != 1.0)
-        })
+            let on: Vec<(usize, F2Dot14)> = peak
+                .values
+                .iter()
+                .map(|v| v.get())
+                .enumerate()
+                .filter(|(_, v)| v.to_bits() != 0)
+                .collect();
+            let [(axis, p)] = on[..] else {
+                peaks.reproduced &= on.is_empty();
+                continue;
+            };
+            let bound = |tuple: Option<skrifa::raw::tables::variations::Tuple>,
+                         implied: F2Dot14| {
+                tuple
+                    .and_then(|t| t.values.get(axis).map(|v| v.get()))
+                    .unwrap_or(implied)
+            };
+            let zero = F2Dot14::from_bits(0);
+            let start = bound(t.intermediate_start(), p.min(zero));
+            let end = bound(t.intermediate_end(), p.max(zero));
+            regions.insert((axis, start.to_bits(), p.to_bits(), end.to_bits()));
+        }
+    }
+    let one = F2Dot14::from_f32(1.0).to_bits();
+    for &(axis, _, p, _) in &regions {
+        if p.abs() != one
+            && axis < axis_count
+            && !peaks.inner[axis].iter().any(|q| q.to_bits() == p)
+        {
+            peaks.inner[axis].push(F2Dot14::from_bits(p));
+        }
+    }
+    for inner in &mut peaks.inner {
+        inner.sort_by_key(|p| p.to_bits());
+    }
+    peaks.reproduced &= regions.iter().all(|&(axis, start, _, end)| {
+        let at_master = |v: i16| {
+            v == 0
+                || v.abs() == one
+                || peaks
+                    .inner
+                    .get(axis)
+                    .is_some_and(|i| i.iter().any(|q| q.to_bits() == v))
+        };
+        at_master(start) && at_master(end)
     });
-    inner.then(|| {
-        "gvar has variations that peak inside an axis or on several axes; the masters at \
-         the axis ends interpolate linearly and do not reproduce them"
-            .to_string()
-    })
+    peaks
 }
 
 /// A skrifa pen into a kurbo path.

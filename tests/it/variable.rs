@@ -1000,3 +1000,87 @@ fn iup_keeps_every_instance_exact() {
         }
     }
 }
+
+/// The mapped four-master family goes out as a variable TTF and comes back in with every
+/// master: Light and Bold at the axis ends, SemiBold where gvar peaks inside the axis, and
+/// the axis map; rebuilt, it has the same `avar` and the same outlines along the axis.
+#[test]
+fn a_variable_font_with_an_intermediate_master_and_a_map_imports_whole() {
+    let original = tiny_mapped();
+    let bytes = variable_ttf(&original).unwrap();
+    let dir = write_temp(&bytes);
+    let imported = dir.path().join("imported");
+    let report =
+        crate::common::cli::import_ok(&[dir.path().join("var.ttf").to_str().unwrap()], &imported);
+    assert!(!report.contains("gvar has variations"), "{report}");
+    let (family, _) = xglyph::source::load_family(&imported).expect("loads");
+    let places: Vec<(String, f64)> = family
+        .masters
+        .iter()
+        .map(|m| (m.name.clone(), m.location.0["wght"]))
+        .collect();
+    assert_eq!(
+        places,
+        [
+            ("Light".to_string(), 100.0),
+            ("SemiBold".to_string(), 600.0),
+            ("Bold".to_string(), 900.0)
+        ]
+    );
+    assert_eq!(
+        family.designspace.axes[0].map.len(),
+        7,
+        "{:?}",
+        family.designspace.axes
+    );
+    let rebuilt_dir = dir.path().join("rebuilt");
+    let (code, _, stderr) = crate::common::cli::xglyph(&[
+        "build",
+        imported.to_str().unwrap(),
+        "-o",
+        rebuilt_dir.to_str().unwrap(),
+    ]);
+    assert_eq!((code, stderr.as_str()), (0, ""));
+    let rebuilt = std::fs::read(rebuilt_dir.join("TinyMapped[wght].ttf")).unwrap();
+    let (a, b) = (
+        FontRef::new(&bytes).unwrap(),
+        FontRef::new(&rebuilt).unwrap(),
+    );
+    use skrifa::raw::TableProvider;
+    let segments = |f: &FontRef| -> Vec<(f32, f32)> {
+        f.avar()
+            .unwrap()
+            .axis_segment_maps()
+            .get(0)
+            .unwrap()
+            .unwrap()
+            .axis_value_maps()
+            .iter()
+            .map(|m| (m.from_coordinate().to_f32(), m.to_coordinate().to_f32()))
+            .collect()
+    };
+    assert_eq!(segments(&b), segments(&a));
+    let mut worst: f64 = 0.0;
+    for w in [
+        100.0, 200.0, 300.0, 450.0, 500.0, 560.0, 600.0, 700.0, 760.0, 900.0,
+    ] {
+        let (la, lb) = (
+            a.axes().location([("wght", w)]),
+            b.axes().location([("wght", w)]),
+        );
+        for c in ['o', 'l'] {
+            let (ga, gb) = (a.charmap().map(c).unwrap(), b.charmap().map(c).unwrap());
+            let d = paths::two_sided(
+                &skrifa_outline(&a, ga, LocationRef::from(&la)),
+                &skrifa_outline(&b, gb, LocationRef::from(&lb)),
+                48,
+            );
+            // The import's bound (1/1000 em for this font) and the rebuild's tolerance,
+            // plus grid rounding and skrifa's rounded deltas in each font.
+            let bound = 1.0 + original.default.tolerance + 4.0 * GRID;
+            assert!(d <= bound, "{c} at wght {w}: {d} > {bound}");
+            worst = worst.max(d);
+        }
+    }
+    eprintln!("imported and rebuilt: worst distance {worst:.3} along the axis");
+}
