@@ -22,7 +22,7 @@ use crate::otf::{self, OtfError};
 use crate::outline::{outline_font_with, OutlineOptions, OutlinedFont};
 use crate::overlap::Unions;
 use crate::render::{
-    encode_png, render_instances_proof_with, render_proof_with, sheet_png_files_reusing,
+    encode_png, page_file_names, render_proof_with, sheet_png_files_reusing, InstancesProof,
     ProofOptions, RenderError, SheetOptions,
 };
 use crate::reuse::{font_key, glyph_key, KeyBuilder, OutlineKeys, Reuse};
@@ -386,20 +386,28 @@ pub fn instance_outputs_reusing(
         })
         .collect();
     let proof_opts = instances_proof_options(&opts.proof);
-    let draw = || encode_png(&render_instances_proof_with(&labelled, &proof_opts)?);
-    let name = Path::new("proof-instances.png");
-    let proof = if reuse.is_on() {
-        let mut key = KeyBuilder::new("instances proof");
-        key.str(&format!("{proof_opts:?}"))
-            .u64(labelled.len() as u64);
-        for ((label, _), drawn) in labelled.iter().zip(&drawn) {
-            key.str(label).key(drawn);
-        }
-        reuse.get_or_make(name, key.finish(), draw)?
-    } else {
-        draw()?
-    };
-    files.push((name.to_path_buf(), proof));
+    // `proof-instances.png`, or `proof-instances-1.png`, … when the blocks of many
+    // instances (Roboto Flex has 20) would make one image taller than the limits.
+    let proof = InstancesProof::new(&labelled, &proof_opts)?;
+    let pages = proof.pages();
+    let names = page_file_names("proof-instances", pages.len());
+    for (page, name) in pages.into_iter().zip(names) {
+        let draw = || encode_png(&proof.render(page.clone())?);
+        let png = if reuse.is_on() {
+            let mut key = KeyBuilder::new("instances proof");
+            key.str(&format!("{proof_opts:?}"))
+                .u64(labelled.len() as u64)
+                .u64(page.start as u64)
+                .u64(page.end as u64);
+            for ((label, _), drawn) in labelled.iter().zip(&drawn) {
+                key.str(label).key(drawn);
+            }
+            reuse.get_or_make(Path::new(&name), key.finish(), draw)?
+        } else {
+            draw()?
+        };
+        files.push((PathBuf::from(name), png));
+    }
     Ok(files)
 }
 

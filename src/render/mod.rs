@@ -17,7 +17,7 @@ use tiny_skia::Pixmap;
 
 pub use proof::{
     default_text, render_instances_proof, render_instances_proof_with, render_proof,
-    render_proof_with, ProofOptions,
+    render_proof_with, InstancesProof, ProofOptions,
 };
 pub use sheet::{
     page_file_names, render_sheet, render_sheet_page, render_sheet_page_with, sheet_order,

@@ -7,11 +7,12 @@
 //! and lines longer than that are cut at the right edge (no wrapping).
 
 use std::collections::BTreeSet;
+use std::ops::Range;
 
 use tiny_skia::{Color, Pixmap, PixmapMut};
 
 use super::draw::{fill_glyph, Placement};
-use super::{white_pixmap, RenderError};
+use super::{white_pixmap, RenderError, MAX_AREA, MAX_SIDE};
 use crate::layout::{Layout, Line};
 use crate::outline::OutlinedFont;
 
@@ -226,72 +227,128 @@ pub fn render_instances_proof(
     render_instances_proof_with(&layouts, opts)
 }
 
-/// [`render_instances_proof`] with each font's shaper already built. The blocks are set in
-/// parallel (rayon), and stacked in order.
+/// [`render_instances_proof`] with each font's shaper already built, on one image (an
+/// error when the blocks together exceed the image limits; [`InstancesProof::pages`]
+/// splits them).
 pub fn render_instances_proof_with(
     fonts: &[(String, &Layout<'_>)],
     opts: &ProofOptions,
 ) -> Result<Pixmap, RenderError> {
-    use rayon::prelude::*;
-    let Some((_, first)) = fonts.first() else {
-        return Err(RenderError::NoGlyphs);
-    };
-    let opts = ProofOptions {
-        text: Some(
-            opts.text
-                .clone()
-                .unwrap_or_else(|| default_text(first.font())),
-        ),
-        ..opts.clone()
-    };
-    check_sizes(&opts)?;
-    let label_h = (LABEL_EM * 1.5).ceil() as u64;
-    let plans = fonts
-        .par_iter()
-        .map(|(_, layout)| ProofPlan::new(layout, &opts))
-        .collect::<Result<Vec<_>, _>>()?;
-    let width = plans.iter().map(|p| p.width).max().unwrap_or(1);
-    let height: u64 = plans.iter().map(|p| label_h + p.height).sum();
-    // One image, each block drawn in its own rows in parallel: blocks drawn apart and
-    // copied in touched twice the memory, each fresh page a page fault (the bundled
-    // build's most: 56 % of its faults were this proof's white fill).
-    let mut img = white_pixmap(width, height)?;
-    let row_bytes = width as usize * 4;
-    let mut rest = img.data_mut();
-    let mut strips = Vec::with_capacity(plans.len());
-    for plan in &plans {
-        let (_label, after) = rest.split_at_mut(label_h as usize * row_bytes);
-        let (strip, after) = after.split_at_mut(plan.height as usize * row_bytes);
-        strips.push(strip);
-        rest = after;
-    }
-    strips
-        .into_par_iter()
-        .zip(plans.par_iter().zip(fonts.par_iter()))
-        .map(|(strip, (plan, (_, layout)))| {
-            let size = RenderError::Size {
-                width,
-                height: plan.height,
-            };
-            let mut canvas =
-                PixmapMut::from_bytes(strip, width as u32, plan.height as u32).ok_or(size)?;
-            plan.draw(&mut canvas, layout);
-            Ok(())
+    InstancesProof::new(fonts, opts)?.render(0..fonts.len())
+}
+
+/// The instances proof laid out: one block per font, each under its label, ready to be
+/// cut into pages within the image limits and drawn page by page.
+pub struct InstancesProof<'f, 'l> {
+    fonts: &'f [(String, &'f Layout<'l>)],
+    plans: Vec<ProofPlan>,
+    label_h: u64,
+}
+
+impl<'f, 'l> InstancesProof<'f, 'l> {
+    /// Sets every block's text: `opts.text`, or the first font's [`default_text`], in
+    /// parallel (rayon).
+    pub fn new(
+        fonts: &'f [(String, &'f Layout<'l>)],
+        opts: &ProofOptions,
+    ) -> Result<Self, RenderError> {
+        use rayon::prelude::*;
+        let Some((_, first)) = fonts.first() else {
+            return Err(RenderError::NoGlyphs);
+        };
+        let opts = ProofOptions {
+            text: Some(
+                opts.text
+                    .clone()
+                    .unwrap_or_else(|| default_text(first.font())),
+            ),
+            ..opts.clone()
+        };
+        check_sizes(&opts)?;
+        let plans = fonts
+            .par_iter()
+            .map(|(_, layout)| ProofPlan::new(layout, &opts))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(InstancesProof {
+            fonts,
+            plans,
+            label_h: (LABEL_EM * 1.5).ceil() as u64,
         })
-        .collect::<Result<(), RenderError>>()?;
-    let mut canvas = img.as_mut();
-    let mut y = 0.0;
-    for ((label, _), plan) in fonts.iter().zip(&plans) {
-        let room = width as f64 - 2.0 * MARGIN;
-        super::labels::draw_line(
-            &mut canvas,
-            label,
-            (MARGIN, y + 0.4 * LABEL_EM),
-            LABEL_EM,
-            room,
-            Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
-        );
-        y += (label_h + plan.height) as f64;
     }
-    Ok(img)
+
+    /// The blocks cut into pages, in order: as many blocks a page as stay within
+    /// [`MAX_SIDE`] and [`MAX_AREA`] (one page when they all do). A block too large by
+    /// itself gets a page of its own, which [`Self::render`] then refuses, naming its size.
+    pub fn pages(&self) -> Vec<Range<usize>> {
+        let width = self.width();
+        let mut pages = Vec::new();
+        let (mut start, mut height) = (0, 0u64);
+        for (k, plan) in self.plans.iter().enumerate() {
+            let block = self.label_h + plan.height;
+            let fits = |h: u64| h <= u64::from(MAX_SIDE) && h * width <= MAX_AREA;
+            if k > start && !fits(height + block) {
+                pages.push(start..k);
+                (start, height) = (k, 0);
+            }
+            height += block;
+        }
+        pages.push(start..self.plans.len());
+        pages
+    }
+
+    /// Every page's width: the widest block's, so that pages line up.
+    fn width(&self) -> u64 {
+        self.plans.iter().map(|p| p.width).max().unwrap_or(1)
+    }
+
+    /// The blocks of `page` stacked top to bottom, each drawn in its own rows in parallel.
+    pub fn render(&self, page: Range<usize>) -> Result<Pixmap, RenderError> {
+        use rayon::prelude::*;
+        let (plans, fonts) = (&self.plans[page.clone()], &self.fonts[page]);
+        let label_h = self.label_h;
+        let width = self.width();
+        let height: u64 = plans.iter().map(|p| label_h + p.height).sum();
+        // One image, each block drawn in its own rows in parallel: blocks drawn apart and
+        // copied in touched twice the memory, each fresh page a page fault (the bundled
+        // build's most: 56 % of its faults were this proof's white fill).
+        let mut img = white_pixmap(width, height)?;
+        let row_bytes = width as usize * 4;
+        let mut rest = img.data_mut();
+        let mut strips = Vec::with_capacity(plans.len());
+        for plan in plans {
+            let (_label, after) = rest.split_at_mut(label_h as usize * row_bytes);
+            let (strip, after) = after.split_at_mut(plan.height as usize * row_bytes);
+            strips.push(strip);
+            rest = after;
+        }
+        strips
+            .into_par_iter()
+            .zip(plans.par_iter().zip(fonts.par_iter()))
+            .map(|(strip, (plan, (_, layout)))| {
+                let size = RenderError::Size {
+                    width,
+                    height: plan.height,
+                };
+                let mut canvas =
+                    PixmapMut::from_bytes(strip, width as u32, plan.height as u32).ok_or(size)?;
+                plan.draw(&mut canvas, layout);
+                Ok(())
+            })
+            .collect::<Result<(), RenderError>>()?;
+        let mut canvas = img.as_mut();
+        let mut y = 0.0;
+        for ((label, _), plan) in fonts.iter().zip(plans) {
+            let room = width as f64 - 2.0 * MARGIN;
+            super::labels::draw_line(
+                &mut canvas,
+                label,
+                (MARGIN, y + 0.4 * LABEL_EM),
+                LABEL_EM,
+                room,
+                Color::from_rgba8(0x44, 0x55, 0x99, 0xFF),
+            );
+            y += (label_h + plan.height) as f64;
+        }
+        Ok(img)
+    }
 }

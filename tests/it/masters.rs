@@ -770,3 +770,73 @@ fn fmt_rewrites_the_masters_keys_and_master_files_canonically() {
         assert_eq!(fs::read_to_string(font.join(file)).unwrap(), want, "{file}");
     }
 }
+
+/// A font with masters and `count` named instances `W<wght>` every 5 units from `from`,
+/// built into `<scratch>/out`; the output folder.
+fn build_with_instances(test: &str, from: u32, count: u32) -> PathBuf {
+    let tmp = scratch(test);
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    let toml = fs::read_to_string(font.join("font.toml")).unwrap();
+    let mut toml = toml[..toml.find("[[instance]]").unwrap()].to_string();
+    for k in 0..count {
+        let w = from + 5 * k;
+        toml += &format!("[[instance]]\nname = \"W{w}\"\nlocation = {{ wght = {w} }}\n\n");
+    }
+    fs::write(font.join("font.toml"), toml).unwrap();
+    let out = tmp.join("out");
+    // One text for every page (the default text follows the first instance's kerning).
+    let result = xglyph(&[
+        "build",
+        font.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--text",
+        "HOn OH\\nnO HO\\nOHn",
+    ]);
+    assert_eq!(result.status.code(), Some(0), "{result:?}");
+    out
+}
+
+fn png_size(path: &Path) -> (u32, u32) {
+    let pixmap = resvg::tiny_skia::Pixmap::decode_png(&fs::read(path).unwrap()).unwrap();
+    (pixmap.width(), pixmap.height())
+}
+
+/// 61 instances' blocks are taller than one image may be: the proof comes in pages, each
+/// within the limits, and the last page is exactly the proof of its instances alone.
+#[test]
+fn many_named_instances_page_the_instances_proof() {
+    let out = build_with_instances("many-instances", 400, 61);
+    assert!(!out.join("proof-instances.png").exists());
+    let pages: Vec<(u32, u32)> = (1..=2)
+        .map(|k| png_size(&out.join(format!("proof-instances-{k}.png"))))
+        .collect();
+    assert!(!out.join("proof-instances-3.png").exists());
+    eprintln!("pages: {pages:?}");
+    for &(w, h) in &pages {
+        assert!(
+            h <= xglyph::render::MAX_SIDE
+                && u64::from(w) * u64::from(h) <= xglyph::render::MAX_AREA
+        );
+    }
+    // Every block is the same height here: 61 of them over the two pages, as many on the
+    // first as fit.
+    let block = (pages[0].1 + pages[1].1) / 61;
+    let (first, rest) = (pages[0].1 / block, pages[1].1 / block);
+    assert_eq!(
+        (first * block, rest * block, first + rest),
+        (pages[0].1, pages[1].1, 61)
+    );
+    assert!(
+        (first + 1) * block > xglyph::render::MAX_SIDE,
+        "{first} blocks of {block} px"
+    );
+    let last = build_with_instances("last-instances", 400 + 5 * first, rest);
+    let same = fs::read(last.join("proof-instances.png")).unwrap()
+        == fs::read(out.join("proof-instances-2.png")).unwrap();
+    assert!(
+        same,
+        "the last page differs from the proof of its instances alone"
+    );
+}
