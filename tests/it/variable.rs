@@ -1084,3 +1084,76 @@ fn a_variable_font_with_an_intermediate_master_and_a_map_imports_whole() {
     }
     eprintln!("imported and rebuilt: worst distance {worst:.3} along the axis");
 }
+
+/// 17 axes with a master at each end: every glyph has 34 variation tuples, more than
+/// ttf-parser reads without its `gvar-alloc` feature (32). Such a font (Roboto Flex has 13
+/// axes and more tuples) imports, every master within the import bound of its outline.
+#[test]
+fn a_glyph_with_more_than_32_variations_imports() {
+    let base = tiny();
+    let axes: Vec<Axis> = (0..17)
+        .map(|k| Axis {
+            tag: format!("X{k:03}"),
+            name: format!("Axis {k}"),
+            min: -100.0,
+            default: 0.0,
+            max: 100.0,
+            map: vec![],
+        })
+        .collect();
+    let mut masters = Vec::new();
+    let mut locations = Vec::new();
+    for (k, a) in axes.iter().enumerate() {
+        for (end, sign) in [(a.min, -1.0), (a.max, 1.0)] {
+            let d = sign * (2.0 + k as f64);
+            locations.push(Location([(a.tag.clone(), end)].into_iter().collect()));
+            masters.push(vec![
+                MasterGlyph {
+                    advance: 2.0 * (230.0 + d) + 80.3,
+                    path: ring(40.0, 230.0 + d, 260.0 - d, 70.0 + d),
+                },
+                MasterGlyph {
+                    advance: 80.0 + d + 120.6,
+                    path: stem(60.0, 80.0 + d, 720.0 + d),
+                },
+            ]);
+        }
+    }
+    let designspace = Designspace {
+        axes,
+        instances: vec![],
+    };
+    let regions = designspace.regions(&locations).expect("valid masters");
+    let family = OutlinedFamily {
+        designspace,
+        default: base.default.clone(),
+        masters: masters
+            .into_iter()
+            .zip(regions)
+            .zip(locations)
+            .enumerate()
+            .map(|(k, ((glyphs, region), location))| OutlinedMaster {
+                name: format!("M{k}"),
+                location,
+                region,
+                glyphs,
+                kerning: vec![],
+            })
+            .collect(),
+    };
+    let bytes = variable_ttf(&family).unwrap();
+    let dir = write_temp(&bytes);
+    let imported = dir.path().join("imported");
+    crate::common::cli::import_ok(&[dir.path().join("var.ttf").to_str().unwrap()], &imported);
+    let (back, _) = xglyph::source::load_family(&imported).expect("loads");
+    assert_eq!(back.designspace.axes.len(), 17);
+    assert_eq!(back.masters.len(), 34);
+    // The last master (X016 = 100): `l`'s advance is the original's, rounded.
+    let last = back
+        .masters
+        .iter()
+        .find(|m| m.location.0.get("X016") == Some(&100.0))
+        .unwrap();
+    let l = last.glyphs.iter().find(|g| g.unicodes == ['l']).unwrap();
+    assert_eq!(l.advance, (80.0f64 + 18.0 + 120.6).round());
+}
