@@ -15,10 +15,12 @@
 //!
 //! Axis maps: `avar` becomes each axis's `map`, in user units ([`read_axis_maps`]).
 //!
-//! Limits: an `avar` that does not increase is refused; `avar` 2 is not read; variation
-//! regions on two axes at once (corner masters), or spanning other positions than the
-//! masters', are not reproduced (the masters interpolate along each axis), and such a font
-//! is reported with a note; CFF2 fonts get masters at the axis ends only. Kerning comes from GPOS at each master's location ([`super::kerning`]).
+//! Limits: an `avar` that does not increase is refused; the cross-axis mappings of `avar`
+//! 2 are not read (a note says so); variation regions on two axes at once (corner
+//! masters), or spanning other positions than the masters', are not reproduced (the masters
+//! interpolate along each axis), and such a font is reported with a note; CFF2 fonts get
+//! masters at the axis ends only. Kerning comes from GPOS at each master's location
+//! ([`super::kerning`]).
 
 use std::path::Path;
 
@@ -166,6 +168,16 @@ pub fn import_variable_font(
             "gvar has variations on several axes at once (corner masters), or spanning other \
              positions than its masters'; the masters interpolate along each axis and do not \
              reproduce them"
+                .to_string(),
+        );
+    }
+    if font
+        .avar()
+        .is_ok_and(|a| a.version().major >= 2 && a.var_store().is_some())
+    {
+        notes.push(
+            "avar 2 maps axes by other axes; only its per-axis maps are read, so positions \
+             away from the axes differ from the font's"
                 .to_string(),
         );
     }
