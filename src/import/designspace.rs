@@ -15,7 +15,9 @@
 //! //! come out compatible by itself (else the error names the glyph and master). Axis maps
 //! become the axes' `map`; locations are read as user coordinates (`uservalue`, else
 //! `xvalue` through the inverse map). Discrete axes, `<mappings>` (avar 2), sources on a
-//! layer other than the default, and rules are not supported (an error says which).
+//! layer other than the default, rules, and sources that xglyph's masters cannot hold (a
+//! corner master, an axis end without a source) are not supported: an error says which,
+//! before any UFO is read.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -27,7 +29,7 @@ use rayon::prelude::*;
 use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
 use super::{grid_for, import_ufo, ImportError, ImportOptions, Imported, SourceGlyph};
-use crate::designspace::{Axis, Designspace, Location, NamedInstance};
+use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError};
 use crate::model::{Family, Glyph, Master};
 
 /// A designspace imported: the family and each source's report (default first).
@@ -85,6 +87,7 @@ pub fn import_designspace(
         .iter()
         .position(|(_, l, _)| at_default(l))
         .ok_or_else(|| fail("no source sits at the default of every axis".into()))?;
+    check_regions(&designspace, &sources, default_index).map_err(fail)?;
     let mut imported = Vec::new();
     for (style, location, ufo) in &sources {
         imported.push((style.clone(), location.clone(), import_ufo(ufo, opts)?));
@@ -157,6 +160,56 @@ pub fn import_designspace(
         },
         reports,
     })
+}
+
+/// Refuses, before any UFO is read, sources that xglyph's masters cannot hold
+/// ([`Designspace::regions`]): a source away from the default on two axes (a corner
+/// master), two sources at one place, or an axis end without a source.
+fn check_regions(
+    designspace: &Designspace,
+    sources: &[(String, Location, PathBuf)],
+    default_index: usize,
+) -> Result<(), String> {
+    let others: Vec<&(String, Location, PathBuf)> = sources
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != default_index)
+        .map(|(_, s)| s)
+        .collect();
+    let locations: Vec<Location> = others.iter().map(|s| s.1.clone()).collect();
+    let place = |l: &Location| {
+        designspace
+            .axes
+            .iter()
+            .map(|a| format!("{} = {}", a.tag, crate::source::emit::number(l.get(a))))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match designspace.regions(&locations) {
+        Ok(_) => Ok(()),
+        Err(RegionError::OffAxis { master }) => Err(format!(
+            "source `{}` ({}) is away from the defaults on more than one axis (a corner \
+             master); xglyph's masters lie on one axis each",
+            others[master].0,
+            place(&others[master].1)
+        )),
+        Err(RegionError::AtDefault { master }) => Err(format!(
+            "sources `{}` and `{}` both sit at the default of every axis",
+            sources[default_index].0, others[master].0
+        )),
+        Err(RegionError::Duplicate { first, second }) => Err(format!(
+            "sources `{}` and `{}` sit at the same place ({})",
+            others[first].0,
+            others[second].0,
+            place(&others[first].1)
+        )),
+        Err(RegionError::UncoveredEnd { axis, user }) => Err(format!(
+            "axis `{}` ends at {} but no source sits there; xglyph needs a master at each \
+             axis end",
+            designspace.axes[axis].name,
+            crate::source::emit::number(user)
+        )),
+    }
 }
 
 /// Fits again, with one structure for all sources ([`import_compatible_glyph`]), every

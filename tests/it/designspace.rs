@@ -477,6 +477,23 @@ fn designspace_import_errors_name_the_file_and_the_problem() {
             text.replace("<axes>", "<axes><axis"),
             "cannot read the designspace",
         ),
+        // Sources xglyph's masters cannot hold are refused before any UFO is read.
+        (
+            text.replace(r#"maximum="700""#, r#"maximum="800""#),
+            "axis `Weight` ends at 800 but no source sits there; xglyph needs a master at \
+             each axis end",
+        ),
+        (
+            text.replace(
+                r#"xvalue="700"/>
+      </location>
+    </source>"#,
+                r#"xvalue="400"/>
+      </location>
+    </source>"#,
+            ),
+            "sources `Regular` and `Bold` both sit at the default of every axis",
+        ),
     ];
     for (i, (text, message)) in cases.iter().enumerate() {
         let path = b.dir.join(format!("broken-{i}.designspace"));
