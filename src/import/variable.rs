@@ -13,7 +13,7 @@
 //! masters' outlines are measured against their originals, and the midpoint between the
 //! default and each other master against the blend of their Bézier outlines.
 //!
-//! Axis maps: `avar` becomes each axis's `map`, in user units ([`read_axis_maps`]).
+//! Axis maps: `avar` becomes each axis's `map`, in user units (`read_axis_maps`).
 //!
 //! Limits: an `avar` that does not increase is refused; the cross-axis mappings of `avar`
 //! 2 are not read (a note says so); variation regions on two axes at once (corner
