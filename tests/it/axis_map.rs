@@ -8,7 +8,6 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 
 use skrifa::instance::{LocationRef, Size};
@@ -229,44 +228,17 @@ fn the_designspace_carries_the_map_out_and_back() {
 
 #[test]
 fn fontmake_and_fontc_compile_the_same_avar_and_instances() {
-    if !tools::available(
-        tools::python_imports("fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2")
-            && ["fontmake", "fontc"]
-                .iter()
-                .all(|t| tools::program_runs(t, &["--help"])),
-        "fontmake/fontc/fontTools/ufoLib2",
-        "pip install fontmake fontc ufoLib2",
-    ) {
+    if !tools::designspace_compilers_available() {
         return;
     }
     let b = built();
     let tmp = tempfile::tempdir().expect("temp dir");
-    let ds = b.out.join("MastersTest.designspace");
-    let fontmake = tmp.path().join("fontmake.ttf");
-    tools::run(
-        Command::new("fontmake")
-            .arg("-m")
-            .arg(&ds)
-            .args(["-o", "variable", "--output-path"])
-            .arg(&fontmake),
-    );
-    let fontc = tmp.path().join("fontc-build");
-    tools::run(
-        Command::new("fontc")
-            .arg("--build-dir")
-            .arg(&fontc)
-            .arg(&ds),
-    );
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/designspace_check.py");
-    let report = tools::run(
-        Command::new("python3")
-            .arg(&script)
-            .arg(&ds)
-            .arg(b.out.join("MastersTest[wght].ttf"))
-            .arg(&fontmake)
-            .arg(fontc.join("font.ttf"))
-            .arg("0.5")
-            .args(["400", "450", "500", "600", "700"]),
+    let report = tools::check_designspace_compilers(
+        &b.out.join("MastersTest.designspace"),
+        &b.out.join("MastersTest[wght].ttf"),
+        tmp.path(),
+        0.5,
+        &["400", "450", "500", "600", "700"],
     );
     println!("{report}");
     for line in [

@@ -9,7 +9,6 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 
 use kurbo::{BezPath, PathEl, Point};
@@ -353,51 +352,20 @@ fn an_anchor_name_ufo_cannot_hold_is_an_error_naming_the_glyph() {
     );
 }
 
-/// Whether fontmake, fontc, fontTools and ufoLib2 are there.
-fn tools_available() -> bool {
-    tools::available(
-        tools::python_imports("fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2")
-            && ["fontmake", "fontc"]
-                .iter()
-                .all(|t| tools::program_runs(t, &["--help"])),
-        "fontmake/fontc/fontTools/ufoLib2",
-        "pip install fontmake fontc ufoLib2",
-    )
-}
-
 #[test]
 fn fontmake_and_fontc_build_the_designspace_and_match_xglyphs_variable_font() {
-    if !tools_available() {
+    if !tools::designspace_compilers_available() {
         return;
     }
     let b = built();
     let ds = b.dir.join("XglyphSans.designspace");
-    let fontmake = b.dir.join("fontmake.ttf");
-    tools::run(
-        Command::new("fontmake")
-            .arg("-m")
-            .arg(&ds)
-            .args(["-o", "variable", "--output-path"])
-            .arg(&fontmake),
-    );
-    let fontc_dir = b.dir.join("fontc-build");
-    tools::run(
-        Command::new("fontc")
-            .arg("--build-dir")
-            .arg(&fontc_dir)
-            .arg(&ds),
-    );
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/designspace_check.py");
     // The masters, a named instance between them, and two positions off the instances.
-    let report = tools::run(
-        Command::new("python3")
-            .arg(&script)
-            .arg(&ds)
-            .arg(b.dir.join("XglyphSans[wght].ttf"))
-            .arg(&fontmake)
-            .arg(fontc_dir.join("font.ttf"))
-            .arg(b.loaded.font.tolerance.to_string())
-            .args(["400", "500", "550", "650", "700"]),
+    let report = tools::check_designspace_compilers(
+        &ds,
+        &b.dir.join("XglyphSans[wght].ttf"),
+        &b.dir,
+        b.loaded.font.tolerance,
+        &["400", "500", "550", "650", "700"],
     );
     println!("{report}");
     // fontTools.designspaceLib finds what font.toml says.

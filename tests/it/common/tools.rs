@@ -60,3 +60,46 @@ pub fn python_json<T: serde::de::DeserializeOwned>(script: &str, args: &[&dyn As
     );
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
 }
+
+/// Whether fontmake, fontc, fontTools and ufoLib2 are there (else the skip of
+/// [`available`]).
+pub fn designspace_compilers_available() -> bool {
+    available(
+        python_imports("fontTools.designspaceLib, fontTools.varLib.instancer, ufoLib2")
+            && ["fontmake", "fontc"]
+                .iter()
+                .all(|t| program_runs(t, &["--help"])),
+        "fontmake/fontc/fontTools/ufoLib2",
+        "pip install fontmake fontc ufoLib2",
+    )
+}
+
+/// Compiles the designspace `ds` with fontmake and with fontc into `dir`, then runs
+/// `tests/it/designspace_check.py` against xglyph's variable font `ours` at the user
+/// `positions`; returns the check's report (it exits 0 only when every check holds).
+pub fn check_designspace_compilers(
+    ds: &std::path::Path,
+    ours: &std::path::Path,
+    dir: &std::path::Path,
+    tolerance: f64,
+    positions: &[&str],
+) -> String {
+    let fontmake = dir.join("fontmake.ttf");
+    run(Command::new("fontmake")
+        .arg("-m")
+        .arg(ds)
+        .args(["-o", "variable", "--output-path"])
+        .arg(&fontmake));
+    let fontc = dir.join("fontc-build");
+    run(Command::new("fontc").arg("--build-dir").arg(&fontc).arg(ds));
+    let script =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/designspace_check.py");
+    run(Command::new("python3")
+        .arg(&script)
+        .arg(ds)
+        .arg(ours)
+        .arg(&fontmake)
+        .arg(fontc.join("font.ttf"))
+        .arg(tolerance.to_string())
+        .args(positions))
+}
