@@ -24,7 +24,7 @@ use crate::fit::fit_contour;
 use crate::model::{Contour, Family, Font, GlyphIndex, KernPair};
 use crate::orient::nesting_depths;
 use crate::outline::{OutlinedFont, OutlinedGlyph, PlacedContour};
-use crate::xspline::XSpline;
+use crate::xspline::{XSpline, XSplineError};
 
 /// A font with masters, every glyph fitted compatibly.
 #[derive(Clone, Debug)]
@@ -82,6 +82,9 @@ pub enum FamilyError {
         contour: usize,
         /// Why.
         error: CompatibleError,
+        /// Where the blended contour failed, when it failed at one position: the axes
+        /// away from their defaults with their user values, e.g. `wght 650`.
+        at: Option<String>,
     },
 }
 
@@ -92,7 +95,24 @@ impl fmt::Display for FamilyError {
             FamilyError::Contour {
                 glyph,
                 contour,
+                error: CompatibleError::Blend { source, .. },
+                at: Some(at),
+            } => {
+                write!(f, "glyph `{glyph}`, contour {contour}, blended at {at}: ")?;
+                match source {
+                    XSplineError::CoincidentPoints { index, next } => write!(
+                        f,
+                        "points {index} and {next} meet there (they cross between the masters); \
+                         move them in a master so that they stay apart"
+                    ),
+                    other => write!(f, "{other}"),
+                }
+            }
+            FamilyError::Contour {
+                glyph,
+                contour,
                 error,
+                ..
             } => write!(f, "glyph `{glyph}`, contour {contour}: {error}"),
         }
     }
@@ -127,6 +147,45 @@ pub fn check_locations(family: &Family) -> Vec<Location> {
         }
     }
     unique
+}
+
+/// `e` with the place of a blend that failed at one of `locations` (user values of every
+/// axis), so that the message says where rather than which check position.
+fn at_location(e: FamilyError, ds: &Designspace, locations: &[Location]) -> FamilyError {
+    match e {
+        FamilyError::Contour {
+            glyph,
+            contour,
+            error: error @ CompatibleError::Blend { position, .. },
+            ..
+        } => {
+            // The axes away from their defaults, at 6 decimals (the check positions are
+            // computed, so 45 can be 44.99999999999997).
+            let at = locations.get(position).map(|l| {
+                let off: Vec<String> = ds
+                    .axes
+                    .iter()
+                    .filter(|a| l.get(a) != a.default)
+                    .map(|a| {
+                        let v = (l.get(a) * 1e6).round() / 1e6;
+                        format!("{} {}", a.tag, crate::source::emit::number(v))
+                    })
+                    .collect();
+                if off.is_empty() {
+                    "the default location".to_string()
+                } else {
+                    off.join(", ")
+                }
+            });
+            FamilyError::Contour {
+                glyph,
+                contour,
+                error,
+                at,
+            }
+        }
+        other => other,
+    }
 }
 
 /// How a family's compatible outlines compare with static fits, and how close they come
@@ -191,7 +250,8 @@ pub fn outline_family_with(
     let glyphs: Vec<FittedGlyph> = order
         .par_iter()
         .map(|&gi| fit_glyph(&fonts, &indexes, gi, &positions, tolerance, cache))
-        .collect::<Result<_, _>>()?;
+        .collect::<Result<_, _>>()
+        .map_err(|e| at_location(e, ds, &locations))?;
 
     let mut summary = FamilySummary {
         compatible_segments: 0,
@@ -279,6 +339,7 @@ fn fit_glyph(
                 glyph: glyph.name.clone(),
                 contour: c,
                 error,
+                at: None,
             })
         })
         .collect::<Result<_, _>>()?;

@@ -840,3 +840,31 @@ fn many_named_instances_page_the_instances_proof() {
         "the last page differs from the proof of its instances alone"
     );
 }
+
+/// Two neighbouring points that trade places between the masters meet halfway: the build
+/// stops and says where, in user values, and which points; nothing is written.
+#[test]
+fn points_that_meet_between_the_masters_are_named_with_the_place() {
+    let tmp = scratch("meet");
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    let bold = font.join("bold/H_.toml");
+    let text = fs::read_to_string(&bold).unwrap();
+    // Regular has (160, 320) and (480, 320); halfway to these both are at (270, 307.5).
+    let edited = text.replacen(
+        "  [220, 295, 0],\n  [480, 295, 0],",
+        "  [380, 295, 0],\n  [60, 295, 0],",
+        1,
+    );
+    assert_ne!(edited, text);
+    fs::write(&bold, edited).unwrap();
+    let out = tmp.join("out");
+    let result = xglyph(&["build", font.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(result.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&result.stderr),
+        "error: glyph `H`, contour 0, blended at wght 550: points 2 and 3 meet there (they \
+         cross between the masters); move them in a master so that they stay apart\n"
+    );
+    assert!(!out.exists(), "nothing written");
+}
