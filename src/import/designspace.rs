@@ -445,3 +445,60 @@ pub fn family_sources(family: &Family) -> Vec<(String, String)> {
     }
     files
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use norad::designspace::AxisMapping;
+
+    fn weight() -> Axis {
+        Axis {
+            tag: "wght".into(),
+            name: "Weight".into(),
+            min: 100.0,
+            default: 400.0,
+            max: 900.0,
+            map: vec![],
+        }
+    }
+
+    fn mapping(pairs: &[(f64, f64)]) -> Vec<AxisMapping> {
+        pairs
+            .iter()
+            .map(|&(input, output)| AxisMapping { input, output })
+            .collect()
+    }
+
+    #[test]
+    fn a_map_is_sorted_and_extended_to_the_axis_ends_as_fonttools_extrapolates() {
+        // fontTools' piecewiseLinearMap keeps the nearest entry's offset beyond the map:
+        // 100 -> 100 + (90 - 400) = -210.
+        let map = axis_map(&weight(), &mapping(&[(900.0, 190.0), (400.0, 90.0)]));
+        assert_eq!(
+            map,
+            Ok(vec![(100.0, -210.0), (400.0, 90.0), (900.0, 190.0)])
+        );
+        // Entries outside the axis are left out (the end is interpolated through them).
+        let map = axis_map(
+            &weight(),
+            &mapping(&[(0.0, 0.0), (400.0, 100.0), (900.0, 200.0), (1000.0, 210.0)]),
+        );
+        assert_eq!(map, Ok(vec![(100.0, 25.0), (400.0, 100.0), (900.0, 200.0)]));
+    }
+
+    #[test]
+    fn a_map_that_does_not_increase_is_refused() {
+        let map = axis_map(
+            &weight(),
+            &mapping(&[(100.0, 50.0), (400.0, 90.0), (900.0, 90.0)]),
+        );
+        assert_eq!(
+            map,
+            Err(
+                "axis `Weight` has a map that does not increase (user 400 -> design 90, then \
+                 user 900 -> design 90); xglyph's axis maps must increase in both"
+                    .to_string()
+            )
+        );
+    }
+}
