@@ -319,7 +319,7 @@ fn axis_map(
     if !ok {
         return None;
     }
-    let user = |x: f64| emit::number(x);
+    let num = |x: f64| emit::number(x);
     let (Some(&(first, _, first_at)), Some(&(last, _, last_at))) = (pairs.first(), pairs.last())
     else {
         ctx.err(
@@ -341,8 +341,8 @@ fn axis_map(
             at,
             format!(
                 "`map` {what} values must increase: {} follows {}",
-                user(is),
-                user(was)
+                num(is),
+                num(was)
             ),
         );
         return None;
@@ -352,8 +352,8 @@ fn axis_map(
             first_at,
             format!(
                 "`map` must start at the axis `min` = {}, found user value {}",
-                user(min),
-                user(first)
+                num(min),
+                num(first)
             ),
         );
         return None;
@@ -363,8 +363,8 @@ fn axis_map(
             last_at,
             format!(
                 "`map` must end at the axis `max` = {}, found user value {}",
-                user(max),
-                user(last)
+                num(max),
+                num(last)
             ),
         );
         return None;

@@ -12,15 +12,17 @@ use crate::designspace::Axis;
 /// The `avar` of `axes`, one segment map each.
 pub fn avar(axes: &[Axis]) -> Avar {
     let segments = |a: &Axis| {
-        let pairs = a.normalized_map();
-        SegmentMaps::new(
-            pairs
-                .iter()
-                .map(|&(from, to)| {
-                    AxisValueMap::new(F2Dot14::from_f32(from as f32), F2Dot14::from_f32(to as f32))
-                })
-                .collect(),
-        )
+        let mut maps: Vec<AxisValueMap> = a
+            .normalized_map()
+            .iter()
+            .map(|&(from, to)| {
+                AxisValueMap::new(F2Dot14::from_f32(from as f32), F2Dot14::from_f32(to as f32))
+            })
+            .collect();
+        // Map entries closer than one F2Dot14 step would repeat a `from` coordinate, which
+        // the table may not: the first is kept.
+        maps.dedup_by_key(|m| m.from_coordinate);
+        SegmentMaps::new(maps)
     };
     Avar::new(axes.iter().map(segments).collect())
 }
@@ -57,6 +59,17 @@ mod tests {
         let a = avar(&[axis("wght", vec![]), axis("wdth", vec![])]);
         let identity = vec![(-1.0, -1.0), (0.0, 0.0), (1.0, 1.0)];
         assert_eq!(pairs(&a), vec![identity.clone(), identity]);
+    }
+
+    #[test]
+    fn entries_closer_than_a_step_are_written_once() {
+        // 400.001 lies 1/500000 of the way from 400 to 900: 0 as F2Dot14, as 400 does.
+        let a = axis(
+            "wght",
+            vec![(100.0, 0.0), (400.0, 40.0), (400.001, 41.0), (900.0, 90.0)],
+        );
+        let froms: Vec<f32> = pairs(&avar(&[a]))[0].iter().map(|p| p.0).collect();
+        assert_eq!(froms, [-1.0, 0.0, 1.0]);
     }
 
     #[test]
