@@ -18,14 +18,7 @@ fn family() -> OutlinedFamily {
         .expect("glyphs/ loads")
         .font;
     let designspace = Designspace {
-        axes: vec![Axis {
-            tag: "wght".into(),
-            name: "Weight".into(),
-            min: 400.0,
-            default: 400.0,
-            max: 700.0,
-            map: vec![],
-        }],
+        axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
         instances: vec![],
     };
     let bold = Location([("wght".to_string(), 700.0)].into_iter().collect());

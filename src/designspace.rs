@@ -34,6 +34,24 @@ pub struct Axis {
 }
 
 impl Axis {
+    /// An axis without a map: design values are user values.
+    pub fn linear(
+        tag: impl Into<String>,
+        name: impl Into<String>,
+        min: f64,
+        default: f64,
+        max: f64,
+    ) -> Axis {
+        Axis {
+            tag: tag.into(),
+            name: name.into(),
+            min,
+            default,
+            max,
+            map: Vec::new(),
+        }
+    }
+
     /// `user` normalised to -1..1 in design space: `min` → -1, `default` → 0, `max` → 1,
     /// linear in the design values in between, clamped to the axis range. This is where the
     /// masters blend, OpenType's normalised coordinate after `avar`.
@@ -303,14 +321,7 @@ mod tests {
 
     fn wght() -> Designspace {
         Designspace {
-            axes: vec![Axis {
-                tag: "wght".into(),
-                name: "Weight".into(),
-                min: 400.0,
-                default: 400.0,
-                max: 700.0,
-                map: vec![],
-            }],
+            axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
             instances: vec![],
         }
     }
@@ -321,14 +332,7 @@ mod tests {
 
     #[test]
     fn normalise_is_piecewise_linear_and_clamped() {
-        let a = Axis {
-            tag: "wght".into(),
-            name: "Weight".into(),
-            min: 100.0,
-            default: 400.0,
-            max: 900.0,
-            map: vec![],
-        };
+        let a = Axis::linear("wght", "Weight", 100.0, 400.0, 900.0);
         assert_eq!(a.normalize(100.0), -1.0);
         assert_eq!(a.normalize(250.0), -0.5);
         assert_eq!(a.normalize(400.0), 0.0);
@@ -433,14 +437,8 @@ mod tests {
             })
         );
         let mut two = wght();
-        two.axes.push(Axis {
-            tag: "wdth".into(),
-            name: "Width".into(),
-            min: 75.0,
-            default: 100.0,
-            max: 100.0,
-            map: vec![],
-        });
+        two.axes
+            .push(Axis::linear("wdth", "Width", 75.0, 100.0, 100.0));
         let mut corner = at(700.0);
         corner.0.insert("wdth".into(), 75.0);
         assert_eq!(

@@ -279,14 +279,7 @@ fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
                     a.name
                 ));
             };
-            let mut axis = Axis {
-                tag: a.tag.clone(),
-                name: a.name.clone(),
-                min,
-                default: a.default,
-                max,
-                map: vec![],
-            };
+            let mut axis = Axis::linear(a.tag.clone(), a.name.clone(), min, a.default, max);
             if let Some(map) = a.map.as_ref().filter(|m| !m.is_empty()) {
                 axis.map = axis_map(&axis, map)?;
             }
@@ -452,14 +445,7 @@ mod tests {
     use norad::designspace::AxisMapping;
 
     fn weight() -> Axis {
-        Axis {
-            tag: "wght".into(),
-            name: "Weight".into(),
-            min: 100.0,
-            default: 400.0,
-            max: 900.0,
-            map: vec![],
-        }
+        Axis::linear("wght", "Weight", 100.0, 400.0, 900.0)
     }
 
     fn mapping(pairs: &[(f64, f64)]) -> Vec<AxisMapping> {

@@ -68,13 +68,14 @@ pub fn import_variable_font(
     let mut axes: Vec<Axis> = font
         .axes()
         .iter()
-        .map(|a| Axis {
-            tag: a.tag().to_string(),
-            name: name(a.name_id()).unwrap_or_else(|| a.tag().to_string()),
-            min: f64::from(a.min_value()),
-            default: f64::from(a.default_value()),
-            max: f64::from(a.max_value()),
-            map: vec![],
+        .map(|a| {
+            Axis::linear(
+                a.tag().to_string(),
+                name(a.name_id()).unwrap_or_else(|| a.tag().to_string()),
+                f64::from(a.min_value()),
+                f64::from(a.default_value()),
+                f64::from(a.max_value()),
+            )
         })
         .collect();
     read_axis_maps(&font, &mut axes).map_err(fail)?;

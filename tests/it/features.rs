@@ -446,14 +446,9 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
     }];
     let default = outline_font(&font, font.info.tolerance);
     let mut designspace = Designspace::default();
-    designspace.axes.push(Axis {
-        tag: "wght".into(),
-        name: "Weight".into(),
-        min: 400.0,
-        default: 400.0,
-        max: 700.0,
-        map: vec![],
-    });
+    designspace
+        .axes
+        .push(Axis::linear("wght", "Weight", 400.0, 400.0, 700.0));
     let location = Location(BTreeMap::from([("wght".to_string(), 700.0)]));
     let region = designspace
         .regions(std::slice::from_ref(&location))

@@ -45,14 +45,7 @@ use crate::studio_browser::Browser;
 const GRID: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 fn wght(min: f64, default: f64, max: f64) -> Axis {
-    Axis {
-        tag: "wght".into(),
-        name: "Weight".into(),
-        min,
-        default,
-        max,
-        map: vec![],
-    }
+    Axis::linear("wght", "Weight", min, default, max)
 }
 
 fn at(w: f64) -> Location {
@@ -1092,14 +1085,7 @@ fn a_variable_font_with_an_intermediate_master_and_a_map_imports_whole() {
 fn a_glyph_with_more_than_32_variations_imports() {
     let base = tiny();
     let axes: Vec<Axis> = (0..17)
-        .map(|k| Axis {
-            tag: format!("X{k:03}"),
-            name: format!("Axis {k}"),
-            min: -100.0,
-            default: 0.0,
-            max: 100.0,
-            map: vec![],
-        })
+        .map(|k| Axis::linear(format!("X{k:03}"), format!("Axis {k}"), -100.0, 0.0, 100.0))
         .collect();
     let mut masters = Vec::new();
     let mut locations = Vec::new();
