@@ -22,9 +22,9 @@ fn family() -> OutlinedFamily {
         instances: vec![],
     };
     let bold = Location([("wght".to_string(), 700.0)].into_iter().collect());
-    let region = designspace
-        .regions(std::slice::from_ref(&bold))
-        .expect("valid")[0];
+    let model = designspace
+        .model(std::slice::from_ref(&bold))
+        .expect("valid");
     let map = Affine::new([1.15, 0.0, 0.05, 0.98, 0.0, 4.0]);
     let glyphs = font
         .glyphs
@@ -39,11 +39,11 @@ fn family() -> OutlinedFamily {
         masters: vec![OutlinedMaster {
             name: "Bold".into(),
             location: bold,
-            region,
             glyphs,
             kerning: font.kerning.clone(),
         }],
         default: font,
+        model,
     }
 }
 

@@ -7,11 +7,19 @@
 //! default as OpenType does: `fvar` normalisation of the design values, which is the user
 //! normalisation followed by `avar`.
 //!
-//! Limit: every master other than the default lies **on one axis** (all other coordinates at
-//! their defaults). Masters on the same axis split it into tents, so a position blends the
-//! two masters around it on each axis, and the axes add up. This is the OpenType delta model
-//! (`gvar`, `HVAR`, item variation stores) restricted to single-axis regions, which is
-//! what a weight axis, or several independent axes without corner masters, need.
+//! How masters blend is OpenType's delta model (`gvar`, `HVAR`, item variation stores), with
+//! the regions fontTools' `VariationModel` gives, which fontmake and fontc build with
+//! ([`VariationModel`]):
+//! - Masters on one axis (the others at their defaults) split it into tents, so a position
+//!   blends the two masters around it on each axis, and the axes add up.
+//! - A **corner master**, away from the default on several axes, gets a region that is a
+//!   product of tents, cut at the earlier masters on the same axes. Its delta is what it
+//!   adds to the blend of the masters before it, so a full grid of corners blends
+//!   multilinearly, and a sparse one as fontTools blends it: there some weights can be
+//!   negative between the masters.
+//!
+//! Limits: every axis end needs a master on that axis (OpenType's blend falls back to the
+//! default beyond the outermost master); no extrapolation beyond the axes.
 
 use std::collections::BTreeMap;
 
@@ -168,36 +176,153 @@ pub struct Designspace {
     pub instances: Vec<NamedInstance>,
 }
 
-/// One non-default master's region on its axis: the blend weight of its deltas is a tent
-/// that is 0 at `start`, 1 at `peak` and 0 again at `end` (normalised coordinates), as an
-/// OpenType `RegionAxisCoordinates` / gvar tuple with intermediate region.
+/// A master's tent on one axis: the blend weight of its deltas rises from 0 at `lower`
+/// to 1 at `peak` and falls to 0 again at `upper` (normalised coordinates,
+/// `lower <= peak <= upper`), as an OpenType `RegionAxisCoordinates`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Region {
+pub struct Tent {
     /// Index of the axis in [`Designspace::axes`].
     pub axis: usize,
     /// Where the weight starts to rise (normalised).
-    pub start: f64,
+    pub lower: f64,
     /// Where the weight is 1: the master's own normalised coordinate.
     pub peak: f64,
     /// Where the weight is back to 0 (normalised).
-    pub end: f64,
+    pub upper: f64,
+}
+
+impl Tent {
+    /// The tent's height at normalised coordinate `v` on its axis (OpenType's scalar for
+    /// one axis).
+    pub fn scalar(&self, v: f64) -> f64 {
+        if v == self.peak {
+            1.0
+        } else if v <= self.lower || v >= self.upper {
+            0.0
+        } else if v < self.peak {
+            (v - self.lower) / (self.peak - self.lower)
+        } else {
+            (self.upper - v) / (self.upper - self.peak)
+        }
+    }
+}
+
+/// One non-default master's region: a tent on each axis where the master is away from the
+/// default (in axis order), 1 on the others. A master on one axis has one tent.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// The tents, by increasing axis index.
+    pub tents: Vec<Tent>,
 }
 
 impl Region {
-    /// The tent's height at normalised coordinate `v` on its axis (the OpenType region
-    /// scalar for one axis).
-    pub fn scalar(&self, v: f64) -> f64 {
-        if v == self.peak {
-            return 1.0;
+    /// The region's weight at normalised coordinates `at` (one per axis): the product of
+    /// its tents' heights.
+    pub fn scalar(&self, at: &[f64]) -> f64 {
+        let mut scalar = 1.0;
+        for tent in &self.tents {
+            scalar *= tent.scalar(at[tent.axis]);
+            if scalar == 0.0 {
+                break;
+            }
         }
-        if v <= self.start.min(self.end) || v >= self.start.max(self.end) {
-            return 0.0;
+        scalar
+    }
+
+    /// The region's (lower, peak, upper) on each of `axis_count` axes: zeros on the axes
+    /// it does not use.
+    pub fn per_axis(&self, axis_count: usize) -> Vec<[f64; 3]> {
+        let mut out = vec![[0.0; 3]; axis_count];
+        for t in &self.tents {
+            out[t.axis] = [t.lower, t.peak, t.upper];
         }
-        if (v < self.peak) == (self.start < self.peak) {
-            (v - self.start) / (self.peak - self.start)
-        } else {
-            (self.end - v) / (self.end - self.peak)
+        out
+    }
+}
+
+/// The blend of a set of masters: each non-default master's region, and how much of the
+/// masters before it (in the model's order) its delta leaves out, so that the sum of the
+/// deltas weighted by their regions' scalars is the master itself at its location.
+///
+/// The regions are fontTools' (`fontTools.varLib.models.VariationModel`, with the axes in
+/// `font.toml` order), except that a master on one axis ends its tent at the next master
+/// outwards rather than at the axis end: the same blend, with deltas that are plain
+/// differences from the default (whole numbers stay whole, so each master's rounded outline
+/// comes back exactly).
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariationModel {
+    /// Per non-default master, in the order given, its region.
+    pub regions: Vec<Region>,
+    /// The non-default masters in the order their deltas are computed: fewer axes first.
+    order: Vec<usize>,
+    /// Per non-default master, the earlier masters (in [`Self::order`]) whose regions are
+    /// not zero at its location, with their scalars there. The default always counts 1.
+    delta_weights: Vec<Vec<(usize, f64)>>,
+}
+
+impl VariationModel {
+    /// Whether every region is on one axis with plain differences as deltas (the blend is
+    /// then a convex combination inside the axes).
+    pub fn on_axes(&self) -> bool {
+        self.delta_weights.iter().all(Vec::is_empty)
+    }
+
+    /// The regions' scalars at normalised coordinates `at`.
+    pub fn scalars(&self, at: &[f64]) -> Vec<f64> {
+        self.regions.iter().map(|r| r.scalar(at)).collect()
+    }
+
+    /// How much each master counts at normalised coordinates `at`: index 0 is the default
+    /// master, then the non-default masters in order. The weights sum to 1. With masters on
+    /// the axes only, or a full grid of corners, they are all in 0..=1 inside the axes; a
+    /// sparse set of corners gives some negative weights (fontTools' "master scalars").
+    pub fn weights_at(&self, at: &[f64]) -> Vec<f64> {
+        let scalars = self.scalars(at);
+        let mut weights = Vec::with_capacity(scalars.len() + 1);
+        if self.on_axes() {
+            weights.push(1.0 - scalars.iter().sum::<f64>());
+            weights.extend(scalars);
+            return weights;
         }
+        // Each delta is its master minus the default minus the earlier deltas by their
+        // weights: unfold from the last delta down, as fontTools' `getMasterScalars`.
+        let mut out = scalars;
+        let mut default = 1.0;
+        for &i in self.order.iter().rev() {
+            let w = out[i];
+            default -= w;
+            for &(j, dw) in &self.delta_weights[i] {
+                out[j] -= w * dw;
+            }
+        }
+        weights.push(default);
+        weights.extend(out);
+        weights
+    }
+
+    /// Each non-default master's delta (in order) for `values` (default first, then the
+    /// non-default masters), each rounded by `round` as it is computed, so that the later
+    /// deltas take up the rounding of the earlier ones (fontTools' `getDeltas`).
+    pub fn deltas_by(&self, values: &[f64], round: impl Fn(f64) -> f64) -> Vec<f64> {
+        let mut deltas = vec![0.0; self.regions.len()];
+        for &i in &self.order {
+            let mut d = values[i + 1] - values[0];
+            for &(j, dw) in &self.delta_weights[i] {
+                d -= if dw == 1.0 { deltas[j] } else { deltas[j] * dw };
+            }
+            deltas[i] = round(d);
+        }
+        deltas
+    }
+
+    /// [`Self::deltas_by`] for whole numbers, rounded half up as OpenType tools do: the
+    /// deltas of `gvar`, `HVAR` and the layout's variation store.
+    pub fn int_deltas(&self, values: &[i32]) -> Vec<i32> {
+        let values: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+        self.deltas_by(&values, |d| (d + 0.5).floor())
+            .into_iter()
+            .map(|d| d as i32)
+            .collect()
     }
 }
 
@@ -210,80 +335,201 @@ impl Designspace {
             .collect()
     }
 
-    /// The regions of the non-default masters at `masters` (user locations, in master
-    /// order, the default master left out), or why they do not form a valid set: a master
-    /// off the axes (two coordinates away from the default), at the default, two masters at
-    /// the same place, or an axis end with no master (the blend would fall back to the
-    /// default beyond the outermost master, as OpenType regions do).
-    ///
-    /// On each axis the masters split the range: a master's tent starts at its neighbour
-    /// towards the default (or the default, 0) and ends at its neighbour away from it (or at
-    /// its own peak, the axis end, when it is the outermost).
-    pub fn regions(&self, masters: &[Location]) -> Result<Vec<Region>, RegionError> {
-        let mut on_axis = Vec::with_capacity(masters.len());
-        for (i, loc) in masters.iter().enumerate() {
-            let norm = self.normalize(loc);
-            let off: Vec<usize> = (0..norm.len()).filter(|&a| norm[a] != 0.0).collect();
-            match off[..] {
-                [] => return Err(RegionError::AtDefault { master: i }),
-                [axis] => on_axis.push((axis, norm[axis])),
-                _ => return Err(RegionError::OffAxis { master: i }),
+    /// The blend of the non-default masters at `masters` (user locations, in master order,
+    /// the default master left out), or why they do not form a valid set: a master at the
+    /// default, two masters at the same place, or an axis end with no master on that axis.
+    pub fn model(&self, masters: &[Location]) -> Result<VariationModel, RegionError> {
+        let norms: Vec<Vec<f64>> = masters.iter().map(|l| self.normalize(l)).collect();
+        for (i, norm) in norms.iter().enumerate() {
+            if norm.iter().all(|&v| v == 0.0) {
+                return Err(RegionError::AtDefault { master: i });
             }
-        }
-        let mut regions = Vec::with_capacity(masters.len());
-        for (i, &(axis, peak)) in on_axis.iter().enumerate() {
-            let same_side = |&(a, p): &(usize, f64)| a == axis && p * peak > 0.0;
-            if let Some(j) = on_axis
-                .iter()
-                .enumerate()
-                .position(|(j, m)| j != i && m.0 == axis && m.1 == peak)
-            {
+            if let Some(j) = norms[..i].iter().position(|n| n == norm) {
                 return Err(RegionError::Duplicate {
-                    first: i.min(j),
-                    second: i.max(j),
+                    first: j,
+                    second: i,
                 });
             }
-            let inner = on_axis
-                .iter()
-                .filter(|m| same_side(m) && m.1.abs() < peak.abs())
-                .map(|m| m.1)
-                .max_by(|a, b| a.abs().total_cmp(&b.abs()))
-                .unwrap_or(0.0);
-            let outer = on_axis
-                .iter()
-                .filter(|m| same_side(m) && m.1.abs() > peak.abs())
-                .map(|m| m.1)
-                .min_by(|a, b| a.abs().total_cmp(&b.abs()))
-                .unwrap_or(peak);
-            regions.push(Region {
-                axis,
-                start: inner,
-                peak,
-                end: outer,
-            });
         }
+        let off = |m: usize| -> Vec<usize> {
+            (0..self.axes.len())
+                .filter(|&a| norms[m][a] != 0.0)
+                .collect()
+        };
         for (axis, a) in self.axes.iter().enumerate() {
             for (end, user) in [(-1.0, a.min), (1.0, a.max)] {
-                let covered = regions.iter().any(|r| r.axis == axis && r.peak == end);
+                let covered = (0..norms.len()).any(|m| off(m) == [axis] && norms[m][axis] == end);
                 if user != a.default && !covered {
                     return Err(RegionError::UncoveredEnd { axis, user });
                 }
             }
         }
-        Ok(regions)
+        let order = model_order(&norms, self.axes.len());
+        let mut regions: Vec<Option<Region>> = vec![None; norms.len()];
+        for (k, &m) in order.iter().enumerate() {
+            let axes = off(m);
+            let region = if let [axis] = axes[..] {
+                on_axis_region(&norms, m, axis)
+            } else {
+                corner_region(&norms, m, &axes, &order[..k])
+            };
+            regions[m] = Some(region);
+        }
+        let regions: Vec<Region> = regions.into_iter().flatten().collect();
+        let mut delta_weights = vec![Vec::new(); norms.len()];
+        for (k, &m) in order.iter().enumerate() {
+            delta_weights[m] = order[..k]
+                .iter()
+                .map(|&j| (j, regions[j].scalar(&norms[m])))
+                .filter(|&(_, s)| s != 0.0)
+                .collect();
+        }
+        Ok(VariationModel {
+            regions,
+            order,
+            delta_weights,
+        })
     }
 
-    /// How much each master counts at `location`: index 0 is the default master, then the
-    /// masters of `regions` in order. The weights sum to 1; inside the masters' span they
-    /// are all in 0..=1, so the blend is a convex combination.
-    pub fn weights(&self, regions: &[Region], location: &Location) -> Vec<f64> {
-        let at = self.normalize(location);
-        let deltas: Vec<f64> = regions.iter().map(|r| r.scalar(at[r.axis])).collect();
-        let mut weights = Vec::with_capacity(regions.len() + 1);
-        weights.push(1.0 - deltas.iter().sum::<f64>());
-        weights.extend(deltas);
-        weights
+    /// How much each master counts at `location` (default first): see
+    /// [`VariationModel::weights_at`].
+    pub fn weights(&self, model: &VariationModel, location: &Location) -> Vec<f64> {
+        model.weights_at(&self.normalize(location))
     }
+}
+
+/// The order fontTools computes deltas in (`getMasterLocationsSortKeyFunc`, axes in
+/// `font.toml` order): fewer axes first; then more coordinates that are also on-axis
+/// masters' coordinates; then by the axes used, their signs, and the distance from the
+/// default.
+fn model_order(norms: &[Vec<f64>], axis_count: usize) -> Vec<usize> {
+    let off =
+        |m: usize| -> Vec<usize> { (0..axis_count).filter(|&a| norms[m][a] != 0.0).collect() };
+    // Per axis, the coordinates of the masters on that axis alone.
+    let on_axis: Vec<Vec<f64>> = (0..axis_count)
+        .map(|a| {
+            (0..norms.len())
+                .filter(|&m| off(m) == [a])
+                .map(|m| norms[m][a])
+                .collect()
+        })
+        .collect();
+    let key = |m: usize| {
+        let axes = off(m);
+        let on_points = axes
+            .iter()
+            .filter(|&&a| on_axis[a].contains(&norms[m][a]))
+            .count();
+        let signs: Vec<i8> = axes
+            .iter()
+            .map(|&a| if norms[m][a] < 0.0 { -1 } else { 1 })
+            .collect();
+        let sizes: Vec<f64> = axes.iter().map(|&a| norms[m][a].abs()).collect();
+        (axes.len(), usize::MAX - on_points, axes, signs, sizes)
+    };
+    let mut order: Vec<usize> = (0..norms.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (ka, kb) = (key(a), key(b));
+        (ka.0, ka.1, &ka.2, &ka.3)
+            .cmp(&(kb.0, kb.1, &kb.2, &kb.3))
+            .then_with(|| {
+                ka.4.iter()
+                    .zip(&kb.4)
+                    .map(|(x, y)| x.total_cmp(y))
+                    .find(|o| o.is_ne())
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+    });
+    order
+}
+
+/// The tent of master `m`, on `axis` alone: from its neighbour towards the default (or the
+/// default) to its neighbour away from it (or its own peak, when it is the outermost).
+fn on_axis_region(norms: &[Vec<f64>], m: usize, axis: usize) -> Region {
+    let peak = norms[m][axis];
+    let same_side: Vec<f64> = norms
+        .iter()
+        .filter(|n| {
+            n[axis] * peak > 0.0 && n.iter().enumerate().all(|(a, &v)| a == axis || v == 0.0)
+        })
+        .map(|n| n[axis])
+        .collect();
+    let inner = same_side
+        .iter()
+        .copied()
+        .filter(|v| v.abs() < peak.abs())
+        .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .unwrap_or(0.0);
+    let outer = same_side
+        .iter()
+        .copied()
+        .filter(|v| v.abs() > peak.abs())
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .unwrap_or(peak);
+    Region {
+        tents: vec![Tent {
+            axis,
+            lower: inner.min(outer),
+            peak,
+            upper: inner.max(outer),
+        }],
+    }
+}
+
+/// The region of corner master `m` on `axes`, fontTools' way: the box from the default to
+/// the axis ends on its side, cut at each earlier master on the same axes inside it, on
+/// the axes where the cut leaves the largest share of the box (all of them on a tie).
+fn corner_region(norms: &[Vec<f64>], m: usize, axes: &[usize], earlier: &[usize]) -> Region {
+    let mut tents: Vec<Tent> = axes
+        .iter()
+        .map(|&axis| {
+            let peak = norms[m][axis];
+            let (lower, upper) = if peak > 0.0 { (0.0, 1.0) } else { (-1.0, 0.0) };
+            Tent {
+                axis,
+                lower,
+                peak,
+                upper,
+            }
+        })
+        .collect();
+    let same_axes = |j: usize| {
+        (0..norms[j].len())
+            .filter(|&a| norms[j][a] != 0.0)
+            .eq(axes.iter().copied())
+    };
+    for &j in earlier.iter().filter(|&&j| same_axes(j)) {
+        let inside = tents.iter().all(|t| {
+            let v = norms[j][t.axis];
+            v == t.peak || (t.lower < v && v < t.upper)
+        });
+        if !inside {
+            continue;
+        }
+        let mut best: Vec<(usize, Tent)> = Vec::new();
+        let mut best_ratio = -1.0;
+        for (k, t) in tents.iter().enumerate() {
+            let v = norms[j][t.axis];
+            let (cut, ratio) = if v < t.peak {
+                (Tent { lower: v, ..*t }, (v - t.peak) / (t.lower - t.peak))
+            } else if v > t.peak {
+                (Tent { upper: v, ..*t }, (v - t.peak) / (t.upper - t.peak))
+            } else {
+                continue;
+            };
+            if ratio > best_ratio {
+                best.clear();
+                best_ratio = ratio;
+            }
+            if ratio == best_ratio {
+                best.push((k, cut));
+            }
+        }
+        for (k, cut) in best {
+            tents[k] = cut;
+        }
+    }
+    Region { tents }
 }
 
 /// Why a set of master locations cannot be blended ([`Designspace::regions`]).
@@ -291,11 +537,6 @@ impl Designspace {
 pub enum RegionError {
     /// The master (index among the non-default masters) sits at the default location.
     AtDefault {
-        /// The master.
-        master: usize,
-    },
-    /// The master is away from the default on more than one axis.
-    OffAxis {
         /// The master.
         master: usize,
     },
@@ -383,70 +624,156 @@ mod tests {
             axes: vec![mapped()],
             instances: vec![],
         };
-        let regions = ds.regions(&[at(100.0), at(900.0)]).unwrap();
-        let w = ds.weights(&regions, &at(600.0));
+        let model = ds.model(&[at(100.0), at(900.0)]).unwrap();
+        let w = ds.weights(&model, &at(600.0));
         assert!((w[0] - 0.2).abs() < 1e-12 && w[1] == 0.0 && (w[2] - 0.8).abs() < 1e-12);
+    }
+
+    fn tent(axis: usize, lower: f64, peak: f64, upper: f64) -> Tent {
+        Tent {
+            axis,
+            lower,
+            peak,
+            upper,
+        }
     }
 
     #[test]
     fn two_masters_blend_linearly() {
         let ds = wght();
-        let regions = ds.regions(&[at(700.0)]).unwrap();
+        let model = ds.model(&[at(700.0)]).unwrap();
         assert_eq!(
-            regions,
+            model.regions,
             vec![Region {
-                axis: 0,
-                start: 0.0,
-                peak: 1.0,
-                end: 1.0
+                tents: vec![tent(0, 0.0, 1.0, 1.0)]
             }]
         );
-        assert_eq!(ds.weights(&regions, &at(400.0)), vec![1.0, 0.0]);
-        assert_eq!(ds.weights(&regions, &at(550.0)), vec![0.5, 0.5]);
-        assert_eq!(ds.weights(&regions, &at(700.0)), vec![0.0, 1.0]);
+        assert!(model.on_axes());
+        assert_eq!(ds.weights(&model, &at(400.0)), vec![1.0, 0.0]);
+        assert_eq!(ds.weights(&model, &at(550.0)), vec![0.5, 0.5]);
+        assert_eq!(ds.weights(&model, &at(700.0)), vec![0.0, 1.0]);
+        assert_eq!(model.int_deltas(&[10, 25]), vec![15]);
     }
 
     #[test]
     fn an_intermediate_master_splits_the_axis() {
         let ds = wght();
         // Bold at 700, Medium at 500 (normalised 1/3).
-        let regions = ds.regions(&[at(700.0), at(500.0)]).unwrap();
-        assert_eq!(regions[0].start, 1.0 / 3.0);
-        assert_eq!(regions[1].end, 1.0);
-        let w = ds.weights(&regions, &at(600.0));
+        let model = ds.model(&[at(700.0), at(500.0)]).unwrap();
+        assert_eq!(model.regions[0].tents, vec![tent(0, 1.0 / 3.0, 1.0, 1.0)]);
+        assert_eq!(model.regions[1].tents, vec![tent(0, 0.0, 1.0 / 3.0, 1.0)]);
+        let w = ds.weights(&model, &at(600.0));
         // Halfway between Medium and Bold.
         assert!((w[0]).abs() < 1e-12, "{w:?}");
         assert!((w[1] - 0.5).abs() < 1e-12, "{w:?}");
         assert!((w[2] - 0.5).abs() < 1e-12, "{w:?}");
-        let w = ds.weights(&regions, &at(450.0));
+        let w = ds.weights(&model, &at(450.0));
         assert!((w[0] - 0.5).abs() < 1e-12 && w[1] == 0.0 && (w[2] - 0.5).abs() < 1e-12);
+        // Plain differences from the default.
+        assert_eq!(model.int_deltas(&[10, 30, 14]), vec![20, 4]);
+    }
+
+    /// Two axes normalised as user value / 100, with masters on both and three corners,
+    /// one of them between the others (`w` 50). Expected values are fontTools 4.68's
+    /// `VariationModel(locations, axisOrder=["w", "h"])`: `supports`,
+    /// `getMasterScalars` and `getDeltas(round=otRound)`, for the same master order.
+    #[test]
+    fn corner_masters_blend_as_fonttools() {
+        let ds = Designspace {
+            axes: vec![
+                Axis::linear("w", "W", -100.0, 0.0, 100.0),
+                Axis::linear("h", "H", -100.0, 0.0, 100.0),
+            ],
+            instances: vec![],
+        };
+        let loc =
+            |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());
+        let masters = [
+            loc(100.0, 100.0),
+            loc(-100.0, 0.0),
+            loc(0.0, 100.0),
+            loc(100.0, 0.0),
+            loc(50.0, 100.0),
+            loc(0.0, -100.0),
+            loc(-100.0, -100.0),
+        ];
+        let model = ds.model(&masters).unwrap();
+        assert!(!model.on_axes());
+        let tents: Vec<Vec<Tent>> = model.regions.iter().map(|r| r.tents.clone()).collect();
+        assert_eq!(
+            tents,
+            vec![
+                vec![tent(0, 0.0, 1.0, 1.0), tent(1, 0.0, 1.0, 1.0)],
+                vec![tent(0, -1.0, -1.0, 0.0)],
+                vec![tent(1, 0.0, 1.0, 1.0)],
+                vec![tent(0, 0.0, 1.0, 1.0)],
+                vec![tent(0, 0.0, 0.5, 1.0), tent(1, 0.0, 1.0, 1.0)],
+                vec![tent(1, -1.0, -1.0, 0.0)],
+                vec![tent(0, -1.0, -1.0, 0.0), tent(1, -1.0, -1.0, 0.0)],
+            ]
+        );
+        for ((w, h), expected) in [
+            ((75.0, 50.0), [0.125, 0.25, 0.0, 0.0, 0.375, 0.25, 0.0, 0.0]),
+            ((-100.0, 100.0), [-1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0]),
+            (
+                (-50.0, -25.0),
+                [0.375, 0.0, 0.375, 0.0, 0.0, 0.0, 0.125, 0.125],
+            ),
+            ((25.0, 100.0), [0.0, 0.0, 0.0, 0.5, 0.0, 0.5, 0.0, 0.0]),
+        ] {
+            let got = ds.weights(&model, &loc(w, h));
+            let off = got
+                .iter()
+                .zip(expected)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(off < 1e-12, "at ({w}, {h}): {got:?}, expected {expected:?}");
+        }
+        // At every master its own weight is 1 and the others 0.
+        for (m, l) in masters.iter().enumerate() {
+            let got = ds.weights(&model, l);
+            for (k, w) in got.iter().enumerate() {
+                assert!(
+                    (w - f64::from(k == m + 1)).abs() < 1e-12,
+                    "master {m}: {got:?}"
+                );
+            }
+        }
+        assert_eq!(
+            model.int_deltas(&[10, 57, 3, 21, 30, 41, -4, -20]),
+            vec![16, -7, 11, 20, 2, -14, -9]
+        );
     }
 
     #[test]
     fn bad_master_sets_are_named() {
         let ds = wght();
         assert_eq!(
-            ds.regions(&[at(400.0)]),
+            ds.model(&[at(400.0)]),
             Err(RegionError::AtDefault { master: 0 })
         );
         assert_eq!(
-            ds.regions(&[at(700.0), at(700.0)]),
+            ds.model(&[at(700.0), at(700.0)]),
             Err(RegionError::Duplicate {
                 first: 0,
                 second: 1
             })
         );
+        // A corner master alone leaves the width axis's end without a master on it.
         let mut two = wght();
         two.axes
             .push(Axis::linear("wdth", "Width", 75.0, 100.0, 100.0));
         let mut corner = at(700.0);
         corner.0.insert("wdth".into(), 75.0);
         assert_eq!(
-            two.regions(&[corner]),
-            Err(RegionError::OffAxis { master: 0 })
+            two.model(&[at(700.0), corner]),
+            Err(RegionError::UncoveredEnd {
+                axis: 1,
+                user: 75.0
+            })
         );
         assert_eq!(
-            ds.regions(&[at(600.0)]),
+            ds.model(&[at(600.0)]),
             Err(RegionError::UncoveredEnd {
                 axis: 0,
                 user: 700.0

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use crate::cache::FitCache;
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
-use crate::designspace::{Designspace, Location, Region, RegionError};
+use crate::designspace::{Designspace, Location, RegionError, VariationModel};
 use crate::fit::fit_contour;
 use crate::model::{Contour, Family, Font, GlyphIndex, KernPair};
 use crate::orient::nesting_depths;
@@ -35,6 +35,8 @@ pub struct OutlinedFamily {
     pub default: OutlinedFont,
     /// The other masters, in `font.toml` order.
     pub masters: Vec<OutlinedMaster>,
+    /// How they blend: [`Self::masters`]' regions and deltas.
+    pub model: VariationModel,
 }
 
 /// One non-default master's outlines.
@@ -44,8 +46,6 @@ pub struct OutlinedMaster {
     pub name: String,
     /// Where it sits (user coordinates).
     pub location: Location,
-    /// Its tent in the design space.
-    pub region: Region,
     /// One per glyph of [`OutlinedFamily::default`], in the same order.
     pub glyphs: Vec<MasterGlyph>,
     /// This master's kerning; a pair it lacks has value 0 here.
@@ -64,8 +64,7 @@ pub struct MasterGlyph {
 impl OutlinedFamily {
     /// The blend weights at `location`: the default master first, then [`Self::masters`].
     pub fn weights(&self, location: &Location) -> Vec<f64> {
-        let regions: Vec<Region> = self.masters.iter().map(|m| m.region).collect();
-        self.designspace.weights(&regions, location)
+        self.designspace.weights(&self.model, location)
     }
 }
 
@@ -124,9 +123,14 @@ impl std::error::Error for FamilyError {}
 /// or more).
 pub const AXIS_SAMPLES: usize = 11;
 
+/// Evenly spaced values per axis, ends included, of the grids over corner masters' axes.
+pub const CORNER_SAMPLES: usize = 5;
+
 /// The positions every compatible fit is checked at: the default, each master, each named
-/// instance, and [`AXIS_SAMPLES`] evenly spaced user values along each axis (the others at
-/// their defaults). Duplicates are left out; the order is stable.
+/// instance, [`AXIS_SAMPLES`] evenly spaced user values along each axis (the others at
+/// their defaults), and, for each set of axes a corner master moves on, a grid over those
+/// axes: on each, [`CORNER_SAMPLES`] evenly spaced user values, its default, and the
+/// corner masters' coordinates. Duplicates are left out; the order is stable.
 pub fn check_locations(family: &Family) -> Vec<Location> {
     let ds = &family.designspace;
     let mut out: Vec<Location> = vec![Location::default()];
@@ -139,6 +143,7 @@ pub fn check_locations(family: &Family) -> Vec<Location> {
             out.push(Location([(axis.tag.clone(), user)].into_iter().collect()));
         }
     }
+    out.extend(corner_grids(family));
     let mut unique: Vec<Location> = Vec::with_capacity(out.len());
     for loc in out {
         let norm = ds.normalize(&loc);
@@ -147,6 +152,70 @@ pub fn check_locations(family: &Family) -> Vec<Location> {
         }
     }
     unique
+}
+
+/// The grids of [`check_locations`] over the axes of the corner masters.
+fn corner_grids(family: &Family) -> Vec<Location> {
+    let ds = &family.designspace;
+    let off = |l: &Location| -> Vec<usize> {
+        (0..ds.axes.len())
+            .filter(|&a| l.get(&ds.axes[a]) != ds.axes[a].default)
+            .collect()
+    };
+    let mut sets: Vec<Vec<usize>> = Vec::new();
+    for m in &family.masters {
+        let axes = off(&m.location);
+        if axes.len() > 1 && !sets.contains(&axes) {
+            sets.push(axes);
+        }
+    }
+    let mut out = Vec::new();
+    for axes in sets {
+        // Per axis of the set, the user values to combine.
+        let values: Vec<Vec<f64>> = axes
+            .iter()
+            .map(|&a| {
+                let axis = &ds.axes[a];
+                let mut v: Vec<f64> = (0..CORNER_SAMPLES)
+                    .map(|k| {
+                        let t = k as f64 / (CORNER_SAMPLES - 1) as f64;
+                        axis.min + t * (axis.max - axis.min)
+                    })
+                    .collect();
+                v.push(axis.default);
+                v.extend(
+                    family
+                        .masters
+                        .iter()
+                        .filter(|m| off(&m.location) == axes)
+                        .map(|m| m.location.get(axis)),
+                );
+                v.sort_by(f64::total_cmp);
+                v.dedup();
+                v
+            })
+            .collect();
+        let mut index = vec![0usize; axes.len()];
+        'grid: loop {
+            out.push(Location(
+                axes.iter()
+                    .zip(&index)
+                    .enumerate()
+                    .map(|(k, (&a, &i))| (ds.axes[a].tag.clone(), values[k][i]))
+                    .collect(),
+            ));
+            // The next combination, the last axis fastest.
+            for k in (0..axes.len()).rev() {
+                index[k] += 1;
+                if index[k] < values[k].len() {
+                    continue 'grid;
+                }
+                index[k] = 0;
+            }
+            break;
+        }
+    }
+    out
 }
 
 /// `e` with the place of a blend that failed at one of `locations` (user values of every
@@ -225,10 +294,10 @@ pub fn outline_family_with(
     tolerance: f64,
     cache: Option<&FitCache>,
 ) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
-    let regions = family.regions().map_err(FamilyError::Regions)?;
+    let model = family.model().map_err(FamilyError::Regions)?;
     let ds = &family.designspace;
     let locations = check_locations(family);
-    let positions: Vec<Vec<f64>> = locations.iter().map(|l| ds.weights(&regions, l)).collect();
+    let positions: Vec<Vec<f64>> = locations.iter().map(|l| ds.weights(&model, l)).collect();
     // One `Font` per master (default first) so components resolve inside each master.
     let fonts: Vec<Font> = std::iter::once(family.default.clone())
         .chain(family.masters.iter().map(|m| Font {
@@ -283,12 +352,10 @@ pub fn outline_family_with(
     let masters = family
         .masters
         .iter()
-        .zip(&regions)
         .enumerate()
-        .map(|(m, (master, region))| OutlinedMaster {
+        .map(|(m, master)| OutlinedMaster {
             name: master.name.clone(),
             location: master.location.clone(),
-            region: *region,
             glyphs: glyphs.iter().map(|g| g.masters[m].clone()).collect(),
             kerning: master.kerning.clone(),
         })
@@ -298,6 +365,7 @@ pub fn outline_family_with(
             designspace: ds.clone(),
             default,
             masters,
+            model,
         },
         summary,
     ))

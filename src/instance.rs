@@ -64,8 +64,8 @@ impl Family {
     /// default, a value beyond the axis range is clamped). The info and glyph set are the
     /// default master's; the style name is left as it is.
     pub fn instance_at(&self, location: &Location) -> Result<Font, InstanceError> {
-        let regions = self.regions().map_err(InstanceError::Regions)?;
-        let w = self.designspace.weights(&regions, location);
+        let model = self.model().map_err(InstanceError::Regions)?;
+        let w = self.designspace.weights(&model, location);
         let mut glyphs = Vec::with_capacity(self.default.glyphs.len());
         for (gi, d) in self.default.glyphs.iter().enumerate() {
             let masters: Vec<&Glyph> = std::iter::once(d)

@@ -8,7 +8,7 @@ use std::cmp::Ordering;
 use std::collections::{HashMap, HashSet};
 use std::path::PathBuf;
 
-use crate::designspace::{Designspace, Location, Region, RegionError};
+use crate::designspace::{Designspace, Location, RegionError, VariationModel};
 
 use crate::xspline::{ControlPoint, XSpline, XSplineError};
 
@@ -91,10 +91,10 @@ impl Family {
         !self.designspace.axes.is_empty()
     }
 
-    /// The masters' regions, in [`Family::masters`] order.
-    pub fn regions(&self) -> Result<Vec<Region>, RegionError> {
+    /// How the masters blend (regions in [`Family::masters`] order).
+    pub fn model(&self) -> Result<VariationModel, RegionError> {
         let locations: Vec<Location> = self.masters.iter().map(|m| m.location.clone()).collect();
-        self.designspace.regions(&locations)
+        self.designspace.model(&locations)
     }
 }
 

@@ -185,14 +185,8 @@ fn check_regions(
             .collect::<Vec<_>>()
             .join(", ")
     };
-    match designspace.regions(&locations) {
+    match designspace.model(&locations) {
         Ok(_) => Ok(()),
-        Err(RegionError::OffAxis { master }) => Err(format!(
-            "source `{}` ({}) is away from the defaults on more than one axis (a corner \
-             master); xglyph's masters lie on one axis each",
-            others[master].0,
-            place(&others[master].1)
-        )),
         Err(RegionError::AtDefault { master }) => Err(format!(
             "sources `{}` and `{}` both sit at the default of every axis",
             sources[default_index].0, others[master].0

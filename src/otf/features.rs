@@ -50,7 +50,7 @@ use fea_write_fonts::types::{F2Dot14, GlyphId16, Tag};
 
 use super::kern::KernPairs;
 use super::{grid, OtfError};
-use crate::designspace::Region;
+use crate::designspace::{Region, VariationModel};
 use crate::model::{Anchor, FeatureFile};
 use crate::source::{line_col, Diagnostic, Severity, Snippet};
 
@@ -67,8 +67,8 @@ pub(crate) struct LayoutSource<'a> {
     pub anchors: Vec<Vec<&'a [Anchor]>>,
     /// Per master, its kerning by glyph id.
     pub kerning: Vec<KernPairs>,
-    /// The tents of the non-default masters (empty for a static font).
-    pub regions: &'a [Region],
+    /// How the masters blend (`None` for a static font).
+    pub model: Option<&'a VariationModel>,
     /// Number of axes (0 for a static font).
     pub axis_count: u16,
     /// The font's own `features.fea`.
@@ -379,18 +379,23 @@ impl Generated {
     fn new(source: &LayoutSource, user: &BTreeSet<[u8; 4]>) -> Result<Self, OtfError> {
         let axes = usize::from(source.axis_count);
         let regions: Vec<VariationRegion> = source
-            .regions
+            .model
+            .map_or(&[][..], |m| &m.regions)
             .iter()
             .map(|r| variation_region(r, axes))
             .collect();
         let vary = |values: &[i16]| Varying {
             default: values[0],
-            deltas: regions
-                .iter()
-                .zip(&values[1..])
-                .filter(|(_, &v)| v != values[0])
-                .map(|(r, &v)| (r.clone(), v.wrapping_sub(values[0])))
-                .collect(),
+            deltas: source.model.map_or_else(Vec::new, |model| {
+                let values: Vec<i32> = values.iter().map(|&v| i32::from(v)).collect();
+                regions
+                    .iter()
+                    .zip(model.int_deltas(&values))
+                    .filter(|&(_, d)| d != 0)
+                    // Wrapping as i16 arithmetic would (the values are i16 already).
+                    .map(|(r, d)| (r.clone(), d as i16))
+                    .collect()
+            }),
         };
         let masters = source.kerning.len();
         let mut pairs: BTreeMap<(u16, u16), Vec<i16>> = BTreeMap::new();

@@ -141,7 +141,7 @@ pub fn build_font(
         outline_marks: set.glyphs.iter().map(|g| g.outline_mark).collect(),
         anchors: vec![set.glyphs.iter().map(|g| g.anchors.as_slice()).collect()],
         kerning: vec![kern_pairs(&font.kerning, set)?],
-        regions: &[],
+        model: None,
         axis_count: 0,
         features: font.features.as_ref(),
     })?;

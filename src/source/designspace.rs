@@ -183,7 +183,7 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
     };
     if !designspace.axes.is_empty() {
         let locations: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();
-        if let Err(e) = designspace.regions(&locations) {
+        if let Err(e) = designspace.model(&locations) {
             region_error(ctx, &e, &designspace, &masters, &axes);
             return None;
         }
@@ -542,18 +542,6 @@ fn region_error(
                 ),
             );
         }
-        RegionError::OffAxis { master } => {
-            let (m, _, at) = &masters[master];
-            ctx.err(
-                *at,
-                format!(
-                    "master `{}` ({}) is away from the defaults on more than one axis; each \
-                     master must lie on one axis (the others at their defaults)",
-                    m.name,
-                    describe(designspace, &m.location)
-                ),
-            );
-        }
         RegionError::Duplicate { first, second } => {
             let (m, _, at) = &masters[second];
             ctx.err(
@@ -573,11 +561,18 @@ fn region_error(
             } else {
                 ("min", spans.min)
             };
+            // A corner master at that end does not cover it: its delta is what it adds to
+            // the masters on each of its axes.
+            let corner = masters
+                .iter()
+                .find(|(m, _, _)| m.location.get(a) == user)
+                .map(|(m, _, _)| format!(" (only corner master `{}`, which blends from the masters on each of its axes)", m.name))
+                .unwrap_or_default();
             ctx.err(
                 at,
                 format!(
-                    "axis `{}` ends at {key} = {} but no master is there; add a `[[master]]` \
-                     with location {{ {} = {} }}, or set {key} to the default",
+                    "axis `{}` ends at {key} = {} but no master is there{corner}; add a \
+                     `[[master]]` with location {{ {} = {} }}, or set {key} to the default",
                     a.tag,
                     emit::number(user),
                     a.tag,

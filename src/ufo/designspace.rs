@@ -244,15 +244,16 @@ mod tests {
             masters: vec![crate::family::OutlinedMaster {
                 name: "Bold".into(),
                 location: at(700.0),
-                region: crate::designspace::Region {
-                    axis: 0,
-                    start: 0.0,
-                    peak: 1.0,
-                    end: 1.0,
-                },
                 glyphs: Vec::new(),
                 kerning: Vec::new(),
             }],
+            model: {
+                let ds = Designspace {
+                    axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
+                    instances: Vec::new(),
+                };
+                ds.model(&[at(700.0)]).expect("one master at the end")
+            },
         };
         let files = ["A-Regular.ufo".to_string(), "A-Bold.ufo".to_string()];
         let xml = document(&family, &files)

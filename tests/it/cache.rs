@@ -298,10 +298,10 @@ fn master_pairs() -> (Vec<(XSpline, XSpline)>, Vec<Vec<f64>>) {
         .flat_map(|(light, heavy)| light.contours.iter().zip(&heavy.contours))
         .map(|(a, b)| (a.spline().clone(), b.spline().clone()))
         .collect();
-    let regions = family.regions().unwrap();
+    let model = family.model().unwrap();
     let positions = xglyph::family::check_locations(&family)
         .iter()
-        .map(|l| family.designspace.weights(&regions, l))
+        .map(|l| family.designspace.weights(&model, l))
         .collect();
     (pairs, positions)
 }

@@ -3,6 +3,8 @@ TTF (tests/it/designspace.rs).
 
 Usage: designspace_check.py DESIGNSPACE XGLYPH_VF FONTMAKE_VF FONTC_VF TOLERANCE POS...
 
+Each POS is a user location: `wght=650,wdth=87.5`, or a bare number for `wght`.
+
 Prints what fontTools.designspaceLib reads (`axes: …`, `sources: …`, `instances: …`, for
 the Rust test to compare with the sources), then checks, printing each measured figure:
 - every source UFO opens with ufoLib2 and has the same glyphs, in the same order, with the
@@ -13,7 +15,7 @@ the Rust test to compare with the sources), then checks, printing each measured 
 - advances at each master (fontTools.varLib.instancer) equal xglyph's there and the master
   UFO's widths;
 - kerning at each master equals xglyph's there;
-- outlines at every POS (user wght values): each glyph of the compiled font's instance is
+- outlines at every POS: each glyph of the compiled font's instance is
   within a stated distance of xglyph's instance (dense two-sided distance of flattened
   pens, helpers of ufo_check.py). The bound: xglyph's TTF converts the cubics to
   quadratics within TOLERANCE, fontmake (cu2qu) and fontc within 1/1000 em; both round to
@@ -72,13 +74,25 @@ def same_avar(a, b):
     return True
 
 
-def at(path, wght):
-    return instancer.instantiateVariableFont(TTFont(path), {"wght": wght}, inplace=False)
+def at(path, location):
+    return instancer.instantiateVariableFont(TTFont(path), dict(location), inplace=False)
+
+
+def position(arg):
+    """A POS argument as a sorted tuple of (tag, user value)."""
+    if "=" not in arg:
+        return (("wght", float(arg)),)
+    pairs = (p.split("=") for p in arg.split(","))
+    return tuple(sorted((tag, float(v)) for tag, v in pairs))
+
+
+def describe(location):
+    return ", ".join(f"{tag} {v:g}" for tag, v in location)
 
 
 def main():
     ds_path, ours_path, fontmake_path, fontc_path, tolerance = sys.argv[1:6]
-    positions = [float(p) for p in sys.argv[6:]]
+    positions = [position(p) for p in sys.argv[6:]]
     tolerance = float(tolerance)
     failures = []
 
@@ -112,8 +126,12 @@ def main():
               f"{s.filename}: {len(ufo)} glyphs, same contours and points as the default master")
 
     ours = TTFont(ours_path)
-    # Source locations are design values; the instancer takes user values.
-    masters = {doc.map_backward(s.location)["Weight"]: ufo for s, ufo in zip(doc.sources, ufos)}
+    # Source locations are design values; the instancer takes user values, by tag.
+    tags = {a.name: a.tag for a in doc.axes}
+    masters = {
+        tuple(sorted((tags[k], v) for k, v in doc.map_backward(s.location).items())): ufo
+        for s, ufo in zip(doc.sources, ufos)
+    }
     ours_at = {w: at(ours_path, w) for w in sorted(set(positions) | set(masters))}
     rounding = math.sqrt(2) / 2
     upm = default.info.unitsPerEm
@@ -132,10 +150,10 @@ def main():
             mine = ours_at[w]
             check(
                 all(inst["hmtx"][g][0] == mine["hmtx"][g][0] == widths[g] for g in order),
-                f"{label}: advances at wght {fmt(w)} (xglyph's and the UFO's)",
+                f"{label}: advances at {describe(w)} (xglyph's and the UFO's)",
             )
             k, ok = kerning(inst), kerning(mine)
-            check(k == ok, f"{label}: kerning at wght {fmt(w)} ({len(k)} pairs)")
+            check(k == ok, f"{label}: kerning at {describe(w)} ({len(k)} pairs)")
         if path == ours_path:
             continue
         for w in positions:
@@ -145,7 +163,7 @@ def main():
                 d = distance(flat(gs, name), flat(mine, name))
                 if d > worst:
                     worst, worst_glyph = d, name
-            check(worst <= bound, f"{label}: outlines at wght {fmt(w)} within {bound:.3f} of xglyph's (worst {worst:.3f} in {worst_glyph})")
+            check(worst <= bound, f"{label}: outlines at {describe(w)} within {bound:.3f} of xglyph's (worst {worst:.3f} in {worst_glyph})")
     if failures:
         print(f"designspace_check: {len(failures)} failed")
         sys.exit(1)

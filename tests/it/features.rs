@@ -450,13 +450,10 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
         .axes
         .push(Axis::linear("wght", "Weight", 400.0, 400.0, 700.0));
     let location = Location(BTreeMap::from([("wght".to_string(), 700.0)]));
-    let region = designspace
-        .regions(std::slice::from_ref(&location))
-        .unwrap()[0];
+    let model = designspace.model(std::slice::from_ref(&location)).unwrap();
     let bold = OutlinedMaster {
         name: "Bold".into(),
         location,
-        region,
         glyphs: default
             .glyphs
             .iter()
@@ -483,6 +480,7 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
         designspace,
         default,
         masters: vec![bold],
+        model,
     };
     (family, vec![bold_anchors])
 }

@@ -384,7 +384,7 @@ fn font_toml_axis_master_and_instance_errors() {
          (wght = 700)",
     );
     assert_one_error(
-        "off-axis",
+        "a corner master alone",
         &[
             (
                 "font.toml",
@@ -393,9 +393,9 @@ fn font_toml_axis_master_and_instance_errors() {
             ),
             ("font.toml", "location = { wght = 700 }", "location = { wght = 700, wdth = 75 }"),
         ],
-        "font/font.toml:29:12: error: master `Bold` (wght = 700, wdth = 75) is away from the \
-         defaults on more than one axis; each master must lie on one axis (the others at their \
-         defaults)",
+        "font/font.toml:17:7: error: axis `wght` ends at max = 700 but no master is there (only \
+         corner master `Bold`, which blends from the masters on each of its axes); add a \
+         `[[master]]` with location { wght = 700 }, or set max to the default",
     );
     // Axis maps: each error at the entry to fix (line 18 is the inserted `map`).
     let map_cases: &[(&str, &str, &str)] = &[

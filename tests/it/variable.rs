@@ -68,21 +68,20 @@ fn family(
     masters: Vec<MasterSpec>,
 ) -> OutlinedFamily {
     let locations: Vec<Location> = masters.iter().map(|m| at(m.1)).collect();
-    let regions = designspace.regions(&locations).expect("valid masters");
+    let model = designspace.model(&locations).expect("valid masters");
     OutlinedFamily {
         designspace,
         default,
         masters: masters
             .into_iter()
-            .zip(regions)
-            .map(|((name, w, glyphs, kerning), region)| OutlinedMaster {
+            .map(|(name, w, glyphs, kerning)| OutlinedMaster {
                 name: name.into(),
                 location: at(w),
-                region,
                 glyphs,
                 kerning,
             })
             .collect(),
+        model,
     }
 }
 
@@ -303,10 +302,7 @@ fn tiny_mapped() -> OutlinedFamily {
     ds.instances.push(instance("ExtraBold", 760.0));
     fam.default.info.family = "Tiny Mapped".into();
     let locations: Vec<Location> = fam.masters.iter().map(|m| m.location.clone()).collect();
-    let regions = fam.designspace.regions(&locations).expect("valid masters");
-    for (m, r) in fam.masters.iter_mut().zip(regions) {
-        m.region = r;
-    }
+    fam.model = fam.designspace.model(&locations).expect("valid masters");
     fam
 }
 
@@ -1109,23 +1105,22 @@ fn a_glyph_with_more_than_32_variations_imports() {
         axes,
         instances: vec![],
     };
-    let regions = designspace.regions(&locations).expect("valid masters");
+    let model = designspace.model(&locations).expect("valid masters");
     let family = OutlinedFamily {
         designspace,
         default: base.default.clone(),
         masters: masters
             .into_iter()
-            .zip(regions)
             .zip(locations)
             .enumerate()
-            .map(|(k, ((glyphs, region), location))| OutlinedMaster {
+            .map(|(k, (glyphs, location))| OutlinedMaster {
                 name: format!("M{k}"),
                 location,
-                region,
                 glyphs,
                 kerning: vec![],
             })
             .collect(),
+        model,
     };
     let bytes = variable_ttf(&family).unwrap();
     let dir = write_temp(&bytes);

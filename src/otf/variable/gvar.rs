@@ -9,14 +9,15 @@ use crate::otf::OtfError;
 
 /// A region as one tent per axis: peak 0 (no effect) on the axes it does not use.
 fn tents(region: &Region, axis_count: usize) -> Vec<Tent> {
-    (0..axis_count)
-        .map(|axis| {
-            if axis == region.axis {
-                let f = |v: f64| F2Dot14::from_f32(v as f32);
-                let (min, max) = (region.start.min(region.end), region.start.max(region.end));
-                Tent::new(f(region.peak), Some((f(min), f(max))))
-            } else {
+    region
+        .per_axis(axis_count)
+        .into_iter()
+        .map(|[lower, peak, upper]| {
+            if peak == 0.0 {
                 Tent::new(F2Dot14::ZERO, None)
+            } else {
+                let f = |v: f64| F2Dot14::from_f32(v as f32);
+                Tent::new(f(peak), Some((f(lower), f(upper))))
             }
         })
         .collect()

@@ -23,23 +23,13 @@ pub fn variation_region(region: &Region, axis_count: usize) -> VariationRegion {
     )
 }
 
-/// A region's (start, peak, end) per axis, normalized: its tent on its own axis, zeros on
-/// the others.
-pub(crate) fn region_axes(
-    region: &Region,
-    axis_count: usize,
-) -> impl Iterator<Item = [f32; 3]> + '_ {
-    (0..axis_count).map(move |axis| {
-        if axis == region.axis {
-            [
-                region.start.min(region.end) as f32,
-                region.peak as f32,
-                region.start.max(region.end) as f32,
-            ]
-        } else {
-            [0.0; 3]
-        }
-    })
+/// A region's (start, peak, end) per axis, normalized: its tents, zeros on the axes it
+/// does not use.
+pub(crate) fn region_axes(region: &Region, axis_count: usize) -> impl Iterator<Item = [f32; 3]> {
+    region
+        .per_axis(axis_count)
+        .into_iter()
+        .map(|t| t.map(|v| v as f32))
 }
 
 /// The `HVAR` table: `advance_deltas[glyph][master]` for the masters of `regions`.

@@ -44,6 +44,7 @@ use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
 use super::truetype::TtGlyph;
 use super::{grid, GlyphSet, OtfError};
+use crate::designspace::VariationModel;
 use crate::family::OutlinedFamily;
 use crate::model::Anchor;
 use naming::VariableNames;
@@ -113,7 +114,7 @@ fn build(
             )));
         }
     }
-    let regions: Vec<_> = family.masters.iter().map(|m| m.region).collect();
+    let model = &family.model;
     let set = GlyphSet::new(font)?;
     // A synthesised .notdef comes first and is the same in every master.
     let synthesised = set.glyphs.len() - font.glyphs.len();
@@ -140,7 +141,7 @@ fn build(
                 )
             })?);
         }
-        let (tt, deltas) = glyph_variations(&paths, &advances, font.tolerance, glyph, kind)
+        let (tt, deltas) = glyph_variations(model, &paths, &advances, font.tolerance, glyph, kind)
             .map_err(|e| match e {
                 Incompatible::Master(m) => OtfError::Table(format!(
                     "variable font: glyph '{}' has other path elements in master '{}' than in \
@@ -152,12 +153,7 @@ fn build(
             })?;
         tt_glyphs.push(tt);
         point_deltas.push(deltas);
-        advance_deltas.push(
-            advances[1..]
-                .iter()
-                .map(|&a| (i32::from(a) - i32::from(advances[0])) as i16)
-                .collect::<Vec<i16>>(),
-        );
+        advance_deltas.push(advance_deltas_of(model, &advances));
     }
 
     let names = VariableNames::new(designspace, &font.info.family);
@@ -193,7 +189,7 @@ fn build(
         outline_marks: set.glyphs.iter().map(|g| g.outline_mark).collect(),
         anchors,
         kerning,
-        regions: &regions,
+        model: Some(model),
         axis_count,
         features: font.features.as_ref(),
     })?;
@@ -215,10 +211,10 @@ fn build(
         .add_table(&avar::avar(&designspace.axes))
         .map_err(table_err)?;
     builder
-        .add_table(&gvar::gvar(&regions, axis_count, &point_deltas)?)
+        .add_table(&gvar::gvar(&model.regions, axis_count, &point_deltas)?)
         .map_err(table_err)?;
     builder
-        .add_table(&hvar::hvar(&regions, axis_count, &advance_deltas)?)
+        .add_table(&hvar::hvar(&model.regions, axis_count, &advance_deltas)?)
         .map_err(table_err)?;
     Ok(builder.build())
 }
@@ -237,10 +233,22 @@ impl From<OtfError> for Incompatible {
     }
 }
 
-/// One glyph's default outline for `glyf` and, per other master, its deltas: rounded
-/// master points minus rounded default points, then the phantom points (only the advance
-/// point moves, by the difference of the rounded advances).
+/// Per non-default master, the advance's delta ([`VariationModel::int_deltas`] of the
+/// rounded advances; out-of-range deltas wrap as i16 arithmetic does).
+fn advance_deltas_of(model: &VariationModel, advances: &[u16]) -> Vec<i16> {
+    let values: Vec<i32> = advances.iter().map(|&a| i32::from(a)).collect();
+    model
+        .int_deltas(&values)
+        .into_iter()
+        .map(|d| d as i16)
+        .collect()
+}
+
+/// One glyph's default outline for `glyf` and, per other master, its deltas: the model's
+/// deltas of the rounded points (for masters on the axes, rounded master points minus
+/// rounded default points), then the phantom points (only the advance point moves).
 fn glyph_variations(
+    model: &VariationModel,
     paths: &[&BezPath],
     advances: &[u16],
     accuracy: f64,
@@ -284,17 +292,32 @@ fn glyph_variations(
             Some(*end - 1)
         })
         .collect();
-    let deltas = rounded[1..]
+    // Per non-default master, its point deltas, point by point across the masters.
+    let flat: Vec<Vec<&CurvePoint>> = rounded
         .iter()
-        .zip(&advances[1..])
-        .map(|(master, &advance)| {
-            let mut d: Vec<(i16, i16)> = master
-                .iter()
-                .flatten()
-                .zip(default.iter().flatten())
-                .map(|(m, p)| (m.x.wrapping_sub(p.x), m.y.wrapping_sub(p.y)))
-                .collect();
-            let advance_delta = (i32::from(advance) - i32::from(advances[0])) as i16;
+        .map(|m| m.iter().flatten().collect())
+        .collect();
+    let mut per_master: Vec<Vec<(i16, i16)>> =
+        vec![Vec::with_capacity(points + 4); rounded.len() - 1];
+    let mut xs = vec![0i32; rounded.len()];
+    let mut ys = vec![0i32; rounded.len()];
+    for p in 0..points {
+        for (m, master) in flat.iter().enumerate() {
+            xs[m] = i32::from(master[p].x);
+            ys[m] = i32::from(master[p].y);
+        }
+        for ((d, dx), dy) in per_master
+            .iter_mut()
+            .zip(model.int_deltas(&xs))
+            .zip(model.int_deltas(&ys))
+        {
+            d.push((dx as i16, dy as i16));
+        }
+    }
+    let deltas = per_master
+        .into_iter()
+        .zip(advance_deltas_of(model, advances))
+        .map(|(mut d, advance_delta)| {
             d.extend([(0, 0), (advance_delta, 0), (0, 0), (0, 0)]);
             match kind {
                 Deltas::Optimized => iup::optimize(&d, &coords, &contour_ends),
