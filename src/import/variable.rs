@@ -8,18 +8,19 @@
 //! ```
 //!
 //! Masters: the default location, per axis each end that differs from the default
-//! (`wght` 100..400..900 gives Thin, Regular and Black), and each place inside an axis
-//! where a `gvar` variation peaks (an intermediate master, as Noto Sans has at Bold). The
+//! (`wght` 100..400..900 gives Thin, Regular and Black), each place inside an axis where a
+//! `gvar` variation peaks (an intermediate master, as Noto Sans has at Bold), and each
+//! peak of a variation on several axes at once (a corner master, as Inter's `opsz` ×
+//! `wght` has). The
 //! masters' outlines are measured against their originals, and the midpoint between the
 //! default and each other master against the blend of their Bézier outlines.
 //!
 //! Axis maps: `avar` becomes each axis's `map`, in user units (`read_axis_maps`).
 //!
 //! Limits: an `avar` that does not increase is refused; the cross-axis mappings of `avar`
-//! 2 are not read (a note says so); variation regions on two axes at once (corner
-//! masters), or spanning other positions than the masters', are not reproduced (the masters
-//! interpolate along each axis), and such a font is reported with a note; CFF2 fonts get
-//! masters at the axis ends only. Kerning comes from GPOS at each master's location
+//! 2 are not read (a note says so); variation regions other than those the masters give
+//! (fontTools' model, [`crate::designspace::VariationModel`]) are not reproduced, and such a
+//! font is reported with a note; CFF2 fonts get masters at the axis ends only. Kerning comes from GPOS at each master's location
 //! ([`super::kerning`]).
 
 use std::path::Path;
@@ -102,7 +103,8 @@ pub fn import_variable_font(
     let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
     check_gvar(&font, &source).map_err(fail)?;
     let peaks = gvar_peaks(&font, designspace.axes.len());
-    let masters = master_locations(&font, &designspace, &peaks.inner);
+    let masters = master_locations(&font, &designspace, &peaks);
+    let corners_reproduced = corners_reproduced(&designspace, &masters, &peaks.corner_regions);
     // Read before the glyphs are fitted: a damaged GPOS fails at once.
     let locations: Vec<&[skrifa::raw::types::F2Dot14]> =
         masters.iter().map(|m| m.coords.coords()).collect();
@@ -164,11 +166,11 @@ pub fn import_variable_font(
         .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
         .collect();
     notes.extend(source.empty.iter().cloned());
-    if !peaks.reproduced {
+    if !peaks.reproduced || !corners_reproduced {
         notes.push(
-            "gvar has variations on several axes at once (corner masters), or spanning other \
-             positions than its masters'; the masters interpolate along each axis and do not \
-             reproduce them"
+            "gvar has variation regions that the masters at their peaks do not give back \
+             (regions spanning other positions than the masters', or corners cut otherwise \
+             than fontTools cuts them); between the masters the blend differs from the font's"
                 .to_string(),
         );
     }
@@ -230,9 +232,10 @@ pub fn import_variable_font(
 }
 
 /// The default location, then each axis end other than the default, then each peak
-/// inside an axis (`inner`, per axis), named after the named instance there when there is
-/// one (else `Weight 900`).
-fn master_locations(font: &FontRef, ds: &Designspace, inner: &[Vec<F2Dot14>]) -> Vec<MasterAt> {
+/// inside an axis (`peaks.inner`, per axis), then each corner peak (`peaks.corners`), named
+/// after the named instance there when there is one (else `Weight 900` or
+/// `Weight 900 Width 75`).
+fn master_locations(font: &FontRef, ds: &Designspace, peaks: &Peaks) -> Vec<MasterAt> {
     let at = |location: Location| {
         let settings: Vec<(skrifa::Tag, f32)> = ds
             .axes
@@ -256,20 +259,35 @@ fn master_locations(font: &FontRef, ds: &Designspace, inner: &[Vec<F2Dot14>]) ->
         coords: at(default.clone()),
         location: default,
     }];
-    let mut places: Vec<(&Axis, f64)> = Vec::new();
-    for (a, peaks) in ds.axes.iter().zip(inner) {
+    let mut places: Vec<Vec<(&Axis, f64)>> = Vec::new();
+    for (a, inner) in ds.axes.iter().zip(&peaks.inner) {
         let mut users: Vec<f64> = [a.min, a.max]
             .into_iter()
             .filter(|&end| end != a.default)
-            .chain(peaks.iter().map(|&p| user_at_peak(a, p)))
+            .chain(inner.iter().map(|&p| user_at_peak(a, p)))
             .collect();
         users.sort_by(f64::total_cmp);
-        places.extend(users.into_iter().map(|u| (a, u)));
+        places.extend(users.into_iter().map(|u| vec![(a, u)]));
     }
-    for (a, user) in places {
-        let location = Location([(a.tag.clone(), user)].into_iter().collect());
-        let name = named(&location)
-            .unwrap_or_else(|| format!("{} {}", a.name, crate::source::emit::number(user)));
+    for corner in &peaks.corners {
+        places.push(
+            ds.axes
+                .iter()
+                .zip(corner)
+                .filter(|(_, p)| p.to_bits() != 0)
+                .map(|(a, &p)| (a, user_at_peak(a, p)))
+                .collect(),
+        );
+    }
+    for place in places {
+        let location = Location(place.iter().map(|(a, u)| (a.tag.clone(), *u)).collect());
+        let name = named(&location).unwrap_or_else(|| {
+            place
+                .iter()
+                .map(|(a, u)| format!("{} {}", a.name, crate::source::emit::number(*u)))
+                .collect::<Vec<_>>()
+                .join(" ")
+        });
         out.push(MasterAt {
             name,
             coords: at(location.clone()),
@@ -277,6 +295,35 @@ fn master_locations(font: &FontRef, ds: &Designspace, inner: &[Vec<F2Dot14>]) ->
         });
     }
     out
+}
+
+/// Whether the masters' model cuts every corner region of the font as the font does (in
+/// F2Dot14 units): then the blend between the masters is the font's.
+fn corners_reproduced(
+    ds: &Designspace,
+    masters: &[MasterAt],
+    font_regions: &[Vec<[i16; 3]>],
+) -> bool {
+    if font_regions.is_empty() {
+        return true;
+    }
+    let locations: Vec<Location> = masters.iter().skip(1).map(|m| m.location.clone()).collect();
+    let Ok(model) = ds.model(&locations) else {
+        return false;
+    };
+    let f = |v: f64| F2Dot14::from_f32(v as f32).to_bits();
+    let ours: Vec<Vec<[i16; 3]>> = model
+        .regions
+        .iter()
+        .filter(|r| r.tents.len() > 1)
+        .map(|r| {
+            r.per_axis(ds.axes.len())
+                .into_iter()
+                .map(|t| t.map(f))
+                .collect()
+        })
+        .collect();
+    font_regions.iter().all(|r| ours.contains(r))
 }
 
 /// The user value on `axis` whose normalised design coordinate is `peak` (after the axis
@@ -448,10 +495,16 @@ fn fewest_decimals(exact: f64, same: impl Fn(f64) -> bool) -> f64 {
 struct Peaks {
     /// Per axis, the peaks strictly inside it (normalised, sorted): intermediate masters.
     inner: Vec<Vec<F2Dot14>>,
-    /// Whether masters at the axis ends and at `inner` reproduce every region: each region
-    /// lies on one axis, and its start, peak and end are all master positions (or 0), so
-    /// that it is linear between neighbouring masters.
+    /// Whether masters at the axis ends and at `inner` reproduce every single-axis region:
+    /// its start, peak and end are all master positions (or 0), so that it is linear
+    /// between neighbouring masters.
     reproduced: bool,
+    /// The peaks of the regions on several axes (one value per axis, 0 where unused,
+    /// sorted): corner masters.
+    corners: Vec<Vec<F2Dot14>>,
+    /// Those regions as (lower, peak, upper) per axis, in F2Dot14 units (zeros where
+    /// unused), to compare with the masters' model.
+    corner_regions: Vec<Vec<[i16; 3]>>,
 }
 
 /// The single-axis peaks of every glyph's `gvar` tuples and whether masters there
@@ -460,7 +513,10 @@ fn gvar_peaks(font: &FontRef, axis_count: usize) -> Peaks {
     let mut peaks = Peaks {
         inner: vec![Vec::new(); axis_count],
         reproduced: true,
+        corners: Vec::new(),
+        corner_regions: Vec::new(),
     };
+    let mut corner_regions: std::collections::BTreeSet<Vec<[i16; 3]>> = Default::default();
     let (Ok(gvar), Ok(maxp)) = (font.gvar(), font.maxp()) else {
         return peaks;
     };
@@ -479,20 +535,34 @@ fn gvar_peaks(font: &FontRef, axis_count: usize) -> Peaks {
                 .enumerate()
                 .filter(|(_, v)| v.to_bits() != 0)
                 .collect();
-            let [(axis, p)] = on[..] else {
-                peaks.reproduced &= on.is_empty();
-                continue;
-            };
-            let bound = |tuple: Option<skrifa::raw::tables::variations::Tuple>,
-                         implied: F2Dot14| {
-                tuple
-                    .and_then(|t| t.values.get(axis).map(|v| v.get()))
-                    .unwrap_or(implied)
-            };
             let zero = F2Dot14::from_bits(0);
-            let start = bound(t.intermediate_start(), p.min(zero));
-            let end = bound(t.intermediate_end(), p.max(zero));
-            regions.insert((axis, start.to_bits(), p.to_bits(), end.to_bits()));
+            let tent = |axis: usize, p: F2Dot14| {
+                let bound = |tuple: Option<skrifa::raw::tables::variations::Tuple>,
+                             implied: F2Dot14| {
+                    tuple
+                        .and_then(|t| t.values.get(axis).map(|v| v.get()))
+                        .unwrap_or(implied)
+                };
+                let start = bound(t.intermediate_start(), p.min(zero));
+                let end = bound(t.intermediate_end(), p.max(zero));
+                [start.to_bits(), p.to_bits(), end.to_bits()]
+            };
+            match on[..] {
+                [] => {}
+                [(axis, p)] => {
+                    let [start, p, end] = tent(axis, p);
+                    regions.insert((axis, start, p, end));
+                }
+                _ => {
+                    let mut region = vec![[0i16; 3]; axis_count];
+                    for &(axis, p) in &on {
+                        if let Some(r) = region.get_mut(axis) {
+                            *r = tent(axis, p);
+                        }
+                    }
+                    corner_regions.insert(region);
+                }
+            }
         }
     }
     let one = F2Dot14::from_f32(1.0).to_bits();
@@ -507,6 +577,15 @@ fn gvar_peaks(font: &FontRef, axis_count: usize) -> Peaks {
     for inner in &mut peaks.inner {
         inner.sort_by_key(|p| p.to_bits());
     }
+    let corners: std::collections::BTreeSet<Vec<i16>> = corner_regions
+        .iter()
+        .map(|r| r.iter().map(|t| t[1]).collect())
+        .collect();
+    peaks.corners = corners
+        .into_iter()
+        .map(|c| c.into_iter().map(F2Dot14::from_bits).collect())
+        .collect();
+    peaks.corner_regions = corner_regions.into_iter().collect();
     peaks.reproduced &= regions.iter().all(|&(axis, start, _, end)| {
         let at_master = |v: i16| {
             v == 0

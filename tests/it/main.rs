@@ -9,6 +9,7 @@ mod axis_map;
 mod build;
 mod cache;
 mod compatible;
+mod corners;
 mod designspace;
 mod features;
 mod fit;
