@@ -88,6 +88,7 @@ pub fn import_designspace(
         .position(|(_, l, _)| at_default(l))
         .ok_or_else(|| fail("no source sits at the default of every axis".into()))?;
     check_regions(&designspace, &sources, default_index).map_err(fail)?;
+    distinct_styles(&designspace, &mut sources, default_index).map_err(fail)?;
     let mut imported = Vec::new();
     for (style, location, ufo) in &sources {
         imported.push((style.clone(), location.clone(), import_ufo(ufo, opts)?));
@@ -113,14 +114,6 @@ pub fn import_designspace(
             kerning: other.font.kerning,
         });
         reports.push((style, other.report));
-    }
-    let mut folders: Vec<&PathBuf> = masters.iter().map(|m| &m.folder).collect();
-    folders.sort();
-    if let Some(w) = folders.windows(2).find(|w| w[0] == w[1]) {
-        return Err(fail(format!(
-            "two sources would share the master folder {}/; give them distinct style names",
-            w[0].display()
-        )));
     }
     let mut designspace = designspace;
     for i in &doc.instances {
@@ -203,6 +196,48 @@ fn check_regions(
             designspace.axes[axis].name,
             crate::source::emit::number(user)
         )),
+    }
+}
+
+/// Gives each non-default source a style name whose master folder no other takes: a style
+/// name already taken by the default or an earlier source (as when one UFO serves at two
+/// places) gets the source's place, `Master0 Contrast 100`. Sources whose names still
+/// collide are an error, before any UFO is read.
+fn distinct_styles(
+    designspace: &Designspace,
+    sources: &mut [(String, Location, PathBuf)],
+    default_index: usize,
+) -> Result<(), String> {
+    let folder = |s: &str| folder_name(s);
+    let mut taken = vec![folder(&sources[default_index].0)];
+    for (i, (style, location, _)) in sources.iter_mut().enumerate() {
+        if i == default_index {
+            continue;
+        }
+        if taken.contains(&folder(style)) {
+            for a in &designspace.axes {
+                let v = location.get(a);
+                if v != a.default {
+                    style.push_str(&format!(" {} {}", a.name, crate::source::emit::number(v)));
+                }
+            }
+        }
+        taken.push(folder(style));
+    }
+    let mut named: Vec<(String, &str)> = sources
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != default_index)
+        .map(|(_, (s, _, _))| (folder(s), s.as_str()))
+        .collect();
+    named.sort();
+    match named.windows(2).find(|w| w[0].0 == w[1].0) {
+        Some(w) => Err(format!(
+            "sources `{}` and `{}` would share the master folder {}/; give them distinct \
+             style names",
+            w[0].1, w[1].1, w[0].0
+        )),
+        None => Ok(()),
     }
 }
 

@@ -344,3 +344,49 @@ fn the_designspace_and_the_variable_font_import_back_with_the_corner() {
         }
     }
 }
+
+#[test]
+fn one_ufo_at_two_places_comes_in_as_two_masters_named_by_place() {
+    // As fontTools' `Build.designspace` does: the Bold UFO serves at the corner too.
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let ds = b.out.join("CornersTest.designspace");
+    let xml = fs::read_to_string(&ds).expect("designspace");
+    let edited = xml.replacen(
+        r#"stylename="Bold Condensed" name="master.Bold Condensed" filename="CornersTest-BoldCondensed.ufo""#,
+        r#"stylename="Bold" name="master.Bold" filename="CornersTest-Bold.ufo""#,
+        1,
+    );
+    assert_ne!(xml, edited);
+    let copy = b.out.join("Shared.designspace");
+    fs::write(&copy, edited).expect("writes");
+    let imported = tmp.path().join("imported");
+    import_ok(&[s(&copy)], &imported);
+    let (back, _) = xglyph::source::load_family(&imported).expect("loads");
+    let names: Vec<(&str, String)> = back
+        .masters
+        .iter()
+        .map(|m| (m.name.as_str(), m.folder.display().to_string()))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("Bold", "bold".to_string()),
+            ("Condensed", "condensed".to_string()),
+            (
+                "Bold Weight 700 Width 75",
+                "boldweight700width75".to_string()
+            )
+        ]
+    );
+    // The corner now holds the Bold's outlines: `n` as wide as the Bold's.
+    let n = |m: usize| {
+        back.masters[m]
+            .glyphs
+            .iter()
+            .find(|g| g.name == "n")
+            .expect("n")
+            .advance
+    };
+    assert_eq!(n(2), n(0));
+}
