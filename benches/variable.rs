@@ -20,6 +20,7 @@ fn family() -> OutlinedFamily {
     let designspace = Designspace {
         axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
         instances: vec![],
+        rules: Vec::new(),
     };
     let bold = Location([("wght".to_string(), 700.0)].into_iter().collect());
     let model = designspace

@@ -167,13 +167,48 @@ pub struct NamedInstance {
     pub location: Location,
 }
 
-/// Axes and named instances of a font with masters.
+/// Axes, named instances and rules of a font with masters.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Designspace {
     /// The axes, in `font.toml` order (the `fvar` order).
     pub axes: Vec<Axis>,
     /// Named instances, in `font.toml` order.
     pub instances: Vec<NamedInstance>,
+    /// Glyph substitutions by place, in `font.toml` order.
+    pub rules: Vec<Rule>,
+}
+
+/// Most condition boxes, over all rules, that [`Designspace::rule_regions`] overlays (every
+/// combination of boxes is tried).
+pub const MAX_RULE_BOXES: usize = 12;
+
+/// A glyph substitution by place (`[[rule]]` in `font.toml`, a designspace `<rule>`): where
+/// any of its condition boxes holds, each glyph of `substitutions` is drawn as its
+/// alternate (the variable font's `rvrn` feature; static instances swap the two glyphs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rule {
+    /// Name, for messages and the designspace.
+    pub name: String,
+    /// Boxes in user coordinates: per axis tag, an inclusive (min, max); an axis left out
+    /// is not constrained. The rule holds where any box holds.
+    pub conditions: Vec<BTreeMap<String, (f64, f64)>>,
+    /// (glyph, alternate) pairs, in order.
+    pub substitutions: Vec<(String, String)>,
+}
+
+impl Rule {
+    /// Whether the rule holds at `location` (user coordinates).
+    pub fn holds_at(&self, axes: &[Axis], location: &Location) -> bool {
+        self.conditions.iter().any(|b| {
+            b.iter().all(|(tag, &(min, max))| {
+                let v = axes
+                    .iter()
+                    .find(|a| &a.tag == tag)
+                    .map_or(0.0, |a| location.get(a));
+                min <= v && v <= max
+            })
+        })
+    }
 }
 
 /// A master's tent on one axis: the blend weight of its deltas rises from 0 at `lower`
@@ -391,6 +426,133 @@ impl Designspace {
         })
     }
 
+    /// The glyphs drawn as others at `location`: each glyph name in `names` mapped by the
+    /// rules that hold there, in order, each rule applied to the result of the ones before
+    /// (as designspaceLib's `processRules`). Only the names that change are returned, in
+    /// the order of `names`.
+    pub fn substitutions_at<'a>(
+        &self,
+        location: &Location,
+        names: impl IntoIterator<Item = &'a str>,
+    ) -> Vec<(String, String)> {
+        let holding: Vec<&Rule> = self
+            .rules
+            .iter()
+            .filter(|r| r.holds_at(&self.axes, location))
+            .collect();
+        if holding.is_empty() {
+            return Vec::new();
+        }
+        names
+            .into_iter()
+            .filter_map(|name| {
+                let mut now = name;
+                for rule in &holding {
+                    if let Some((_, to)) = rule.substitutions.iter().find(|(from, _)| from == now) {
+                        now = to;
+                    }
+                }
+                (now != name).then(|| (name.to_string(), now.to_string()))
+            })
+            .collect()
+    }
+
+    /// The rules as a variable font's feature variations: boxes in normalised coordinates
+    /// (per constrained axis, its index and the inclusive range), each with the glyphs
+    /// drawn as others inside it, the first box that holds deciding. Where boxes of several
+    /// rules overlap, their intersection comes first with the rules' substitutions composed
+    /// in order (as fontTools' `overlayFeatureVariations` does), so every place gets what
+    /// [`Self::substitutions_at`] gives there. Fails (with the count) when the rules have
+    /// more than [`MAX_RULE_BOXES`] boxes in all.
+    #[allow(clippy::type_complexity)]
+    pub fn rule_regions(
+        &self,
+    ) -> Result<Vec<(Vec<(usize, f64, f64)>, Vec<(String, String)>)>, usize> {
+        // (rule, box) in normalised coordinates.
+        let boxes: Vec<(usize, Vec<(usize, f64, f64)>)> = self
+            .rules
+            .iter()
+            .enumerate()
+            .flat_map(|(r, rule)| {
+                rule.conditions.iter().map(move |b| {
+                    let ranges = self
+                        .axes
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(i, a)| {
+                            let &(min, max) = b.get(&a.tag)?;
+                            Some((i, a.normalize(min), a.normalize(max)))
+                        })
+                        .collect();
+                    (r, ranges)
+                })
+            })
+            .collect();
+        if boxes.len() > MAX_RULE_BOXES {
+            return Err(boxes.len());
+        }
+        let mut records: Vec<(Vec<usize>, Vec<(usize, f64, f64)>, Vec<(String, String)>)> =
+            Vec::new();
+        for subset in 1u32..(1 << boxes.len()) {
+            let members: Vec<usize> = (0..boxes.len())
+                .filter(|&k| subset & (1 << k) != 0)
+                .collect();
+            let rules: Vec<usize> = members.iter().map(|&k| boxes[k].0).collect();
+            if rules.windows(2).any(|w| w[0] == w[1]) {
+                continue;
+            }
+            // The intersection, per axis.
+            let mut ranges: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
+            for &k in &members {
+                for &(axis, min, max) in &boxes[k].1 {
+                    let r = ranges.entry(axis).or_insert((min, max));
+                    *r = (r.0.max(min), r.1.min(max));
+                }
+            }
+            if ranges.values().any(|&(min, max)| min > max) {
+                continue;
+            }
+            // The rules' substitutions composed in order, for every name they mention.
+            let mut names: Vec<&str> = Vec::new();
+            for &r in &rules {
+                for (from, to) in &self.rules[r].substitutions {
+                    for n in [from.as_str(), to.as_str()] {
+                        if !names.contains(&n) {
+                            names.push(n);
+                        }
+                    }
+                }
+            }
+            let substitutions: Vec<(String, String)> = names
+                .iter()
+                .filter_map(|&name| {
+                    let mut now = name;
+                    for &r in &rules {
+                        if let Some((_, to)) = self.rules[r]
+                            .substitutions
+                            .iter()
+                            .find(|(from, _)| from == now)
+                        {
+                            now = to;
+                        }
+                    }
+                    (now != name).then(|| (name.to_string(), now.to_string()))
+                })
+                .collect();
+            records.push((
+                rules,
+                ranges
+                    .into_iter()
+                    .map(|(a, (min, max))| (a, min, max))
+                    .collect(),
+                substitutions,
+            ));
+        }
+        // The most rules first; then in rule order.
+        records.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then_with(|| a.0.cmp(&b.0)));
+        Ok(records.into_iter().map(|(_, b, s)| (b, s)).collect())
+    }
+
     /// How much each master counts at `location` (default first): see
     /// [`VariationModel::weights_at`].
     pub fn weights(&self, model: &VariationModel, location: &Location) -> Vec<f64> {
@@ -564,6 +726,7 @@ mod tests {
         Designspace {
             axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
             instances: vec![],
+            rules: Vec::new(),
         }
     }
 
@@ -623,6 +786,7 @@ mod tests {
         let ds = Designspace {
             axes: vec![mapped()],
             instances: vec![],
+            rules: Vec::new(),
         };
         let model = ds.model(&[at(100.0), at(900.0)]).unwrap();
         let w = ds.weights(&model, &at(600.0));
@@ -685,6 +849,7 @@ mod tests {
                 Axis::linear("h", "H", -100.0, 0.0, 100.0),
             ],
             instances: vec![],
+            rules: Vec::new(),
         };
         let loc =
             |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());

@@ -52,6 +52,48 @@ impl fmt::Display for InstanceError {
 
 impl std::error::Error for InstanceError {}
 
+/// Applies the rules' substitutions to a static font as fontmake's instancer does: each
+/// glyph and its alternate trade drawings (outlines, components, advance, anchors), and
+/// every component and kerning pair that names one names the other, so that the code
+/// point shows the alternate and everything else looks as before. A pair given both ways
+/// is swapped once.
+fn swap_glyphs(font: &mut Font, substitutions: &[(String, String)]) {
+    let mut done: HashSet<(&str, &str)> = HashSet::new();
+    for (a, b) in substitutions {
+        if !done.insert((b.as_str(), a.as_str())) || !done.insert((a.as_str(), b.as_str())) {
+            continue;
+        }
+        let find = |n: &str| font.glyphs.iter().position(|g| g.name == n);
+        let (Some(i), Some(j)) = (find(a), find(b)) else {
+            continue;
+        };
+        let (lo, hi) = (i.min(j), i.max(j));
+        let (left, right) = font.glyphs.split_at_mut(hi);
+        let (x, y) = (&mut left[lo], &mut right[0]);
+        std::mem::swap(&mut x.contours, &mut y.contours);
+        std::mem::swap(&mut x.components, &mut y.components);
+        std::mem::swap(&mut x.advance, &mut y.advance);
+        std::mem::swap(&mut x.anchors, &mut y.anchors);
+        std::mem::swap(&mut x.outline_mark, &mut y.outline_mark);
+        let other = |n: &mut String| {
+            if n == a {
+                n.clone_from(b);
+            } else if n == b {
+                n.clone_from(a);
+            }
+        };
+        for g in &mut font.glyphs {
+            for c in &mut g.components {
+                other(&mut c.base);
+            }
+        }
+        for k in &mut font.kerning {
+            other(&mut k.left);
+            other(&mut k.right);
+        }
+    }
+}
+
 /// `Σ weights[i] × values[i]`, in master order (default first).
 fn blend(weights: &[f64], values: impl IntoIterator<Item = f64>) -> f64 {
     let mut terms = weights.iter().zip(values).map(|(w, v)| w * v);
@@ -130,12 +172,17 @@ impl Family {
                     .collect(),
             });
         }
-        Ok(Font {
+        let mut font = Font {
             info: self.default.info.clone(),
             glyphs,
             kerning: self.kerning_at(&w),
             features: self.default.features.clone(),
-        })
+        };
+        let substitutions = self
+            .designspace
+            .substitutions_at(location, font.glyphs.iter().map(|g| g.name.as_str()));
+        swap_glyphs(&mut font, &substitutions);
+        Ok(font)
     }
 
     /// The kerning blended with `weights`: the default's pairs in order, then pairs only

@@ -63,6 +63,7 @@ pub fn import_designspace(
     let designspace = Designspace {
         axes,
         instances: Vec::new(),
+        rules: Vec::new(),
     };
     let base = path.parent().unwrap_or(Path::new(""));
     let mut sources = Vec::new();

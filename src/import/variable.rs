@@ -93,7 +93,11 @@ pub fn import_variable_font(
             ),
         })
         .collect();
-    let designspace = Designspace { axes, instances };
+    let designspace = Designspace {
+        axes,
+        instances,
+        rules: Vec::new(),
+    };
     let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
     if source.glyphs.is_empty() {
         return Err(fail(

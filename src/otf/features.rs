@@ -43,8 +43,9 @@ use fea_write_fonts::tables::gdef::{Gdef, GlyphClassDef};
 use fea_write_fonts::tables::gpos::builders::{
     AnchorBuilder, MarkToBaseBuilder, MarkToMarkBuilder, PairPosBuilder, ValueRecordBuilder,
 };
+use fea_write_fonts::tables::gsub::builders::SingleSubBuilder;
 use fea_write_fonts::tables::layout::builders::DeviceOrDeltas;
-use fea_write_fonts::tables::layout::{ClassDef, LookupFlag};
+use fea_write_fonts::tables::layout::{ClassDef, ConditionFormat1, ConditionSet, LookupFlag};
 use fea_write_fonts::tables::variations::{RegionAxisCoordinates, VariationRegion};
 use fea_write_fonts::types::{F2Dot14, GlyphId16, Tag};
 
@@ -69,11 +70,18 @@ pub(crate) struct LayoutSource<'a> {
     pub kerning: Vec<KernPairs>,
     /// How the masters blend (`None` for a static font).
     pub model: Option<&'a VariationModel>,
+    /// The rules as `rvrn` feature variations: per box (normalised ranges by axis index,
+    /// the first that holds deciding), the glyph ids it substitutes.
+    pub rules: &'a [RuleRegion],
     /// Number of axes (0 for a static font).
     pub axis_count: u16,
     /// The font's own `features.fea`.
     pub features: Option<&'a FeatureFile>,
 }
+
+/// A box of the design space (per constrained axis: index, normalised min and max) and
+/// the (glyph id, alternate id) substitutions inside it.
+pub type RuleRegion = (Vec<(usize, f64, f64)>, Vec<(u16, u16)>);
 
 /// The compiled layout tables, as bytes for write-fonts 0.55's builder.
 #[derive(Default)]
@@ -373,6 +381,8 @@ struct Generated {
     skip_kern: bool,
     skip_mark: bool,
     skip_mkmk: bool,
+    /// The rules' boxes and substitutions (`rvrn`).
+    rules: Vec<RuleRegion>,
 }
 
 impl Generated {
@@ -463,6 +473,7 @@ impl Generated {
             skip_kern: has(b"kern"),
             skip_mark: has(b"mark"),
             skip_mkmk: has(b"mkmk"),
+            rules: source.rules.to_vec(),
         })
     }
 
@@ -484,6 +495,35 @@ fn anchor((x, y): &(Varying, Varying)) -> AnchorBuilder {
 
 impl FeatureProvider for Generated {
     fn add_features(&self, builder: &mut FeatureBuilder) {
+        if !self.rules.is_empty() {
+            // One single-substitution lookup per box, in the order the boxes decide.
+            let conditions = self
+                .rules
+                .iter()
+                .map(|(ranges, subs)| {
+                    let mut lookup = SingleSubBuilder::default();
+                    for &(from, to) in subs {
+                        lookup.insert(GlyphId16::new(from), GlyphId16::new(to));
+                    }
+                    let id = builder.add_lookup(PendingLookup::new(
+                        vec![lookup],
+                        LookupFlag::empty(),
+                        None,
+                    ));
+                    let f = |v: f64| F2Dot14::from_f32(v as f32);
+                    let set = ConditionSet::new(
+                        ranges
+                            .iter()
+                            .map(|&(axis, min, max)| {
+                                ConditionFormat1::new(axis as u16, f(min), f(max)).into()
+                            })
+                            .collect(),
+                    );
+                    (set, vec![id])
+                })
+                .collect();
+            builder.add_feature_variations(vec![Tag::new(b"rvrn")], conditions);
+        }
         if !self.kerning.is_empty() && !self.skip_kern {
             let mut pairs = PairPosBuilder::default();
             for (&(left, right), value) in &self.kerning {

@@ -142,6 +142,7 @@ pub fn build_font(
         anchors: vec![set.glyphs.iter().map(|g| g.anchors.as_slice()).collect()],
         kerning: vec![kern_pairs(&font.kerning, set)?],
         model: None,
+        rules: &[],
         axis_count: 0,
         features: font.features.as_ref(),
     })?;

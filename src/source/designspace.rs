@@ -15,7 +15,7 @@ use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
 use super::emit;
 use super::limits;
 use super::value::{check_keys, get, number, require, string, tables, type_name};
-use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError};
+use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError, Rule};
 
 /// A non-default master as `font.toml` names it, with where its keys were written.
 #[derive(Clone, Debug)]
@@ -33,6 +33,9 @@ pub(super) struct MasterSpec {
 pub(super) struct DesignspaceSpec {
     pub designspace: Designspace,
     pub masters: Vec<MasterSpec>,
+    /// Each glyph name a `[[rule]]` substitutes, with the rule's name and where it was
+    /// written, to check against the glyph files.
+    pub rule_glyphs: Vec<(String, String, usize)>,
 }
 
 /// A `[[master]]` as `font.toml` writes it: name, folder, location.
@@ -173,6 +176,36 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
             }
         }
     }
+    let mut rules: Vec<Rule> = Vec::new();
+    let mut rule_glyphs = Vec::new();
+    if let Some(v) = get(t, "rule") {
+        for (rt, header) in tables(ctx, v, "rule", &mut ok) {
+            if axis_list.is_empty() {
+                if ok {
+                    ctx.err(
+                        header,
+                        "a `[[rule]]` substitutes glyphs by place on the axes: add an \
+                         `[[axis]]` table",
+                    );
+                }
+                ok = false;
+                continue;
+            }
+            match load_rule(ctx, rt, header, &axis_list) {
+                Some((rule, name_at, glyphs)) => {
+                    if rules.iter().any(|r| r.name == rule.name) {
+                        ctx.err(name_at, format!("duplicate rule name `{}`", rule.name));
+                        ok = false;
+                    } else {
+                        rule_glyphs
+                            .extend(glyphs.into_iter().map(|(g, at)| (rule.name.clone(), g, at)));
+                        rules.push(rule);
+                    }
+                }
+                None => ok = false,
+            }
+        }
+    }
     if !ok {
         return None;
     }
@@ -180,6 +213,7 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
     let designspace = Designspace {
         axes: axis_list,
         instances,
+        rules,
     };
     if !designspace.axes.is_empty() {
         let locations: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();
@@ -191,7 +225,223 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
     Some(DesignspaceSpec {
         designspace,
         masters: masters.into_iter().map(|m| m.0).collect(),
+        rule_glyphs,
     })
+}
+
+/// One `[[rule]]`: `name`, `conditions = [{ wght = [600, 700] }, ...]` (boxes in user
+/// values, inclusive, inside the axis ranges) and `substitutions = { dollar =
+/// "dollar.nostroke" }`. Returns the rule, where its name was written, and each glyph name
+/// it uses with where it was written.
+#[allow(clippy::type_complexity)]
+fn load_rule(
+    ctx: &mut Ctx<'_>,
+    t: &DeTable<'_>,
+    header: usize,
+    axes: &[Axis],
+) -> Option<(Rule, usize, Vec<(String, usize)>)> {
+    let suggested = check_keys(ctx, t, &["name", "conditions", "substitutions"]);
+    let name = require(
+        ctx,
+        t,
+        "name",
+        "name = \"heavy dollar\"",
+        header,
+        &suggested,
+    )
+    .and_then(|v| non_empty(ctx, v, "name"));
+    let conditions = require(
+        ctx,
+        t,
+        "conditions",
+        "conditions = [{ wght = [600, 700] }]",
+        header,
+        &suggested,
+    )
+    .and_then(|v| rule_conditions(ctx, v, axes));
+    let substitutions = require(
+        ctx,
+        t,
+        "substitutions",
+        "substitutions = { dollar = \"dollar.nostroke\" }",
+        header,
+        &suggested,
+    )
+    .and_then(|v| rule_substitutions(ctx, v));
+    let ((name, name_at), conditions, (substitutions, glyphs)) =
+        (name?, conditions?, substitutions?);
+    Some((
+        Rule {
+            name,
+            conditions,
+            substitutions,
+        },
+        name_at,
+        glyphs,
+    ))
+}
+
+/// A rule's `conditions`: a non-empty array of boxes, each a table of axis -> [min, max].
+fn rule_conditions(
+    ctx: &mut Ctx<'_>,
+    v: &Spanned<DeValue<'_>>,
+    axes: &[Axis],
+) -> Option<Vec<BTreeMap<String, (f64, f64)>>> {
+    let DeValue::Array(boxes) = v.get_ref() else {
+        ctx.err(
+            v.span().start,
+            format!(
+                "`conditions` must be an array of boxes such as [{{ wght = [600, 700] }}], found {}",
+                type_name(v.get_ref())
+            ),
+        );
+        return None;
+    };
+    if boxes.is_empty() {
+        ctx.err(
+            v.span().start,
+            "`conditions` is empty, so the rule never holds; add a box such as { wght = [600, 700] }",
+        );
+        return None;
+    }
+    let mut ok = true;
+    let mut out = Vec::new();
+    for b in boxes {
+        let DeValue::Table(bt) = b.get_ref() else {
+            ctx.err(
+                b.span().start,
+                format!(
+                    "each condition must be a table of axis ranges such as {{ wght = [600, 700] }}, found {}",
+                    type_name(b.get_ref())
+                ),
+            );
+            ok = false;
+            continue;
+        };
+        if bt.is_empty() {
+            ctx.err(
+                b.span().start,
+                "an empty condition holds everywhere; give each one at least one axis range",
+            );
+            ok = false;
+            continue;
+        }
+        let mut ranges = BTreeMap::new();
+        for (k, range) in bt.iter() {
+            let tag: &str = k.get_ref();
+            let Some(axis) = axes.iter().find(|a| a.tag == tag) else {
+                let known: Vec<String> = axes.iter().map(|a| format!("`{}`", a.tag)).collect();
+                ctx.err(
+                    k.span().start,
+                    format!(
+                        "unknown axis `{tag}` in `conditions`; the axes are {}",
+                        known.join(", ")
+                    ),
+                );
+                ok = false;
+                continue;
+            };
+            let pair = match range.get_ref() {
+                DeValue::Array(a) if a.len() == 2 => {
+                    match (number(ctx, &a[0], tag), number(ctx, &a[1], tag)) {
+                        (Some(min), Some(max)) => Some((min, max, a[1].span().start)),
+                        _ => None,
+                    }
+                }
+                other => {
+                    ctx.err(
+                        range.span().start,
+                        format!(
+                            "`{tag}` in a condition must be a range [min, max] such as [600, 700], found {}",
+                            type_name(other)
+                        ),
+                    );
+                    None
+                }
+            };
+            let Some((min, max, max_at)) = pair else {
+                ok = false;
+                continue;
+            };
+            if min > max {
+                ctx.err(
+                    max_at,
+                    format!(
+                        "the range of `{tag}` runs backwards: {} comes after {}",
+                        emit::number(max),
+                        emit::number(min)
+                    ),
+                );
+                ok = false;
+                continue;
+            }
+            if min < axis.min || max > axis.max {
+                ctx.err(
+                    range.span().start,
+                    format!(
+                        "{tag} {}..{} reaches outside the axis range {}..{}",
+                        emit::number(min),
+                        emit::number(max),
+                        emit::number(axis.min),
+                        emit::number(axis.max)
+                    ),
+                );
+                ok = false;
+                continue;
+            }
+            ranges.insert(tag.to_string(), (min, max));
+        }
+        out.push(ranges);
+    }
+    ok.then_some(out)
+}
+
+/// A rule's `substitutions`: glyph -> alternate, each a string; returns the pairs in the
+/// order written and every name with where it was written.
+#[allow(clippy::type_complexity)]
+fn rule_substitutions(
+    ctx: &mut Ctx<'_>,
+    v: &Spanned<DeValue<'_>>,
+) -> Option<(Vec<(String, String)>, Vec<(String, usize)>)> {
+    let DeValue::Table(t) = v.get_ref() else {
+        ctx.err(
+            v.span().start,
+            format!(
+                "`substitutions` must be a table such as {{ dollar = \"dollar.nostroke\" }}, found {}",
+                type_name(v.get_ref())
+            ),
+        );
+        return None;
+    };
+    if t.is_empty() {
+        ctx.err(
+            v.span().start,
+            "`substitutions` is empty; name a glyph and its alternate",
+        );
+        return None;
+    }
+    let mut ok = true;
+    let mut pairs = Vec::new();
+    let mut names = Vec::new();
+    for (k, alt) in t.iter() {
+        let from: &str = k.get_ref();
+        let Some(to) = string(ctx, alt, from) else {
+            ok = false;
+            continue;
+        };
+        if to == from {
+            ctx.err(
+                alt.span().start,
+                format!("`{from}` is substituted by itself"),
+            );
+            ok = false;
+            continue;
+        }
+        names.push((from.to_string(), k.span().start));
+        names.push((to.clone(), alt.span().start));
+        pairs.push((from.to_string(), to));
+    }
+    ok.then_some((pairs, names))
 }
 
 /// Where an axis's keys were written.

@@ -57,7 +57,7 @@ pub fn font_toml(info: &FontInfo) -> String {
 }
 
 /// `font.toml` of a font with masters: [`font_toml`], then the `[[axis]]`, `[[master]]` and
-/// `[[instance]]` tables in model order. Without axes it is [`font_toml`].
+/// `[[instance]]` and `[[rule]]` tables in model order. Without axes it is [`font_toml`].
 pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[Master]) -> String {
     let mut out = font_toml(info);
     for a in &designspace.axes {
@@ -87,6 +87,38 @@ pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[M
         let _ = writeln!(out, "\n[[instance]]");
         let _ = writeln!(out, "name = {}", string(&i.name));
         let _ = writeln!(out, "location = {}", location(designspace, &i.location));
+    }
+    for r in &designspace.rules {
+        let _ = writeln!(out, "\n[[rule]]");
+        let _ = writeln!(out, "name = {}", string(&r.name));
+        // Each box's ranges in axis order.
+        let boxes: Vec<String> = r
+            .conditions
+            .iter()
+            .map(|b| {
+                let ranges: Vec<String> = designspace
+                    .axes
+                    .iter()
+                    .filter_map(|a| {
+                        let (min, max) = b.get(&a.tag)?;
+                        Some(format!(
+                            "{} = [{}, {}]",
+                            key(&a.tag),
+                            number(*min),
+                            number(*max)
+                        ))
+                    })
+                    .collect();
+                format!("{{ {} }}", ranges.join(", "))
+            })
+            .collect();
+        let _ = writeln!(out, "conditions = [{}]", boxes.join(", "));
+        let subs: Vec<String> = r
+            .substitutions
+            .iter()
+            .map(|(from, to)| format!("{} = {}", key(from), string(to)))
+            .collect();
+        let _ = writeln!(out, "substitutions = {{ {} }}", subs.join(", "));
     }
     out
 }

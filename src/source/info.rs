@@ -27,6 +27,7 @@ const KEYS: &[&str] = &[
     "axis",
     "master",
     "instance",
+    "rule",
 ];
 
 /// Default `tolerance` in font units.

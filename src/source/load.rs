@@ -199,6 +199,17 @@ fn load_sources_with(
     }
 
     let names: BTreeSet<String> = glyphs.iter().map(|g| g.glyph.name.clone()).collect();
+    if let (Some(spec), Some(text), false) = (&spec, info_text.as_deref(), glyph_failed) {
+        let mut ctx = Ctx::new(&font_path, text, &mut out);
+        for (rule, glyph, at) in &spec.rule_glyphs {
+            if !names.contains(glyph) {
+                ctx.err(
+                    *at,
+                    format!("rule `{rule}` names glyph `{glyph}`, which the font does not have"),
+                );
+            }
+        }
+    }
     let mut kern_text = None;
     let kerning = match regular_file(&kern_path) {
         Ok(true) => {

@@ -233,6 +233,7 @@ mod tests {
                     name: "Medium".into(),
                     location: at(500.0),
                 }],
+                rules: Vec::new(),
             },
             default: OutlinedFont {
                 info: info("Xglyph Sans", "Regular"),
@@ -251,6 +252,7 @@ mod tests {
                 let ds = Designspace {
                     axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
                     instances: Vec::new(),
+                    rules: Vec::new(),
                 };
                 ds.model(&[at(700.0)]).expect("one master at the end")
             },

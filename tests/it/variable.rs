@@ -122,6 +122,7 @@ fn bundled() -> &'static OutlinedFamily {
                 instance("SemiBold", 600.0),
                 instance("Bold", 700.0),
             ],
+            rules: Vec::new(),
         };
         family(designspace, font, vec![("Bold", 700.0, glyphs, kerning)])
     })
@@ -247,6 +248,7 @@ fn tiny() -> OutlinedFamily {
             instance("SemiBold", 600.0),
             instance("Bold", 900.0),
         ],
+        rules: Vec::new(),
     };
     family(
         designspace,
@@ -1104,6 +1106,7 @@ fn a_glyph_with_more_than_32_variations_imports() {
     let designspace = Designspace {
         axes,
         instances: vec![],
+        rules: Vec::new(),
     };
     let model = designspace.model(&locations).expect("valid masters");
     let family = OutlinedFamily {

@@ -39,12 +39,12 @@ use write_fonts::tables::gvar::GlyphDelta;
 use write_fonts::types::Tag;
 use write_fonts::BuilderError;
 
-use super::features::{layout_tables, LayoutSource};
+use super::features::{layout_tables, LayoutSource, RuleRegion};
 use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
 use super::truetype::TtGlyph;
 use super::{grid, GlyphSet, OtfError};
-use crate::designspace::VariationModel;
+use crate::designspace::{Designspace, VariationModel};
 use crate::family::OutlinedFamily;
 use crate::model::Anchor;
 use naming::VariableNames;
@@ -183,6 +183,7 @@ fn build(
             _ => default_anchors.clone(),
         });
     }
+    let rules = rule_regions(designspace, &set)?;
     let layout = layout_tables(&LayoutSource {
         names: set.glyphs.iter().map(|g| g.model_name.as_str()).collect(),
         unicodes: set.glyphs.iter().map(|g| g.unicodes.as_slice()).collect(),
@@ -190,6 +191,7 @@ fn build(
         anchors,
         kerning,
         model: Some(model),
+        rules: &rules,
         axis_count,
         features: font.features.as_ref(),
     })?;
@@ -217,6 +219,38 @@ fn build(
         .add_table(&hvar::hvar(&model.regions, axis_count, &advance_deltas)?)
         .map_err(table_err)?;
     Ok(builder.build())
+}
+
+/// The rules' boxes with glyph ids ([`Designspace::rule_regions`]).
+fn rule_regions(designspace: &Designspace, set: &GlyphSet) -> Result<Vec<RuleRegion>, OtfError> {
+    let regions = designspace.rule_regions().map_err(|count| {
+        OtfError::Table(format!(
+            "variable font: the rules have {count} condition boxes, more than the {} that can \
+             be overlaid",
+            crate::designspace::MAX_RULE_BOXES
+        ))
+    })?;
+    let gid = |name: &str| -> Result<u16, OtfError> {
+        set.glyphs
+            .iter()
+            .position(|g| g.model_name == name)
+            .and_then(|i| u16::try_from(i).ok())
+            .ok_or_else(|| {
+                OtfError::Table(format!(
+                    "variable font: a rule names glyph '{name}', which is not in the font"
+                ))
+            })
+    };
+    regions
+        .into_iter()
+        .map(|(ranges, subs)| {
+            let subs = subs
+                .iter()
+                .map(|(from, to)| Ok((gid(from)?, gid(to)?)))
+                .collect::<Result<Vec<_>, OtfError>>()?;
+            Ok((ranges, subs))
+        })
+        .collect()
 }
 
 /// Why one glyph has no variations.
