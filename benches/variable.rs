@@ -21,6 +21,7 @@ fn family() -> OutlinedFamily {
         axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
         instances: vec![],
         rules: Vec::new(),
+        rules_last: false,
     };
     let bold = Location([("wght".to_string(), 700.0)].into_iter().collect());
     let model = designspace

@@ -176,6 +176,9 @@ pub struct Designspace {
     pub instances: Vec<NamedInstance>,
     /// Glyph substitutions by place, in `font.toml` order.
     pub rules: Vec<Rule>,
+    /// Whether the rules apply after the font's other substitutions (the `rclt` feature,
+    /// a designspace's `processing="last"`), rather than before them (`rvrn`).
+    pub rules_last: bool,
 }
 
 /// Most condition boxes, over all rules, that [`Designspace::rule_regions`] overlays (every
@@ -727,6 +730,7 @@ mod tests {
             axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
             instances: vec![],
             rules: Vec::new(),
+            rules_last: false,
         }
     }
 
@@ -787,6 +791,7 @@ mod tests {
             axes: vec![mapped()],
             instances: vec![],
             rules: Vec::new(),
+            rules_last: false,
         };
         let model = ds.model(&[at(100.0), at(900.0)]).unwrap();
         let w = ds.weights(&model, &at(600.0));
@@ -850,6 +855,7 @@ mod tests {
             ],
             instances: vec![],
             rules: Vec::new(),
+            rules_last: false,
         };
         let loc =
             |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());

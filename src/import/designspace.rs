@@ -12,24 +12,26 @@
 //! default and each other source measured against the blended outlines. Limits: the
 //! sources' outlines of such a glyph must have one Bézier structure (else the error names
 //! the glyph); a glyph taken from xglyph's lib in one source and fitted in another must
-//! //! come out compatible by itself (else the error names the glyph and master). Axis maps
+//! come out compatible by itself (else the error names the glyph and master). Axis maps
 //! become the axes' `map`; locations are read as user coordinates (`uservalue`, else
-//! `xvalue` through the inverse map). Discrete axes, `<mappings>` (avar 2), sources on a
-//! layer other than the default, rules, and sources that xglyph's masters cannot hold (a
-//! corner master, an axis end without a source) are not supported: an error says which,
-//! before any UFO is read.
+//! `xvalue` through the inverse map); `<rules>` become `[[rule]]`s (conditions in user
+//! values). Discrete axes, `<mappings>` (avar 2), sources on a layer other than the
+//! default, and sources that xglyph's masters cannot hold (two at the default, an axis end
+//! without a source) are not supported: an error says which, before any UFO is read.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
-use norad::designspace::{DesignSpaceDocument, Dimension};
+use norad::designspace::{DesignSpaceDocument, Dimension, RuleProcessing};
 
 use rayon::prelude::*;
 
 use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
 use super::{grid_for, import_ufo, ImportError, ImportOptions, Imported, SourceGlyph};
-use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError};
+use crate::designspace::{
+    Axis, Designspace, Location, NamedInstance, RegionError, Rule, MAX_RULE_BOXES,
+};
 use crate::model::{Family, Glyph, Master};
 
 /// A designspace imported: the family and each source's report (default first).
@@ -57,14 +59,13 @@ pub fn import_designspace(
     })?;
     let fail = |message: String| ImportError::at(path, message);
     let axes = axes(&doc).map_err(fail)?;
-    if !doc.rules.rules.is_empty() {
-        return Err(fail("rules (glyph substitutions) are not supported".into()));
-    }
-    let designspace = Designspace {
+    let mut designspace = Designspace {
         axes,
         instances: Vec::new(),
         rules: Vec::new(),
+        rules_last: matches!(doc.rules.processing, RuleProcessing::Last),
     };
+    designspace.rules = rules(&doc, &designspace.axes).map_err(fail)?;
     let base = path.parent().unwrap_or(Path::new(""));
     let mut sources = Vec::new();
     for s in &doc.sources {
@@ -116,7 +117,20 @@ pub fn import_designspace(
         });
         reports.push((style, other.report));
     }
-    let mut designspace = designspace;
+    for rule in &designspace.rules {
+        for (from, to) in &rule.substitutions {
+            if let Some(missing) = [from, to]
+                .into_iter()
+                .find(|n| !font.glyphs.iter().any(|g| &g.name == *n))
+            {
+                return Err(fail(format!(
+                    "rule `{}` substitutes glyph `{missing}`, which the default source does \
+                     not have",
+                    rule.name
+                )));
+            }
+        }
+    }
     for i in &doc.instances {
         let given = i
             .stylename
@@ -240,6 +254,70 @@ fn distinct_styles(
         )),
         None => Ok(()),
     }
+}
+
+/// The designspace's `<rules>` as [`Rule`]s: each `<conditionset>` a box in user values
+/// (design values through the inverse axis map; an open end, or one beyond the axis, at
+/// the axis end), an empty one the whole space; rules without a name are named `rule 1`, ….
+fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<Vec<Rule>, String> {
+    let mut out = Vec::new();
+    for (k, r) in doc.rules.rules.iter().enumerate() {
+        let name = r
+            .name
+            .clone()
+            .filter(|n| !n.trim().is_empty())
+            .unwrap_or_else(|| format!("rule {}", k + 1));
+        let mut conditions = Vec::new();
+        for set in &r.condition_sets {
+            let mut ranges = BTreeMap::new();
+            for c in &set.conditions {
+                let Some(axis) = axes.iter().find(|a| a.name == c.name || a.tag == c.name) else {
+                    return Err(format!(
+                        "rule `{name}` has a condition on `{}`, which is not an axis",
+                        c.name
+                    ));
+                };
+                let user = |design: Option<f64>, end: f64| {
+                    design.map_or(end, |d| axis.user(d).clamp(axis.min, axis.max))
+                };
+                let (min, max) = (user(c.minimum, axis.min), user(c.maximum, axis.max));
+                if min > max {
+                    return Err(format!(
+                        "rule `{name}`: the condition on `{}` runs backwards ({min} > {max})",
+                        c.name
+                    ));
+                }
+                ranges.insert(axis.tag.clone(), (min, max));
+            }
+            if ranges.is_empty() {
+                // An empty condition set holds everywhere: the whole first axis.
+                if let Some(a) = axes.first() {
+                    ranges.insert(a.tag.clone(), (a.min, a.max));
+                }
+            }
+            conditions.push(ranges);
+        }
+        if conditions.is_empty() {
+            continue;
+        }
+        out.push(Rule {
+            name,
+            conditions,
+            substitutions: r
+                .substitutions
+                .iter()
+                .map(|s| (s.name.to_string(), s.with.to_string()))
+                .filter(|(a, b)| a != b)
+                .collect(),
+        });
+    }
+    if out.iter().map(|r| r.conditions.len()).sum::<usize>() > MAX_RULE_BOXES {
+        return Err(format!(
+            "the rules have more than {MAX_RULE_BOXES} condition sets in all, more than xglyph \
+             overlays"
+        ));
+    }
+    Ok(out)
 }
 
 /// Fits again, with one structure for all sources ([`import_compatible_glyph`]), every

@@ -97,6 +97,7 @@ pub fn import_variable_font(
         axes,
         instances,
         rules: Vec::new(),
+        rules_last: false,
     };
     let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
     if source.glyphs.is_empty() {

@@ -73,6 +73,8 @@ pub(crate) struct LayoutSource<'a> {
     /// The rules as `rvrn` feature variations: per box (normalised ranges by axis index,
     /// the first that holds deciding), the glyph ids it substitutes.
     pub rules: &'a [RuleRegion],
+    /// The feature the rules vary: `rvrn`, or `rclt` when they apply last.
+    pub rules_feature: [u8; 4],
     /// Number of axes (0 for a static font).
     pub axis_count: u16,
     /// The font's own `features.fea`.
@@ -381,8 +383,9 @@ struct Generated {
     skip_kern: bool,
     skip_mark: bool,
     skip_mkmk: bool,
-    /// The rules' boxes and substitutions (`rvrn`).
+    /// The rules' boxes and substitutions, and the feature they vary.
     rules: Vec<RuleRegion>,
+    rules_feature: [u8; 4],
 }
 
 impl Generated {
@@ -474,6 +477,7 @@ impl Generated {
             skip_mark: has(b"mark"),
             skip_mkmk: has(b"mkmk"),
             rules: source.rules.to_vec(),
+            rules_feature: source.rules_feature,
         })
     }
 
@@ -522,7 +526,7 @@ impl FeatureProvider for Generated {
                     (set, vec![id])
                 })
                 .collect();
-            builder.add_feature_variations(vec![Tag::new(b"rvrn")], conditions);
+            builder.add_feature_variations(vec![Tag::new(&self.rules_feature)], conditions);
         }
         if !self.kerning.is_empty() && !self.skip_kern {
             let mut pairs = PairPosBuilder::default();

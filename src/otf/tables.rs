@@ -143,6 +143,7 @@ pub fn build_font(
         kerning: vec![kern_pairs(&font.kerning, set)?],
         model: None,
         rules: &[],
+        rules_feature: *b"rvrn",
         axis_count: 0,
         features: font.features.as_ref(),
     })?;

@@ -210,10 +210,26 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
         return None;
     }
 
+    let rules_last = match get(t, "rules_processing") {
+        None => false,
+        Some(v) => match string(ctx, v, "rules_processing").as_deref() {
+            Some("first") => false,
+            Some("last") => true,
+            Some(other) => {
+                ctx.err(
+                    v.span().start,
+                    format!("`rules_processing` must be \"first\" or \"last\", found \"{other}\""),
+                );
+                return None;
+            }
+            None => return None,
+        },
+    };
     let designspace = Designspace {
         axes: axis_list,
         instances,
         rules,
+        rules_last,
     };
     if !designspace.axes.is_empty() {
         let locations: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();

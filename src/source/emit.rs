@@ -60,6 +60,9 @@ pub fn font_toml(info: &FontInfo) -> String {
 /// `[[instance]]` and `[[rule]]` tables in model order. Without axes it is [`font_toml`].
 pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[Master]) -> String {
     let mut out = font_toml(info);
+    if designspace.rules_last {
+        let _ = writeln!(out, "rules_processing = \"last\"");
+    }
     for a in &designspace.axes {
         let _ = writeln!(out, "\n[[axis]]");
         let _ = writeln!(out, "tag = {}", string(&a.tag));

@@ -28,6 +28,7 @@ const KEYS: &[&str] = &[
     "master",
     "instance",
     "rule",
+    "rules_processing",
 ];
 
 /// Default `tolerance` in font units.

@@ -131,9 +131,58 @@ pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocumen
     DesignSpaceDocument {
         format: 5.0,
         axes,
+        rules: rules(ds),
         sources,
         instances,
         ..DesignSpaceDocument::default()
+    }
+}
+
+/// The rules as `<rules>`: each box a `<conditionset>` in design coordinates.
+fn rules(ds: &Designspace) -> designspace::Rules {
+    designspace::Rules {
+        processing: if ds.rules_last {
+            designspace::RuleProcessing::Last
+        } else {
+            designspace::RuleProcessing::First
+        },
+        rules: ds
+            .rules
+            .iter()
+            .map(|r| designspace::Rule {
+                name: Some(r.name.clone()),
+                condition_sets: r
+                    .conditions
+                    .iter()
+                    .map(|b| designspace::ConditionSet {
+                        conditions: ds
+                            .axes
+                            .iter()
+                            .filter_map(|a| {
+                                let &(min, max) = b.get(&a.tag)?;
+                                Some(designspace::Condition {
+                                    name: a.name.clone(),
+                                    minimum: Some(a.design(min) + 0.0),
+                                    maximum: Some(a.design(max) + 0.0),
+                                })
+                            })
+                            .collect(),
+                    })
+                    .collect(),
+                // The names are the font's glyph names (`check` requires it), which the
+                // UFOs hold as `Name`s already, so none is left out here.
+                substitutions: r
+                    .substitutions
+                    .iter()
+                    .filter_map(|(from, to)| {
+                        Some(designspace::Substitution {
+                            name: norad::Name::new(from).ok()?,
+                            with: norad::Name::new(to).ok()?,
+                        })
+                    })
+                    .collect(),
+            })
+            .collect(),
     }
 }
 
@@ -234,6 +283,7 @@ mod tests {
                     location: at(500.0),
                 }],
                 rules: Vec::new(),
+                rules_last: false,
             },
             default: OutlinedFont {
                 info: info("Xglyph Sans", "Regular"),
@@ -253,6 +303,7 @@ mod tests {
                     axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
                     instances: Vec::new(),
                     rules: Vec::new(),
+                    rules_last: false,
                 };
                 ds.model(&[at(700.0)]).expect("one master at the end")
             },

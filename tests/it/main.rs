@@ -34,6 +34,7 @@ mod overlap;
 mod production;
 mod render;
 mod reuse;
+mod rules;
 mod scale;
 mod serve;
 mod shaping;

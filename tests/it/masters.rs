@@ -868,3 +868,72 @@ fn points_that_meet_between_the_masters_are_named_with_the_place() {
     );
     assert!(!out.exists(), "nothing written");
 }
+
+/// A `[[rule]]` appended to the fixture's `font.toml` (its header at line 40).
+fn with_rule(rule: &str) -> String {
+    format!("name = \"Bold\"\nlocation = {{ wght = 700 }}\n\n[[rule]]\n{rule}")
+}
+
+#[test]
+fn rule_errors_name_the_entry_to_fix() {
+    let at_end = "name = \"Bold\"\nlocation = { wght = 700 }\n";
+    let cases: &[(&str, &str, &str)] = &[
+        (
+            "unknown axis",
+            "name = \"r\"\nconditions = [{ wdth = [75, 80] }]\nsubstitutions = { n = \"H\" }\n",
+            "font/font.toml:42:17: error: unknown axis `wdth` in `conditions`; the axes are `wght`",
+        ),
+        (
+            "backwards",
+            "name = \"r\"\nconditions = [{ wght = [650, 550] }]\nsubstitutions = { n = \"H\" }\n",
+            "font/font.toml:42:30: error: the range of `wght` runs backwards: 550 comes after 650",
+        ),
+        (
+            "outside the axis",
+            "name = \"r\"\nconditions = [{ wght = [600, 900] }]\nsubstitutions = { n = \"H\" }\n",
+            "font/font.toml:42:24: error: wght 600..900 reaches outside the axis range 400..700",
+        ),
+        (
+            "not a range",
+            "name = \"r\"\nconditions = [{ wght = 600 }]\nsubstitutions = { n = \"H\" }\n",
+            "font/font.toml:42:24: error: `wght` in a condition must be a range [min, max] such \
+             as [600, 700], found integer",
+        ),
+        (
+            "no conditions",
+            "name = \"r\"\nconditions = []\nsubstitutions = { n = \"H\" }\n",
+            "font/font.toml:42:14: error: `conditions` is empty, so the rule never holds; add a \
+             box such as { wght = [600, 700] }",
+        ),
+        (
+            "unknown glyph",
+            "name = \"r\"\nconditions = [{ wght = [600, 700] }]\nsubstitutions = { n = \"n.alt\" }\n",
+            "font/font.toml:43:23: error: rule `r` names glyph `n.alt`, which the font does not \
+             have",
+        ),
+        (
+            "by itself",
+            "name = \"r\"\nconditions = [{ wght = [600, 700] }]\nsubstitutions = { n = \"n\" }\n",
+            "font/font.toml:43:23: error: `n` is substituted by itself",
+        ),
+        (
+            "no substitutions",
+            "name = \"r\"\nconditions = [{ wght = [600, 700] }]\n",
+            "font/font.toml:40:1: error: missing required key `substitutions`; add a line such as \
+             `substitutions = { dollar = \"dollar.nostroke\" }`",
+        ),
+    ];
+    for (test, rule, error) in cases {
+        assert_one_error(test, &[("font.toml", at_end, &with_rule(rule))], error);
+    }
+    assert_one_error(
+        "processing",
+        &[(
+            "font.toml",
+            "tolerance = 0.5\n",
+            "tolerance = 0.5\nrules_processing = \"later\"\n",
+        )],
+        "font/font.toml:11:20: error: `rules_processing` must be \"first\" or \"last\", found \
+         \"later\"",
+    );
+}

@@ -123,6 +123,7 @@ fn bundled() -> &'static OutlinedFamily {
                 instance("Bold", 700.0),
             ],
             rules: Vec::new(),
+            rules_last: false,
         };
         family(designspace, font, vec![("Bold", 700.0, glyphs, kerning)])
     })
@@ -249,6 +250,7 @@ fn tiny() -> OutlinedFamily {
             instance("Bold", 900.0),
         ],
         rules: Vec::new(),
+        rules_last: false,
     };
     family(
         designspace,
@@ -1107,6 +1109,7 @@ fn a_glyph_with_more_than_32_variations_imports() {
         axes,
         instances: vec![],
         rules: Vec::new(),
+        rules_last: false,
     };
     let model = designspace.model(&locations).expect("valid masters");
     let family = OutlinedFamily {

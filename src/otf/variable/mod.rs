@@ -192,6 +192,11 @@ fn build(
         kerning,
         model: Some(model),
         rules: &rules,
+        rules_feature: if designspace.rules_last {
+            *b"rclt"
+        } else {
+            *b"rvrn"
+        },
         axis_count,
         features: font.features.as_ref(),
     })?;
