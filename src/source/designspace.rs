@@ -15,7 +15,9 @@ use super::diagnostic::{Ctx, Diagnostic, Diagnostics};
 use super::emit;
 use super::limits;
 use super::value::{check_keys, get, number, require, string, tables, type_name};
-use crate::designspace::{Axis, Designspace, Location, NamedInstance, RegionError, Rule};
+use crate::designspace::{
+    Axis, Designspace, Location, NamedInstance, RegionError, Rule, MAX_RULE_BOXES,
+};
 
 /// A non-default master as `font.toml` names it, with where its keys were written.
 #[derive(Clone, Debug)]
@@ -193,8 +195,30 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
             }
             match load_rule(ctx, rt, header, &axis_list) {
                 Some((rule, name_at, glyphs)) => {
+                    if rule.holds_at(&axis_list, &Location::default()) {
+                        ctx.warn(
+                            header,
+                            format!(
+                                "rule `{}` holds at the default location: the variable font \
+                                 and the instances there substitute, but the default master's \
+                                 own static fonts, sheets and proofs show the glyphs unchanged",
+                                rule.name
+                            ),
+                        );
+                    }
+                    let boxes: usize = rules.iter().map(|r| r.conditions.len()).sum::<usize>()
+                        + rule.conditions.len();
                     if rules.iter().any(|r| r.name == rule.name) {
                         ctx.err(name_at, format!("duplicate rule name `{}`", rule.name));
+                        ok = false;
+                    } else if boxes > MAX_RULE_BOXES {
+                        ctx.err(
+                            header,
+                            format!(
+                                "the rules have {boxes} condition boxes so far, more than the \
+                                 {MAX_RULE_BOXES} xglyph overlays; merge boxes or rules"
+                            ),
+                        );
                         ok = false;
                     } else {
                         rule_glyphs
