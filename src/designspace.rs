@@ -697,7 +697,7 @@ fn corner_region(norms: &[Vec<f64>], m: usize, axes: &[usize], earlier: &[usize]
     Region { tents }
 }
 
-/// Why a set of master locations cannot be blended ([`Designspace::regions`]).
+/// Why a set of master locations cannot be blended ([`Designspace::model`]).
 #[derive(Clone, Debug, PartialEq)]
 pub enum RegionError {
     /// The master (index among the non-default masters) sits at the default location.

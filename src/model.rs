@@ -50,7 +50,7 @@ impl PartialEq for FeatureFile {
 /// The loader guarantees that every master is compatible with the default: glyph `i` of a
 /// master is glyph `i` of [`Family::default`], with the same contours, point counts, sharp
 /// points and components; and that the master locations form a valid set
-/// ([`Designspace::regions`]).
+/// ([`Designspace::model`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Family {
     /// The default master: the font folder itself, at every axis default.

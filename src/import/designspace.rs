@@ -171,8 +171,8 @@ pub fn import_designspace(
 }
 
 /// Refuses, before any UFO is read, sources that xglyph's masters cannot hold
-/// ([`Designspace::regions`]): a source away from the default on two axes (a corner
-/// master), two sources at one place, or an axis end without a source.
+/// ([`Designspace::model`]): two sources at one place, or an axis end without a source on
+/// that axis alone.
 fn check_regions(
     designspace: &Designspace,
     sources: &[(String, Location, PathBuf)],

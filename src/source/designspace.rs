@@ -2,7 +2,7 @@
 //! and the non-default masters' names, folders and locations.
 //!
 //! Checks here need `font.toml` and the font folder only (tags, ranges, folders, the
-//! master set as [`Designspace::regions`] sees it); the glyph files of the masters are read
+//! master set as [`Designspace::model`] sees it); the glyph files of the masters are read
 //! and compared with the default's in [`super::load`] and [`super::compat`].
 
 use std::collections::BTreeMap;
@@ -67,7 +67,7 @@ pub fn load_designspace_text(
 
 /// Reads the masters' tables of `font.toml` (`dir` is the font folder, for the master
 /// folders). `None` when there is an error (reported), including a master set that
-/// [`Designspace::regions`] refuses.
+/// [`Designspace::model`] refuses.
 pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<DesignspaceSpec> {
     let text = ctx.text();
     // Invalid TOML is reported by `load_info`.

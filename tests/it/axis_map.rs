@@ -12,10 +12,10 @@ use std::sync::OnceLock;
 
 use skrifa::instance::{LocationRef, Size};
 use skrifa::raw::TableProvider;
-use skrifa::{FontRef, GlyphId, MetadataProvider};
+use skrifa::{FontRef, MetadataProvider};
 
 use crate::common::cli::{import_ok, xglyph};
-use crate::common::fonts::skrifa_outline;
+use crate::common::fonts::{glyph_id, skrifa_outline};
 use crate::common::{paths, tools};
 
 /// Weight 400..700 whose design values move fast near Regular: Medium (500) is a third of
@@ -105,14 +105,6 @@ fn advance_at(bytes: &[u8], name: &str, wght: f32) -> f32 {
     font.glyph_metrics(Size::unscaled(), LocationRef::from(&location))
         .advance_width(gid)
         .expect("advance")
-}
-
-fn glyph_id(font: &FontRef, name: &str) -> GlyphId {
-    let post = font.post().expect("post");
-    (0..font.maxp().expect("maxp").num_glyphs())
-        .map(|g| GlyphId::new(u32::from(g)))
-        .find(|&g| post.glyph_name(g.try_into().expect("16-bit")) == Some(name))
-        .unwrap_or_else(|| panic!("no glyph {name}"))
 }
 
 #[test]

@@ -15,11 +15,11 @@ use std::sync::OnceLock;
 use kurbo::{Affine, BezPath};
 use skrifa::instance::{LocationRef, Size};
 use skrifa::raw::TableProvider;
-use skrifa::{FontRef, GlyphId, MetadataProvider};
+use skrifa::{FontRef, MetadataProvider};
 use xglyph::designspace::Location;
 
 use crate::common::cli::{import_ok, xglyph};
-use crate::common::fonts::skrifa_outline;
+use crate::common::fonts::{glyph_id, skrifa_outline};
 use crate::common::{paths, tools};
 
 struct Built {
@@ -62,14 +62,6 @@ fn at(wght: f64, wdth: f64) -> Location {
             .into_iter()
             .collect(),
     )
-}
-
-fn glyph_id(font: &FontRef, name: &str) -> GlyphId {
-    let post = font.post().expect("post");
-    (0..font.maxp().expect("maxp").num_glyphs())
-        .map(|g| GlyphId::new(u32::from(g)))
-        .find(|&g| post.glyph_name(g.try_into().expect("16-bit")) == Some(name))
-        .unwrap_or_else(|| panic!("no glyph {name}"))
 }
 
 #[test]

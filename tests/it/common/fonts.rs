@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use kurbo::BezPath;
 use skrifa::instance::{LocationRef, Size};
 use skrifa::outline::{DrawSettings, OutlinePen};
+use skrifa::raw::TableProvider;
 use skrifa::{FontRef, GlyphId, MetadataProvider};
 
 use xglyph::model::{Contour, Font, Glyph};
@@ -57,6 +58,15 @@ pub fn square_ideographs(n: u32) -> Font {
         .collect();
     font.kerning.clear();
     font
+}
+
+/// The id of the glyph `post` names `name` (panics when there is none).
+pub fn glyph_id(font: &FontRef, name: &str) -> GlyphId {
+    let post = font.post().expect("post");
+    (0..font.maxp().expect("maxp").num_glyphs())
+        .map(|g| GlyphId::new(u32::from(g)))
+        .find(|&g| post.glyph_name(g.try_into().expect("16-bit")) == Some(name))
+        .unwrap_or_else(|| panic!("no glyph {name}"))
 }
 
 /// A glyph's outline read back with skrifa at `location` (unhinted, font units).
