@@ -102,6 +102,7 @@ pub fn read_font(
     data: &[u8],
     index: u32,
     chars: Option<&[char]>,
+    extra: &[u16],
 ) -> Result<SourceFont, ImportError> {
     if let Some(count) = ttf_parser::fonts_in_collection(data) {
         if index >= count {
@@ -140,9 +141,15 @@ pub fn read_font(
     let mut ids = Vec::new();
     let mut used_names = std::collections::BTreeSet::new();
     let mut empty = Vec::new();
-    for (gid, unicodes) in by_glyph {
+    // Glyphs without a character of their own come after (rules' alternates).
+    let unmapped: Vec<(u16, Vec<char>)> = extra
+        .iter()
+        .filter(|g| !by_glyph.contains_key(g))
+        .map(|&g| (g, Vec::new()))
+        .collect();
+    for (gid, unicodes) in by_glyph.into_iter().chain(unmapped) {
         let gid = GlyphId(gid);
-        let name = glyph_name(&face, gid, unicodes[0], &used_names);
+        let name = glyph_name(&face, gid, unicodes.first().copied(), &used_names);
         used_names.insert(name.clone());
         let advance = face.glyph_hor_advance(gid).ok_or_else(|| {
             ImportError::at(
@@ -257,14 +264,17 @@ fn mapped_chars(face: &Face) -> Vec<char> {
 fn glyph_name(
     face: &Face,
     gid: GlyphId,
-    first: char,
+    first: Option<char>,
     used: &std::collections::BTreeSet<String>,
 ) -> String {
     let stored = face
         .glyph_name(gid)
         .filter(|n| crate::names::is_valid_glyph_name(n))
         .map(str::to_string);
-    let base = stored.unwrap_or_else(|| format!("uni{:04X}", u32::from(first)));
+    let base = stored.unwrap_or_else(|| match first {
+        Some(c) => format!("uni{:04X}", u32::from(c)),
+        None => format!("glyph{:05}", gid.0),
+    });
     let mut name = base.clone();
     let mut k = 1;
     while used.contains(&name) {

@@ -35,6 +35,7 @@ pub mod font;
 pub mod kerning;
 pub mod masters;
 pub mod report;
+mod rules;
 pub mod svg;
 pub mod ufo;
 pub mod variable;
@@ -174,7 +175,7 @@ pub fn import_font(
     data: &[u8],
     opts: &ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &[])?;
     if source.glyphs.is_empty() {
         return Err(ImportError::at(
             path,

@@ -93,13 +93,21 @@ pub fn import_variable_font(
             ),
         })
         .collect();
-    let designspace = Designspace {
+    let mut designspace = Designspace {
         axes,
         instances,
         rules: Vec::new(),
         rules_last: false,
     };
-    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref())?;
+    // The rules' alternates come in with the glyphs that reach them.
+    let rules = super::rules::read_rules(&font);
+    let mapped = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &[])?;
+    let alternates = rules.alternates(&mapped.ids);
+    let source = if alternates.is_empty() {
+        mapped
+    } else {
+        font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &alternates)?
+    };
     if source.glyphs.is_empty() {
         return Err(fail(
             "none of the requested characters has a glyph in this font".into(),
@@ -107,6 +115,15 @@ pub fn import_variable_font(
     }
     let tolerance = super::check_tolerance(opts.tolerance, source.info.units_per_em)?;
     check_gvar(&font, &source).map_err(fail)?;
+    let names: std::collections::HashMap<skrifa::GlyphId, String> = source
+        .ids
+        .iter()
+        .zip(&source.glyphs)
+        .map(|(&id, g)| (skrifa::GlyphId::new(u32::from(id)), g.name.clone()))
+        .collect();
+    designspace.rules_last = rules.last;
+    let rules_note = rules.note.clone();
+    designspace.rules = rules.into_rules(&designspace.axes, &names, user_at_peak);
     let peaks = gvar_peaks(&font, designspace.axes.len());
     let masters = master_locations(&font, &designspace, &peaks);
     let corners_reproduced = corners_reproduced(&designspace, &masters, &peaks.corner_regions);
@@ -189,6 +206,7 @@ pub fn import_variable_font(
                 .to_string(),
         );
     }
+    notes.extend(rules_note);
     notes.extend(kerning.note);
     notes.extend(anchors.note);
     notes.extend(outline_marks);

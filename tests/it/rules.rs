@@ -318,3 +318,45 @@ fn the_designspace_imports_back_with_its_rules() {
     assert_eq!(back.designspace.rules, want.designspace.rules);
     assert!(!back.designspace.rules_last);
 }
+
+#[test]
+fn the_variable_font_imports_back_with_its_rules() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let imported = tmp.path().join("imported");
+    import_ok(&[s(&b.out.join("MastersTest[wght].ttf"))], &imported);
+    let (back, _) = xglyph::source::load_family(&imported).expect("loads");
+    let (want, _) = xglyph::source::load_family(&b.font).expect("loads");
+    // The feature variation record comes back as one rule (named by its place in the
+    // font), and the alternate, which has no code point, comes in with the H.
+    let rules: Vec<_> = back
+        .designspace
+        .rules
+        .iter()
+        .map(|r| (&r.conditions, &r.substitutions))
+        .collect();
+    let expected: Vec<_> = want
+        .designspace
+        .rules
+        .iter()
+        .map(|r| (&r.conditions, &r.substitutions))
+        .collect();
+    assert_eq!(rules, expected);
+    assert_eq!(back.designspace.rules[0].name, "rule 1");
+    let alt = back
+        .default
+        .glyphs
+        .iter()
+        .find(|g| g.name == "H.alt")
+        .expect("H.alt comes in");
+    assert!(alt.unicodes.is_empty());
+    // Rebuilt, the rule still holds from 550.
+    let rebuilt = tmp.path().join("rebuilt");
+    let (code, _, stderr) = xglyph(&["build", s(&imported), "-o", s(&rebuilt)]);
+    assert_eq!((code, stderr.as_str()), (0, ""));
+    if tools::python_imports("uharfbuzz, fontTools") {
+        let runs = shaped(&[&rebuilt.join("MastersTest[wght].ttf")], &[549.0, 550.0]);
+        assert_eq!(runs[0][0][0], "H");
+        assert_eq!(runs[0][1][0], "H.alt");
+    }
+}
