@@ -228,16 +228,18 @@ fn at_location(e: FamilyError, ds: &Designspace, locations: &[Location]) -> Fami
             error: error @ CompatibleError::Blend { position, .. },
             ..
         } => {
-            // The axes away from their defaults, at 6 decimals (the check positions are
-            // computed, so 45 can be 44.99999999999997).
+            // The axes away from their defaults.
             let at = locations.get(position).map(|l| {
                 let off: Vec<String> = ds
                     .axes
                     .iter()
                     .filter(|a| l.get(a) != a.default)
                     .map(|a| {
-                        let v = (l.get(a) * 1e6).round() / 1e6;
-                        format!("{} {}", a.tag, crate::source::emit::number(v))
+                        format!(
+                            "{} {}",
+                            a.tag,
+                            crate::source::emit::computed_number(l.get(a))
+                        )
                     })
                     .collect();
                 if off.is_empty() {

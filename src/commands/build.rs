@@ -266,7 +266,7 @@ fn variable_line(fs: &FamilySummary, family: &Family, tolerance: f64) -> String 
                 .designspace
                 .axes
                 .iter()
-                .map(|a| format!("{} {}", a.tag, emit::number(at.get(a))))
+                .map(|a| format!("{} {}", a.tag, emit::computed_number(at.get(a))))
                 .collect();
             format!(
                 "; worst {} of {} in `{glyph}` at {}",

@@ -144,6 +144,12 @@ fn location(designspace: &Designspace, location: &Location) -> String {
     }
 }
 
+/// A computed value for a message, at 6 decimals ([`number`] of the rounded value): check
+/// positions are computed, so 116.8 can come out as 116.80000000000001.
+pub fn computed_number(x: f64) -> String {
+    number((x * 1e6).round() / 1e6)
+}
+
 /// A TOML key: bare when it can be, else quoted.
 fn key(k: &str) -> String {
     let bare = !k.is_empty()
