@@ -346,7 +346,7 @@ impl VariationModel {
         for &i in &self.order {
             let mut d = values[i + 1] - values[0];
             for &(j, dw) in &self.delta_weights[i] {
-                d -= if dw == 1.0 { deltas[j] } else { deltas[j] * dw };
+                d -= deltas[j] * dw;
             }
             deltas[i] = round(d);
         }
@@ -389,11 +389,7 @@ impl Designspace {
                 });
             }
         }
-        let off = |m: usize| -> Vec<usize> {
-            (0..self.axes.len())
-                .filter(|&a| norms[m][a] != 0.0)
-                .collect()
-        };
+        let off = |m: usize| off_default(&norms[m]);
         for (axis, a) in self.axes.iter().enumerate() {
             for (end, user) in [(-1.0, a.min), (1.0, a.max)] {
                 let covered = (0..norms.len()).any(|m| off(m) == [axis] && norms[m][axis] == end);
@@ -429,6 +425,11 @@ impl Designspace {
         })
     }
 
+    /// The axes (indices) on which `location` is away from the default.
+    pub fn axes_off_default(&self, location: &Location) -> Vec<usize> {
+        off_default(&self.normalize(location))
+    }
+
     /// The glyphs drawn as others at `location`: each glyph name in `names` mapped by the
     /// rules that hold there, in order, each rule applied to the result of the ones before
     /// (as designspaceLib's `processRules`). Only the names that change are returned, in
@@ -449,12 +450,7 @@ impl Designspace {
         names
             .into_iter()
             .filter_map(|name| {
-                let mut now = name;
-                for rule in &holding {
-                    if let Some((_, to)) = rule.substitutions.iter().find(|(from, _)| from == now) {
-                        now = to;
-                    }
-                }
+                let now = substituted(holding.iter().copied(), name);
                 (now != name).then(|| (name.to_string(), now.to_string()))
             })
             .collect()
@@ -529,16 +525,7 @@ impl Designspace {
             let substitutions: Vec<(String, String)> = names
                 .iter()
                 .filter_map(|&name| {
-                    let mut now = name;
-                    for &r in &rules {
-                        if let Some((_, to)) = self.rules[r]
-                            .substitutions
-                            .iter()
-                            .find(|(from, _)| from == now)
-                        {
-                            now = to;
-                        }
-                    }
+                    let now = substituted(rules.iter().map(|&r| &self.rules[r]), name);
                     (now != name).then(|| (name.to_string(), now.to_string()))
                 })
                 .collect();
@@ -563,13 +550,29 @@ impl Designspace {
     }
 }
 
+/// The axes (indices) on which normalised coordinates `norm` are away from the default.
+fn off_default(norm: &[f64]) -> Vec<usize> {
+    (0..norm.len()).filter(|&a| norm[a] != 0.0).collect()
+}
+
+/// The glyph `name` is drawn as once `rules` apply in order, each to the result of the
+/// ones before (designspaceLib's `processRules`).
+fn substituted<'a>(rules: impl IntoIterator<Item = &'a Rule>, name: &'a str) -> &'a str {
+    let mut now = name;
+    for rule in rules {
+        if let Some((_, to)) = rule.substitutions.iter().find(|(from, _)| from == now) {
+            now = to;
+        }
+    }
+    now
+}
+
 /// The order fontTools computes deltas in (`getMasterLocationsSortKeyFunc`, axes in
 /// `font.toml` order): fewer axes first; then more coordinates that are also on-axis
 /// masters' coordinates; then by the axes used, their signs, and the distance from the
 /// default.
 fn model_order(norms: &[Vec<f64>], axis_count: usize) -> Vec<usize> {
-    let off =
-        |m: usize| -> Vec<usize> { (0..axis_count).filter(|&a| norms[m][a] != 0.0).collect() };
+    let off = |m: usize| off_default(&norms[m]);
     // Per axis, the coordinates of the masters on that axis alone.
     let on_axis: Vec<Vec<f64>> = (0..axis_count)
         .map(|a| {
@@ -614,9 +617,7 @@ fn on_axis_region(norms: &[Vec<f64>], m: usize, axis: usize) -> Region {
     let peak = norms[m][axis];
     let same_side: Vec<f64> = norms
         .iter()
-        .filter(|n| {
-            n[axis] * peak > 0.0 && n.iter().enumerate().all(|(a, &v)| a == axis || v == 0.0)
-        })
+        .filter(|n| n[axis] * peak > 0.0 && off_default(n) == [axis])
         .map(|n| n[axis])
         .collect();
     let inner = same_side
@@ -658,12 +659,7 @@ fn corner_region(norms: &[Vec<f64>], m: usize, axes: &[usize], earlier: &[usize]
             }
         })
         .collect();
-    let same_axes = |j: usize| {
-        (0..norms[j].len())
-            .filter(|&a| norms[j][a] != 0.0)
-            .eq(axes.iter().copied())
-    };
-    for &j in earlier.iter().filter(|&&j| same_axes(j)) {
+    for &j in earlier.iter().filter(|&&j| off_default(&norms[j]) == axes) {
         let inside = tents.iter().all(|t| {
             let v = norms[j][t.axis];
             v == t.peak || (t.lower < v && v < t.upper)

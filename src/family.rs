@@ -157,11 +157,7 @@ pub fn check_locations(family: &Family) -> Vec<Location> {
 /// The grids of [`check_locations`] over the axes of the corner masters.
 fn corner_grids(family: &Family) -> Vec<Location> {
     let ds = &family.designspace;
-    let off = |l: &Location| -> Vec<usize> {
-        (0..ds.axes.len())
-            .filter(|&a| l.get(&ds.axes[a]) != ds.axes[a].default)
-            .collect()
-    };
+    let off = |l: &Location| ds.axes_off_default(l);
     let mut sets: Vec<Vec<usize>> = Vec::new();
     for m in &family.masters {
         let axes = off(&m.location);

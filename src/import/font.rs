@@ -96,13 +96,14 @@ fn one_char(s: &str, list: &str) -> Result<char, ImportError> {
 }
 
 /// Reads `chars` (or every mapped character when `None`) from the font bytes `data`; font
-/// `index` of a collection (0 for a single font).
+/// `index` of a collection (0 for a single font). `extra` gives, from the mapped glyph ids,
+/// glyphs without a character to read too (named from `post`, else `glyph00123`).
 pub fn read_font(
     path: &Path,
     data: &[u8],
     index: u32,
     chars: Option<&[char]>,
-    extra: &[u16],
+    extra: impl Fn(&[u16]) -> Vec<u16>,
 ) -> Result<SourceFont, ImportError> {
     if let Some(count) = ttf_parser::fonts_in_collection(data) {
         if index >= count {
@@ -141,11 +142,13 @@ pub fn read_font(
     let mut ids = Vec::new();
     let mut used_names = std::collections::BTreeSet::new();
     let mut empty = Vec::new();
-    // Glyphs without a character of their own come after (rules' alternates).
-    let unmapped: Vec<(u16, Vec<char>)> = extra
-        .iter()
+    // Glyphs without a character of their own come after: `extra` of the mapped ones
+    // (rules' alternates).
+    let mapped: Vec<u16> = by_glyph.keys().copied().collect();
+    let unmapped: Vec<(u16, Vec<char>)> = extra(&mapped)
+        .into_iter()
         .filter(|g| !by_glyph.contains_key(g))
-        .map(|&g| (g, Vec::new()))
+        .map(|g| (g, Vec::new()))
         .collect();
     for (gid, unicodes) in by_glyph.into_iter().chain(unmapped) {
         let gid = GlyphId(gid);

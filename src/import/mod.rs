@@ -175,7 +175,9 @@ pub fn import_font(
     data: &[u8],
     opts: &ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &[])?;
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), |_| {
+        Vec::new()
+    })?;
     if source.glyphs.is_empty() {
         return Err(ImportError::at(
             path,

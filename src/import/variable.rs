@@ -101,13 +101,9 @@ pub fn import_variable_font(
     };
     // The rules' alternates come in with the glyphs that reach them.
     let rules = super::rules::read_rules(&font);
-    let mapped = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &[])?;
-    let alternates = rules.alternates(&mapped.ids);
-    let source = if alternates.is_empty() {
-        mapped
-    } else {
-        font::read_font(path, data, opts.face, opts.glyphs.as_deref(), &alternates)?
-    };
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), |mapped| {
+        rules.alternates(mapped)
+    })?;
     if source.glyphs.is_empty() {
         return Err(fail(
             "none of the requested characters has a glyph in this font".into(),
