@@ -21,7 +21,7 @@ use crate::cache::FitCache;
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::designspace::{Designspace, Location, RegionError, VariationModel};
 use crate::fit::fit_contour;
-use crate::model::{Contour, Family, Font, GlyphIndex, KernPair};
+use crate::model::{Contour, Family, Font, GlyphIndex, GlyphModels, KernPair};
 use crate::orient::nesting_depths;
 use crate::outline::{OutlinedFont, OutlinedGlyph, PlacedContour};
 use crate::xspline::{XSpline, XSplineError};
@@ -37,6 +37,9 @@ pub struct OutlinedFamily {
     pub masters: Vec<OutlinedMaster>,
     /// How they blend: [`Self::masters`]' regions and deltas.
     pub model: VariationModel,
+    /// Which masters blend for each glyph (in [`Self::default`]'s glyph order): with
+    /// sparse masters, each glyph's own model.
+    pub models: GlyphModels,
 }
 
 /// One non-default master's outlines.
@@ -59,6 +62,9 @@ pub struct MasterGlyph {
     pub advance: f64,
     /// Same elements as the default master's path for this glyph, other coordinates.
     pub path: BezPath,
+    /// Whether this master draws the glyph. When a sparse master does not, the advance
+    /// and path are the blend of the masters that do, at this master's location.
+    pub drawn: bool,
 }
 
 impl OutlinedFamily {
@@ -293,9 +299,27 @@ pub fn outline_family_with(
     cache: Option<&FitCache>,
 ) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
     let model = family.model().map_err(FamilyError::Regions)?;
+    let mut models = family.glyph_models().map_err(FamilyError::Regions)?;
     let ds = &family.designspace;
     let locations = check_locations(family);
-    let positions: Vec<Vec<f64>> = locations.iter().map(|l| ds.weights(&model, l)).collect();
+    // Per set of masters, the weights of its own model at each position, and at each
+    // master's location.
+    let positions: Vec<Vec<Vec<f64>>> = models
+        .sets
+        .iter()
+        .map(|(_, model)| locations.iter().map(|l| ds.weights(model, l)).collect())
+        .collect();
+    let at_masters: Vec<Vec<Vec<f64>>> = models
+        .sets
+        .iter()
+        .map(|(_, model)| {
+            family
+                .masters
+                .iter()
+                .map(|m| ds.weights(model, &m.location))
+                .collect()
+        })
+        .collect();
     // One `Font` per master (default first) so components resolve inside each master.
     let fonts: Vec<Font> = std::iter::once(family.default.clone())
         .chain(family.masters.iter().map(|m| Font {
@@ -316,14 +340,23 @@ pub fn outline_family_with(
         .collect();
     let glyphs: Vec<FittedGlyph> = order
         .par_iter()
-        .map(|&gi| fit_glyph(&fonts, &indexes, gi, &positions, tolerance, cache))
+        .map(|&gi| {
+            let k = models.of_glyph[gi];
+            let set = Set {
+                masters: &models.sets[k].0,
+                positions: &positions[k],
+                at_masters: &at_masters[k],
+            };
+            fit_glyph(&fonts, &indexes, gi, &set, tolerance, cache)
+        })
         .collect::<Result<_, _>>()
         .map_err(|e| at_location(e, ds, &locations))?;
+    models.of_glyph = order.iter().map(|&gi| models.of_glyph[gi]).collect();
 
     let mut summary = FamilySummary {
         compatible_segments: 0,
         static_segments: 0,
-        positions: positions.len(),
+        positions: locations.len(),
         worst: None,
     };
     for g in &glyphs {
@@ -364,6 +397,7 @@ pub fn outline_family_with(
             default,
             masters,
             model,
+            models,
         },
         summary,
     ))
@@ -378,19 +412,34 @@ struct FittedGlyph {
     static_segments: usize,
 }
 
+/// The masters that draw one glyph, and how they blend.
+struct Set<'a> {
+    /// Non-default masters (indices into [`Family::masters`]), ascending.
+    masters: &'a [usize],
+    /// Per checked position, the weights of the default and [`Self::masters`].
+    positions: &'a [Vec<f64>],
+    /// Per master of the family, the same weights at its location: how a master that does
+    /// not draw the glyph gets its path.
+    at_masters: &'a [Vec<f64>],
+}
+
 fn fit_glyph(
     fonts: &[Font],
     indexes: &[GlyphIndex<'_>],
     gi: usize,
-    positions: &[Vec<f64>],
+    set: &Set<'_>,
     tolerance: f64,
     cache: Option<&FitCache>,
 ) -> Result<FittedGlyph, FamilyError> {
+    let positions = set.positions;
     let glyph = &fonts[0].glyphs[gi];
-    let placed: Vec<Vec<(&Contour, (f64, f64))>> = fonts
+    // The fonts that draw the glyph: the default, then the set's masters.
+    let drawing: Vec<usize> = std::iter::once(0)
+        .chain(set.masters.iter().map(|&m| m + 1))
+        .collect();
+    let placed: Vec<Vec<(&Contour, (f64, f64))>> = drawing
         .iter()
-        .zip(indexes)
-        .map(|(font, index)| font.placed_contours_in(index, &font.glyphs[gi]))
+        .map(|&f| fonts[f].placed_contours_in(&indexes[f], &fonts[f].glyphs[gi]))
         .collect();
     let contours = placed[0].len();
     let fits: Vec<CompatibleFit> = (0..contours)
@@ -458,10 +507,26 @@ fn fit_glyph(
         .max()
         .unwrap_or(0);
     let segments = fits.iter().map(|f| f.segments).sum();
-    let masters = (1..fonts.len())
-        .map(|m| MasterGlyph {
-            advance: fonts[m].glyphs[gi].advance,
-            path: join(moved(m)),
+    let drawn: Vec<BezPath> = (0..drawing.len()).map(|k| join(moved(k))).collect();
+    let masters = (0..fonts.len() - 1)
+        .map(|m| match set.masters.iter().position(|&s| s == m) {
+            Some(k) => MasterGlyph {
+                advance: fonts[m + 1].glyphs[gi].advance,
+                path: drawn[k + 1].clone(),
+                drawn: true,
+            },
+            None => {
+                let w = &set.at_masters[m];
+                MasterGlyph {
+                    advance: w
+                        .iter()
+                        .zip(&drawing)
+                        .map(|(w, &f)| w * fonts[f].glyphs[gi].advance)
+                        .sum(),
+                    path: blend_paths(&drawn, w),
+                    drawn: false,
+                }
+            }
         })
         .collect();
     let default = OutlinedGlyph {
@@ -479,7 +544,7 @@ fn fit_glyph(
                 offset: Vec2::new(*dx, *dy),
             })
             .collect(),
-        path: join(default_paths),
+        path: drawn[0].clone(),
         max_error: errors.iter().copied().fold(0.0, f64::max),
         segments,
     };
@@ -489,6 +554,42 @@ fn fit_glyph(
         errors,
         static_segments,
     })
+}
+
+/// `Σ weights[k] × paths[k]`, point by point: paths with the same elements.
+fn blend_paths(paths: &[BezPath], weights: &[f64]) -> BezPath {
+    let zero = kurbo::Point::ZERO;
+    let mut out: Vec<PathEl> = paths[0]
+        .elements()
+        .iter()
+        .map(|el| match el {
+            PathEl::MoveTo(_) => PathEl::MoveTo(zero),
+            PathEl::LineTo(_) => PathEl::LineTo(zero),
+            PathEl::QuadTo(..) => PathEl::QuadTo(zero, zero),
+            PathEl::CurveTo(..) => PathEl::CurveTo(zero, zero, zero),
+            PathEl::ClosePath => PathEl::ClosePath,
+        })
+        .collect();
+    for (path, &w) in paths.iter().zip(weights) {
+        for (o, el) in out.iter_mut().zip(path.elements()) {
+            match (o, el) {
+                (PathEl::MoveTo(a), PathEl::MoveTo(p)) | (PathEl::LineTo(a), PathEl::LineTo(p)) => {
+                    *a += p.to_vec2() * w;
+                }
+                (PathEl::QuadTo(a, b), PathEl::QuadTo(p, q)) => {
+                    *a += p.to_vec2() * w;
+                    *b += q.to_vec2() * w;
+                }
+                (PathEl::CurveTo(a, b, c), PathEl::CurveTo(p, q, r)) => {
+                    *a += p.to_vec2() * w;
+                    *b += q.to_vec2() * w;
+                    *c += r.to_vec2() * w;
+                }
+                _ => {}
+            }
+        }
+    }
+    BezPath::from_vec(out)
 }
 
 /// Lines and curves in `path`.

@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use crate::designspace::{Designspace, Location, RegionError};
-use crate::model::{Anchor, Component, Contour, Family, Font, Glyph, KernPair};
+use crate::model::{Anchor, Component, Contour, Family, Font, Glyph, GlyphModels, KernPair};
 use crate::source::emit;
 use crate::xspline::{ControlPoint, XSplineError};
 
@@ -104,78 +104,25 @@ fn blend(weights: &[f64], values: impl IntoIterator<Item = f64>) -> f64 {
 impl Family {
     /// The static font at `location` (user coordinates; an axis left out is at its
     /// default, a value beyond the axis range is clamped). The info and glyph set are the
-    /// default master's; the style name is left as it is.
+    /// default master's; the style name is left as it is. Each glyph blends from the
+    /// masters that draw it ([`GlyphModels`]), the kerning from the full masters.
     pub fn instance_at(&self, location: &Location) -> Result<Font, InstanceError> {
-        let model = self.model().map_err(InstanceError::Regions)?;
-        let w = self.designspace.weights(&model, location);
-        let mut glyphs = Vec::with_capacity(self.default.glyphs.len());
-        for (gi, d) in self.default.glyphs.iter().enumerate() {
-            let masters: Vec<&Glyph> = std::iter::once(d)
-                .chain(self.masters.iter().map(|m| &m.glyphs[gi]))
-                .collect();
-            let mut contours = Vec::with_capacity(d.contours.len());
-            for (ci, contour) in d.contours.iter().enumerate() {
-                let points = (0..contour.points().len())
-                    .map(|pi| {
-                        let at = |f: fn(&ControlPoint) -> f64| {
-                            blend(&w, masters.iter().map(|g| f(&g.contours[ci].points()[pi])))
-                        };
-                        ControlPoint::new(at(|p| p.pos.x), at(|p| p.pos.y), at(|p| p.s))
-                    })
-                    .collect();
-                let contour = Contour::new(points).map_err(|error| InstanceError::Contour {
-                    glyph: d.name.clone(),
-                    contour: ci,
-                    error,
-                })?;
-                contours.push(contour);
-            }
-            let components = d
-                .components
-                .iter()
-                .enumerate()
-                .map(|(k, c)| Component {
-                    base: c.base.clone(),
-                    offset: (
-                        blend(&w, masters.iter().map(|g| g.components[k].offset.0)),
-                        blend(&w, masters.iter().map(|g| g.components[k].offset.1)),
-                    ),
-                })
-                .collect();
-            glyphs.push(Glyph {
-                outline_mark: d.outline_mark,
-                name: d.name.clone(),
-                unicodes: d.unicodes.clone(),
-                advance: blend(&w, masters.iter().map(|g| g.advance)),
-                contours,
-                components,
-                anchors: d
-                    .anchors
-                    .iter()
-                    .map(|a| {
-                        // The same anchor in each master (by name); `check` requires it,
-                        // and a master without it holds the default's position.
-                        let at = |g: &Glyph| {
-                            g.anchors
-                                .iter()
-                                .find(|b| b.name == a.name)
-                                .map_or(a.position, |b| b.position)
-                        };
-                        Anchor {
-                            name: a.name.clone(),
-                            position: (
-                                blend(&w, masters.iter().map(|g| at(g).0)),
-                                blend(&w, masters.iter().map(|g| at(g).1)),
-                            ),
-                        }
-                    })
-                    .collect(),
-            });
-        }
+        let models = self.glyph_models().map_err(InstanceError::Regions)?;
+        let n = self.masters.len();
+        let per_set: Vec<Vec<f64>> = models
+            .sets
+            .iter()
+            .map(|(set, model)| GlyphModels::spread(&self.designspace, n, (set, model), location))
+            .collect();
+        let glyphs = (0..self.default.glyphs.len())
+            .map(|gi| self.blend_glyph(gi, &per_set[models.of_glyph[gi]]))
+            .collect::<Result<Vec<_>, _>>()?;
+        let (set, model) = &models.kerning;
+        let kerning_weights = GlyphModels::spread(&self.designspace, n, (set, model), location);
         let mut font = Font {
             info: self.default.info.clone(),
             glyphs,
-            kerning: self.kerning_at(&w),
+            kerning: self.kerning_at(&kerning_weights),
             features: self.default.features.clone(),
         };
         let substitutions = self
@@ -183,6 +130,102 @@ impl Family {
             .substitutions_at(location, font.glyphs.iter().map(|g| g.name.as_str()));
         swap_glyphs(&mut font, &substitutions);
         Ok(font)
+    }
+
+    /// Fills in what sparse masters leave out: each glyph a sparse master does not draw
+    /// becomes the blend of the masters that draw it, at the sparse master's location, and
+    /// a sparse master's kerning the full masters' blend there. So every master holds every
+    /// glyph, and a blend over all masters gives, along one axis, exactly what the
+    /// glyphs' own models give. The loader calls this once.
+    pub fn fill_sparse(&mut self) -> Result<(), InstanceError> {
+        if !self.has_sparse() {
+            return Ok(());
+        }
+        let models = self.glyph_models().map_err(InstanceError::Regions)?;
+        let n = self.masters.len();
+        for m in 0..n {
+            if !self.masters[m].sparse {
+                continue;
+            }
+            let location = self.masters[m].location.clone();
+            for gi in 0..self.default.glyphs.len() {
+                if self.masters[m].drawn[gi] {
+                    continue;
+                }
+                let w = GlyphModels::spread(&self.designspace, n, models.of(gi), &location);
+                self.masters[m].glyphs[gi] = self.blend_glyph(gi, &w)?;
+            }
+            let (set, model) = &models.kerning;
+            let w = GlyphModels::spread(&self.designspace, n, (set, model), &location);
+            self.masters[m].kerning = self.kerning_at(&w);
+        }
+        Ok(())
+    }
+
+    /// Glyph `gi` blended with `w` (default first, then [`Family::masters`]).
+    fn blend_glyph(&self, gi: usize, w: &[f64]) -> Result<Glyph, InstanceError> {
+        let d = &self.default.glyphs[gi];
+        let masters: Vec<&Glyph> = std::iter::once(d)
+            .chain(self.masters.iter().map(|m| &m.glyphs[gi]))
+            .collect();
+        let mut contours = Vec::with_capacity(d.contours.len());
+        for (ci, contour) in d.contours.iter().enumerate() {
+            let points = (0..contour.points().len())
+                .map(|pi| {
+                    let at = |f: fn(&ControlPoint) -> f64| {
+                        blend(w, masters.iter().map(|g| f(&g.contours[ci].points()[pi])))
+                    };
+                    ControlPoint::new(at(|p| p.pos.x), at(|p| p.pos.y), at(|p| p.s))
+                })
+                .collect();
+            let contour = Contour::new(points).map_err(|error| InstanceError::Contour {
+                glyph: d.name.clone(),
+                contour: ci,
+                error,
+            })?;
+            contours.push(contour);
+        }
+        let components = d
+            .components
+            .iter()
+            .enumerate()
+            .map(|(k, c)| Component {
+                base: c.base.clone(),
+                offset: (
+                    blend(w, masters.iter().map(|g| g.components[k].offset.0)),
+                    blend(w, masters.iter().map(|g| g.components[k].offset.1)),
+                ),
+            })
+            .collect();
+        Ok(Glyph {
+            outline_mark: d.outline_mark,
+            name: d.name.clone(),
+            unicodes: d.unicodes.clone(),
+            advance: blend(w, masters.iter().map(|g| g.advance)),
+            contours,
+            components,
+            anchors: d
+                .anchors
+                .iter()
+                .map(|a| {
+                    // The same anchor in each master (by name); `check` requires it, and a
+                    // master without it holds the default's position.
+                    let at = |g: &Glyph| {
+                        g.anchors
+                            .iter()
+                            .find(|b| b.name == a.name)
+                            .map_or(a.position, |b| b.position)
+                    };
+                    Anchor {
+                        name: a.name.clone(),
+                        position: (
+                            blend(w, masters.iter().map(|g| at(g).0)),
+                            blend(w, masters.iter().map(|g| at(g).1)),
+                        ),
+                    }
+                })
+                .collect(),
+        })
     }
 
     /// The kerning blended with `weights`: the default's pairs in order, then pairs only

@@ -70,10 +70,61 @@ pub struct Master {
     pub folder: PathBuf,
     /// Where it sits (user coordinates).
     pub location: Location,
-    /// Parallel to the default master's glyphs (same order, names and code points).
+    /// Parallel to the default master's glyphs (same order, names and code points). A
+    /// glyph a sparse master does not draw holds the blend of the glyph's other masters at
+    /// this location ([`Family::fill_sparse`]).
     pub glyphs: Vec<Glyph>,
-    /// This master's kerning; a pair it lacks is 0 here.
+    /// This master's kerning; a pair it lacks is 0 here. A sparse master's is the blend of
+    /// the full masters' kerning at its location.
     pub kerning: Vec<KernPair>,
+    /// A sparse master (`sparse = true`): it draws only some glyphs, and has no kerning of
+    /// its own, as a designspace source on a UFO layer.
+    pub sparse: bool,
+    /// Per glyph (parallel to [`Self::glyphs`]), whether this master draws it: always for
+    /// a full master.
+    pub drawn: Vec<bool>,
+}
+
+/// Which masters blend for each glyph, and how: fontTools' sub-models. A glyph that a
+/// sparse master does not draw blends from the default and the masters that draw it
+/// (their own [`VariationModel`]); kerning blends from the full masters.
+#[derive(Clone, Debug)]
+pub struct GlyphModels {
+    /// Each distinct set of non-default masters (indices into [`Family::masters`],
+    /// ascending) with its model; the first is every master.
+    pub sets: Vec<(Vec<usize>, VariationModel)>,
+    /// Per glyph, its set in [`Self::sets`].
+    pub of_glyph: Vec<usize>,
+    /// The full (non-sparse) masters and their model, for kerning.
+    pub kerning: (Vec<usize>, VariationModel),
+}
+
+impl GlyphModels {
+    /// The masters that draw glyph `gi` and their model.
+    pub fn of(&self, gi: usize) -> (&[usize], &VariationModel) {
+        let (set, model) = &self.sets[self.of_glyph[gi]];
+        (set, model)
+    }
+
+    /// The weights of `set` under `model` at `location`, spread over every master (default
+    /// first, then [`Family::masters`]), 0 for the masters outside `set`.
+    pub fn spread(
+        designspace: &Designspace,
+        masters: usize,
+        (set, model): (&[usize], &VariationModel),
+        location: &Location,
+    ) -> Vec<f64> {
+        let own = designspace.weights(model, location);
+        if set.len() == masters {
+            return own;
+        }
+        let mut w = vec![0.0; masters + 1];
+        w[0] = own[0];
+        for (k, &m) in set.iter().enumerate() {
+            w[m + 1] = own[k + 1];
+        }
+        w
+    }
 }
 
 impl Family {
@@ -95,6 +146,61 @@ impl Family {
     pub fn model(&self) -> Result<VariationModel, RegionError> {
         let locations: Vec<Location> = self.masters.iter().map(|m| m.location.clone()).collect();
         self.designspace.model(&locations)
+    }
+
+    /// Whether any master is sparse.
+    pub fn has_sparse(&self) -> bool {
+        self.masters.iter().any(|m| m.sparse)
+    }
+
+    /// The model of the default master and the masters `set` (indices, ascending).
+    fn model_of(&self, set: &[usize]) -> Result<VariationModel, RegionError> {
+        let locations: Vec<Location> = set
+            .iter()
+            .map(|&m| self.masters[m].location.clone())
+            .collect();
+        self.designspace.model(&locations)
+    }
+
+    /// Each glyph's masters and model ([`GlyphModels`]). Without sparse masters there is
+    /// one set, every master, with [`Family::model`].
+    pub fn glyph_models(&self) -> Result<GlyphModels, RegionError> {
+        let all: Vec<usize> = (0..self.masters.len()).collect();
+        let full_model = self.model()?;
+        let mut sets = vec![(all.clone(), full_model.clone())];
+        let mut of_glyph = Vec::with_capacity(self.default.glyphs.len());
+        for gi in 0..self.default.glyphs.len() {
+            let set: Vec<usize> = all
+                .iter()
+                .copied()
+                .filter(|&m| self.masters[m].drawn.get(gi).copied().unwrap_or(true))
+                .collect();
+            let k = match sets.iter().position(|(s, _)| *s == set) {
+                Some(k) => k,
+                None => {
+                    let model = self.model_of(&set)?;
+                    sets.push((set, model));
+                    sets.len() - 1
+                }
+            };
+            of_glyph.push(k);
+        }
+        let full: Vec<usize> = all
+            .iter()
+            .copied()
+            .filter(|&m| !self.masters[m].sparse)
+            .collect();
+        let kerning = if full.len() == all.len() {
+            (full, full_model)
+        } else {
+            let model = self.model_of(&full)?;
+            (full, model)
+        };
+        Ok(GlyphModels {
+            sets,
+            of_glyph,
+            kerning,
+        })
     }
 }
 

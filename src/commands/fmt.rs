@@ -130,12 +130,12 @@ fn verify(loaded: &LoadedFont, changes: &[Rewrite]) -> Result<(), CommandError> 
         let same = match &r.kind {
             SourceKind::Info => {
                 let dir = r.path.parent().unwrap_or(Path::new("."));
-                let masters: Vec<(String, String, Location)> = loaded
+                let masters: Vec<(String, String, Location, bool)> = loaded
                     .masters
                     .iter()
                     .map(|m| {
                         let folder = m.folder.to_string_lossy().into_owned();
-                        (m.name.clone(), folder, m.location.clone())
+                        (m.name.clone(), folder, m.location.clone(), m.sparse)
                     })
                     .collect();
                 load_info_text(&r.path, &r.new).is_ok_and(|(i, _)| i == font.info)

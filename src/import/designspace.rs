@@ -112,8 +112,10 @@ pub fn import_designspace(
             name: style.clone(),
             folder,
             location,
+            drawn: vec![true; glyphs.len()],
             glyphs,
             kerning: other.font.kerning,
+            sparse: false,
         });
         reports.push((style, other.report));
     }

@@ -232,12 +232,15 @@ pub fn import_variable_font(
             m.name.clone(),
             report(rows.next().unwrap_or_default(), Vec::new()),
         ));
+        let glyphs: Vec<Glyph> = glyphs.next().unwrap_or_default();
         others.push(Master {
             folder: folder_name(&m.name).into(),
             name: m.name,
             location: m.location,
-            glyphs: glyphs.next().unwrap_or_default(),
+            drawn: vec![true; glyphs.len()],
+            glyphs,
             kerning: kerning.next().unwrap_or_default(),
+            sparse: false,
         });
     }
     Ok(ImportedFamily {

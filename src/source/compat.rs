@@ -29,7 +29,8 @@ pub(super) fn check_master(
         master.iter().map(|g| (g.glyph.name.as_str(), g)).collect();
     let mut ctx = Ctx::new(font_toml.0, font_toml.1, out);
     for d in default {
-        if !in_master.contains_key(d.glyph.name.as_str()) {
+        // A sparse master draws the glyphs it has; the others blend from the rest.
+        if !spec.sparse && !in_master.contains_key(d.glyph.name.as_str()) {
             let file = d.path.file_name().map(|f| f.to_string_lossy().into_owned());
             ctx.err(
                 spec.folder_at,

@@ -28,6 +28,8 @@ pub(super) struct MasterSpec {
     pub location: Location,
     /// Byte offset of the `folder` value.
     pub folder_at: usize,
+    /// `sparse = true`: the master draws only some glyphs.
+    pub sparse: bool,
 }
 
 /// The design space of `font.toml` and its masters; both empty for a single-master font.
@@ -40,8 +42,8 @@ pub(super) struct DesignspaceSpec {
     pub rule_glyphs: Vec<(String, String, usize)>,
 }
 
-/// A `[[master]]` as `font.toml` writes it: name, folder, location.
-pub type MasterEntry = (String, String, Location);
+/// A `[[master]]` as `font.toml` writes it: name, folder, location, sparse.
+pub type MasterEntry = (String, String, Location, bool);
 
 /// Loads the masters' tables of one `font.toml` from memory (`path` labels diagnostics,
 /// `dir` is the font folder, for the master folders): the design space and each master's
@@ -58,7 +60,7 @@ pub fn load_designspace_text(
             spec.designspace,
             spec.masters
                 .into_iter()
-                .map(|m| (m.name, m.folder, m.location))
+                .map(|m| (m.name, m.folder, m.location, m.sparse))
                 .collect(),
         )),
         _ => Err(out.into_vec()),
@@ -260,6 +262,19 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
         if let Err(e) = designspace.model(&locations) {
             region_error(ctx, &e, &designspace, &masters, &axes);
             return None;
+        }
+        // Glyphs that no sparse master draws blend from the full masters alone, so those
+        // must cover the axes by themselves.
+        let full: Vec<Location> = masters
+            .iter()
+            .filter(|m| !m.0.sparse)
+            .map(|m| m.0.location.clone())
+            .collect();
+        if full.len() < masters.len() {
+            if let Err(e) = designspace.model(&full) {
+                region_error(ctx, &e, &designspace, &masters, &axes);
+                return None;
+            }
         }
     }
     Some(DesignspaceSpec {
@@ -670,7 +685,20 @@ fn load_master(
     dir: &Path,
     axes: &[Axis],
 ) -> Option<(MasterSpec, usize, usize)> {
-    let suggested = check_keys(ctx, t, &["name", "folder", "location"]);
+    let suggested = check_keys(ctx, t, &["name", "folder", "location", "sparse"]);
+    let sparse = match get(t, "sparse") {
+        None => Some(false),
+        Some(v) => match v.get_ref() {
+            DeValue::Boolean(b) => Some(*b),
+            other => {
+                ctx.err(
+                    v.span().start,
+                    format!("`sparse` must be true or false, found {}", type_name(other)),
+                );
+                None
+            }
+        },
+    };
     let name = require(ctx, t, "name", "name = \"Bold\"", header, &suggested)
         .and_then(|v| non_empty(ctx, v, "name"));
     let folder = require(ctx, t, "folder", "folder = \"bold\"", header, &suggested)
@@ -686,14 +714,15 @@ fn load_master(
     );
     let location_at = loc.map(|v| v.span().start);
     let location = loc.and_then(|v| location(ctx, v, axes));
-    let ((name, name_at), (folder, folder_at), location, location_at) =
-        (name?, folder?, location?, location_at?);
+    let ((name, name_at), (folder, folder_at), location, location_at, sparse) =
+        (name?, folder?, location?, location_at?, sparse?);
     Some((
         MasterSpec {
             name,
             folder,
             location,
             folder_at,
+            sparse,
         },
         name_at,
         location_at,
@@ -852,12 +881,22 @@ fn region_error(
                 ("min", spans.min)
             };
             // A corner master at that end does not cover it: its delta is what it adds to
-            // the masters on each of its axes.
+            // the masters on each of its axes. Nor does a sparse master: the glyphs it
+            // does not draw need a full master there.
+            let sparse = masters
+                .iter()
+                .find(|(m, _, _)| m.sparse && m.location.get(a) == user)
+                .map(|(m, _, _)| {
+                    format!(
+                        " (only sparse master `{}`, which draws some glyphs only)",
+                        m.name
+                    )
+                });
             let corner = masters
                 .iter()
                 .find(|(m, _, _)| m.location.get(a) == user)
-                .map(|(m, _, _)| format!(" (only corner master `{}`, which blends from the masters on each of its axes)", m.name))
-                .unwrap_or_default();
+                .map(|(m, _, _)| format!(" (only corner master `{}`, which blends from the masters on each of its axes)", m.name));
+            let corner = sparse.or(corner).unwrap_or_default();
             ctx.err(
                 at,
                 format!(

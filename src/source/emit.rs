@@ -85,6 +85,9 @@ pub fn family_font_toml(info: &FontInfo, designspace: &Designspace, masters: &[M
         let folder = m.folder.to_string_lossy();
         let _ = writeln!(out, "folder = {}", string(&folder));
         let _ = writeln!(out, "location = {}", location(designspace, &m.location));
+        if m.sparse {
+            let _ = writeln!(out, "sparse = true");
+        }
     }
     for i in &designspace.instances {
         let _ = writeln!(out, "\n[[instance]]");

@@ -80,14 +80,21 @@ pub fn load_family_with(
     memo: &SourceMemo,
 ) -> Result<(Family, Vec<Diagnostic>), Vec<Diagnostic>> {
     // Without the files' texts: the memo gives unchanged files unread.
-    load_sources_with(dir, memo, false).map(|l| {
-        let family = Family {
-            default: l.font,
-            designspace: l.designspace,
-            masters: l.masters,
-        };
-        (family, l.warnings)
-    })
+    let l = load_sources_with(dir, memo, false)?;
+    let mut family = Family {
+        default: l.font,
+        designspace: l.designspace,
+        masters: l.masters,
+    };
+    // What sparse masters leave out, blended from the others.
+    if let Err(e) = family.fill_sparse() {
+        return Err(vec![Diagnostic::whole(
+            &dir.join("font.toml"),
+            Severity::Error,
+            format!("a glyph that a sparse master does not draw cannot be blended there: {e}"),
+        )]);
+    }
+    Ok((family, l.warnings))
 }
 
 /// Load a font directory: `font.toml`, optional `kerning.toml`, and one glyph per other
@@ -283,6 +290,19 @@ fn load_sources_with(
         let mkern_path = mdir.join("kerning.toml");
         master_order.push(mkern_path.clone());
         let (mkerning, mkern_text) = match regular_file(&mkern_path) {
+            Ok(true) if m.sparse => {
+                out.push(Diagnostic::whole(
+                    &mkern_path,
+                    Severity::Error,
+                    format!(
+                        "master `{}` is sparse, so it has no kerning of its own (its pairs \
+                         blend from the full masters); remove this file, or make the master \
+                         full",
+                        m.name
+                    ),
+                ));
+                (None, None)
+            }
             Ok(true) => {
                 let text = read(&mkern_path, &mut out);
                 let pairs = text.as_deref().and_then(|text| {
@@ -407,21 +427,27 @@ fn model_masters(
                 kind: SourceKind::MasterKerning(m.index),
             });
         }
-        let glyphs = default
+        // A glyph a sparse master does not draw holds the default's for now
+        // ([`Family::fill_sparse`] blends it).
+        let (glyphs, drawn): (Vec<Glyph>, Vec<bool>) = default
             .iter()
-            .filter_map(|d| {
-                let mut g = by_name.remove(&d.name)?;
-                g.unicodes.clone_from(&d.unicodes);
-                g.outline_mark = d.outline_mark;
-                Some(g)
+            .map(|d| match by_name.remove(&d.name) {
+                Some(mut g) => {
+                    g.unicodes.clone_from(&d.unicodes);
+                    g.outline_mark = d.outline_mark;
+                    (g, true)
+                }
+                None => (d.clone(), false),
             })
-            .collect();
+            .unzip();
         masters.push(Master {
             name: s.name.clone(),
             folder: PathBuf::from(&s.folder),
             location: s.location.clone(),
             glyphs,
             kerning: m.kerning,
+            sparse: s.sparse,
+            drawn,
         });
     }
     masters

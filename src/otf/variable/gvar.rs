@@ -23,22 +23,19 @@ fn tents(region: &Region, axis_count: usize) -> Vec<Tent> {
         .collect()
 }
 
-/// The `gvar` table: `deltas[glyph][master]` are the glyph's point deltas (outline points,
-/// then the four phantom points) for the master of `regions[master]`, those a consumer
-/// infers marked optional ([`super::iup`]). A master whose deltas are all zero for a glyph
-/// adds no tuple.
-pub fn gvar(
-    regions: &[Region],
-    axis_count: u16,
-    deltas: &[MasterDeltas],
-) -> Result<Gvar, OtfError> {
-    let variations = deltas
+/// The `gvar` table: per glyph, the regions of its masters (its model's: with sparse
+/// masters, each glyph has its own) and `deltas[master]`, the glyph's point deltas (outline
+/// points, then the four phantom points) for the master of `regions[master]`, those a
+/// consumer infers marked optional ([`super::iup`]). A master whose deltas are all zero
+/// for a glyph adds no tuple.
+pub fn gvar(axis_count: u16, glyphs: &[(&[Region], MasterDeltas)]) -> Result<Gvar, OtfError> {
+    let variations = glyphs
         .iter()
         .enumerate()
-        .map(|(gid, masters)| {
+        .map(|(gid, (regions, masters))| {
             let tuples = masters
                 .iter()
-                .zip(regions)
+                .zip(regions.iter())
                 .filter(|(d, _)| d.iter().any(|d| d.x != 0 || d.y != 0))
                 .map(|(d, region)| {
                     GlyphDeltas::new(tents(region, usize::from(axis_count)), d.clone())

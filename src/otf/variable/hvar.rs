@@ -32,16 +32,13 @@ pub(crate) fn region_axes(region: &Region, axis_count: usize) -> impl Iterator<I
         .map(|t| t.map(|v| v as f32))
 }
 
-/// The `HVAR` table: `advance_deltas[glyph][master]` for the masters of `regions`.
-pub fn hvar(
-    regions: &[Region],
-    axis_count: u16,
-    advance_deltas: &[Vec<i16>],
-) -> Result<Hvar, OtfError> {
+/// The `HVAR` table: per glyph, the regions of its masters and the advance's delta for
+/// each.
+pub fn hvar(axis_count: u16, advance_deltas: &[(&[Region], Vec<i16>)]) -> Result<Hvar, OtfError> {
     let mut builder = VariationStoreBuilder::new_with_implicit_indices(axis_count);
     let ids: Vec<_> = advance_deltas
         .iter()
-        .map(|deltas| {
+        .map(|(regions, deltas)| {
             builder.add_deltas(
                 regions
                     .iter()

@@ -127,7 +127,13 @@ fn build(
         let own = glyph.path();
         let mut paths: Vec<&BezPath> = vec![own.as_ref()];
         let mut advances = vec![glyph.advance];
-        for master in &family.masters {
+        // The glyph's own masters and model (every master but sparse ones that do not
+        // draw it).
+        let (drawing, model) = match source {
+            Some(i) => family.models.of(i),
+            None => (&family.models.sets[0].0[..], model),
+        };
+        for master in drawing.iter().map(|&m| &family.masters[m]) {
             let Some(g) = source.map(|i| &master.glyphs[i]) else {
                 paths.push(own.as_ref());
                 advances.push(glyph.advance);
@@ -147,13 +153,13 @@ fn build(
                     "variable font: glyph '{}' has other path elements in master '{}' than in \
                      the default master",
                     glyph.model_name,
-                    family.masters[m - 1].name
+                    family.masters[drawing[m - 1]].name
                 )),
                 Incompatible::Otf(e) => e,
             })?;
         tt_glyphs.push(tt);
-        point_deltas.push(deltas);
-        advance_deltas.push(advance_deltas_of(model, &advances));
+        point_deltas.push((&model.regions[..], deltas));
+        advance_deltas.push((&model.regions[..], advance_deltas_of(model, &advances)));
     }
 
     let names = VariableNames::new(designspace, &font.info.family);
@@ -218,10 +224,10 @@ fn build(
         .add_table(&avar::avar(&designspace.axes))
         .map_err(table_err)?;
     builder
-        .add_table(&gvar::gvar(&model.regions, axis_count, &point_deltas)?)
+        .add_table(&gvar::gvar(axis_count, &point_deltas)?)
         .map_err(table_err)?;
     builder
-        .add_table(&hvar::hvar(&model.regions, axis_count, &advance_deltas)?)
+        .add_table(&hvar::hvar(axis_count, &advance_deltas)?)
         .map_err(table_err)?;
     Ok(builder.build())
 }
