@@ -34,6 +34,7 @@ fn family() -> OutlinedFamily {
         .map(|g| MasterGlyph {
             advance: g.advance * 1.15,
             path: map * g.path.clone(),
+            drawn: true,
         })
         .collect();
     OutlinedFamily {
@@ -44,6 +45,7 @@ fn family() -> OutlinedFamily {
             glyphs,
             kerning: font.kerning.clone(),
         }],
+        models: xglyph::model::GlyphModels::full(1, &model, font.glyphs.len()),
         default: font,
         model,
     }

@@ -72,6 +72,17 @@ impl OutlinedFamily {
     pub fn weights(&self, location: &Location) -> Vec<f64> {
         self.designspace.weights(&self.model, location)
     }
+
+    /// The masters (indices into [`Self::masters`]) that draw glyph `i` of
+    /// [`Self::default`], and their model: [`Self::model`] when every master draws it.
+    pub fn glyph_model(&self, i: usize) -> (&[usize], &VariationModel) {
+        let (set, model) = self.models.of(i);
+        if set.len() == self.masters.len() {
+            (set, &self.model)
+        } else {
+            (set, model)
+        }
+    }
 }
 
 /// Why a family could not be outlined compatibly.

@@ -100,6 +100,16 @@ pub struct GlyphModels {
 }
 
 impl GlyphModels {
+    /// Every glyph drawn by all `masters` non-default masters, which blend with `model`.
+    pub fn full(masters: usize, model: &VariationModel, glyphs: usize) -> GlyphModels {
+        let all: Vec<usize> = (0..masters).collect();
+        GlyphModels {
+            sets: vec![(all.clone(), model.clone())],
+            of_glyph: vec![0; glyphs],
+            kerning: (all, model.clone()),
+        }
+    }
+
     /// The masters that draw glyph `gi` and their model.
     pub fn of(&self, gi: usize) -> (&[usize], &VariationModel) {
         let (set, model) = &self.sets[self.of_glyph[gi]];

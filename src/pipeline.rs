@@ -589,7 +589,7 @@ pub fn static_outputs_with(
                 || svg_outputs_reusing(font, reuse, outlines),
                 || {
                     if ufo {
-                        crate::ufo::output_files_reusing(font, reuse, outlines)
+                        crate::ufo::output_files_reusing(font, reuse, outlines, &[])
                     } else {
                         Ok(Vec::new())
                     }

@@ -77,9 +77,13 @@ pub fn master_font(family: &OutlinedFamily, model: &Family, m: usize) -> Outline
     font
 }
 
-/// The designspace document of `family`, whose master UFOs are `files` (the default
-/// master's first, then [`OutlinedFamily::masters`] in order).
-pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocument {
+/// The designspace document of `family`, whose master UFOs (and layers, for sparse
+/// masters) are `files` (the default master's first, then [`OutlinedFamily::masters`] in
+/// order).
+pub fn document(
+    family: &OutlinedFamily,
+    files: &[(String, Option<String>)],
+) -> DesignSpaceDocument {
     let ds = &family.designspace;
     let info = &family.default.info;
     let axes = ds
@@ -108,14 +112,17 @@ pub fn document(family: &OutlinedFamily, files: &[String]) -> DesignSpaceDocumen
     );
     let sources = masters
         .zip(files)
-        .map(|((style, location), filename)| designspace::Source {
-            familyname: Some(info.family.clone()),
-            stylename: Some(style.to_string()),
-            name: Some(format!("master.{style}")),
-            filename: filename.clone(),
-            location: dimensions(ds, &location),
-            ..designspace::Source::default()
-        })
+        .map(
+            |((style, location), (filename, layer))| designspace::Source {
+                familyname: Some(info.family.clone()),
+                stylename: Some(style.to_string()),
+                name: Some(format!("master.{style}")),
+                filename: filename.clone(),
+                layer: layer.clone(),
+                location: dimensions(ds, &location),
+                ..designspace::Source::default()
+            },
+        )
         .collect();
     let instances = ds
         .instances
@@ -219,17 +226,46 @@ pub fn output_files_reusing(
     let fonts: Vec<OutlinedFont> = std::iter::once(family.default.clone())
         .chain((0..family.masters.len()).map(|m| master_font(family, model, m)))
         .collect();
+    // A sparse master is a layer of the default master's UFO; every other master a UFO.
+    let sparse = |k: usize| k > 0 && model.masters[k - 1].sparse;
     let dirs: Vec<String> = fonts.iter().map(ufo_dir_name).collect();
     let mut seen = HashSet::new();
-    if let Some(dir) = dirs.iter().find(|d| !seen.insert(d.to_lowercase())) {
+    if let Some(dir) = dirs
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| !sparse(k))
+        .map(|(_, d)| d)
+        .find(|d| !seen.insert(d.to_lowercase()))
+    {
         return Err(UfoError::MasterName(dir.clone()));
     }
+    let layers: Vec<super::ExtraLayer<'_>> = (1..fonts.len())
+        .filter(|&k| sparse(k))
+        .map(|k| super::ExtraLayer {
+            name: &model.masters[k - 1].name,
+            font: &fonts[k],
+            glyphs: &model.masters[k - 1].drawn,
+        })
+        .collect();
     let mut out = Vec::new();
-    for font in &fonts {
+    for (k, font) in fonts.iter().enumerate() {
+        if sparse(k) {
+            continue;
+        }
         let outlines = OutlineKeys::new(font, reuse);
-        out.extend(super::output_files_reusing(font, reuse, &outlines)?);
+        let extra = if k == 0 { &layers[..] } else { &[] };
+        out.extend(super::output_files_reusing(font, reuse, &outlines, extra)?);
     }
-    let xml = document(family, &dirs)
+    // The sources: a sparse master reads its layer of the default master's UFO.
+    let files: Vec<(String, Option<String>)> = dirs
+        .iter()
+        .enumerate()
+        .map(|(k, d)| match sparse(k) {
+            true => (dirs[0].clone(), Some(model.masters[k - 1].name.clone())),
+            false => (d.clone(), None),
+        })
+        .collect();
+    let xml = document(family, &files)
         .serialize_to_string()
         .map_err(|e| UfoError::Write(format!("designspace: {}", super::error_chain(&e))))?;
     out.push((
@@ -275,6 +311,14 @@ mod tests {
             map: vec![(400.0, 0.0), (500.0, 40.0), (700.0, 100.0)],
         };
         let at = |v: f64| Location([("wght".to_string(), v)].into_iter().collect());
+        let model = Designspace {
+            axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
+            instances: Vec::new(),
+            rules: Vec::new(),
+            rules_last: false,
+        }
+        .model(&[at(700.0)])
+        .expect("one master at the end");
         let family = OutlinedFamily {
             designspace: Designspace {
                 axes: vec![axis],
@@ -298,17 +342,13 @@ mod tests {
                 glyphs: Vec::new(),
                 kerning: Vec::new(),
             }],
-            model: {
-                let ds = Designspace {
-                    axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
-                    instances: Vec::new(),
-                    rules: Vec::new(),
-                    rules_last: false,
-                };
-                ds.model(&[at(700.0)]).expect("one master at the end")
-            },
+            models: crate::model::GlyphModels::full(1, &model, 0),
+            model,
         };
-        let files = ["A-Regular.ufo".to_string(), "A-Bold.ufo".to_string()];
+        let files = [
+            ("A-Regular.ufo".to_string(), None),
+            ("A-Bold.ufo".to_string(), None),
+        ];
         let xml = document(&family, &files)
             .serialize_to_string()
             .expect("serialises");

@@ -161,21 +161,34 @@ fn fill_font(ufo: &mut norad::Font, font: &OutlinedFont) -> Result<(), UfoError>
 /// Every file of the UFO in memory, paths relative to the build's output folder
 /// (`<Family>-<Style>.ufo/metainfo.plist`, …), sorted by path: what `build` writes.
 pub fn output_files(font: &OutlinedFont) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
-    output_files_reusing(font, &Reuse::off(), &OutlineKeys::default())
+    output_files_reusing(font, &Reuse::off(), &OutlineKeys::default(), &[])
 }
 
 /// One file of a UFO: its path and bytes.
 type UfoFile = (PathBuf, Vec<u8>);
 
+/// A layer besides the default one: a sparse master's glyphs, in the UFO of the default
+/// master, as fontmake and fontc read a designspace source on a layer.
+pub struct ExtraLayer<'a> {
+    /// The layer's name (the master's).
+    pub name: &'a str,
+    /// The master as a whole font (every glyph, so that components count right).
+    pub font: &'a OutlinedFont,
+    /// Per glyph of [`Self::font`], whether the layer holds it.
+    pub glyphs: &'a [bool],
+}
+
 /// [`output_files`], leaving out each `.glif` that OUT holds already as the last build made
 /// it from the same glyph ([`Reuse::kept_or_make`]). The `.glif`s are encoded on every core
 /// (norad, as it would write them); the other files are norad's, of the font with empty
 /// glyphs of the same names (so `contents.plist` and the file names are norad's too).
-/// `outlines` are the font's [`OutlineKeys`].
+/// `outlines` are the font's [`OutlineKeys`]. `layers` are written after the default layer
+/// (their `.glif`s made on each build).
 pub fn output_files_reusing(
     font: &OutlinedFont,
     reuse: &Reuse,
     outlines: &OutlineKeys,
+    layers: &[ExtraLayer<'_>],
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
     use rayon::prelude::*;
     check_file_names(font)?;
@@ -185,8 +198,32 @@ pub fn output_files_reusing(
     for g in &font.glyphs {
         layer.insert_glyph(norad::Glyph::new(&g.name));
     }
+    let mut layer_dirs = Vec::with_capacity(layers.len() + 1);
+    let mut extra_glifs = Vec::new();
+    for extra in layers {
+        let new = ufo
+            .layers
+            .new_layer(extra.name)
+            .map_err(|e| UfoError::Write(format!("layer `{}`: {}", extra.name, error_chain(&e))))?;
+        let held = extra.font.glyphs.iter().zip(extra.glyphs);
+        for (g, _) in held.clone().filter(|(_, &h)| h) {
+            new.insert_glyph(norad::Glyph::new(&g.name));
+        }
+        let new_dir = new.path().to_path_buf();
+        for ((g, _), own) in held.zip(own_contours(extra.font)).filter(|((_, &h), _)| h) {
+            let file = new.get_path(&g.name).ok_or_else(|| {
+                UfoError::Write(format!("no file name for the glyph `{}`", g.name))
+            })?;
+            let bytes = glyph::glyph(g, own)?
+                .encode_xml()
+                .map_err(|e| UfoError::Write(error_chain(&e)))?;
+            extra_glifs.push((new_dir.join(file), bytes));
+        }
+        layer_dirs.push(new_dir);
+    }
     let layer = ufo.default_layer();
     let layer_dir = layer.path().to_path_buf();
+    layer_dirs.push(layer_dir.clone());
     let owns = own_contours(font);
     // In font order, so that the first glyph in error is the one reported.
     let glifs: Vec<Result<Option<UfoFile>, UfoError>> = font
@@ -216,13 +253,16 @@ pub fn output_files_reusing(
     fill_font(&mut ufo, font)?;
     // The empty glyphs' files are dropped: the `.glif`s are those made above.
     let is_glif = |path: &Path| {
-        path.parent() == Some(layer_dir.as_path()) && path.extension().is_some_and(|e| e == "glif")
+        path.parent()
+            .is_some_and(|p| layer_dirs.iter().any(|d| d.as_path() == p))
+            && path.extension().is_some_and(|e| e == "glif")
     };
     let mut files: Vec<(PathBuf, Vec<u8>)> = files(&ufo)?
         .into_iter()
         .filter(|(path, _)| !is_glif(path))
         .collect();
     files.extend(glif_files);
+    files.extend(extra_glifs);
     files.sort();
     Ok(files
         .into_iter()

@@ -19,7 +19,7 @@ use kurbo::Shape;
 use serde_json::{json, Value};
 use xglyph::designspace::{Axis, Designspace, Location};
 use xglyph::family::{MasterGlyph, OutlinedFamily, OutlinedMaster};
-use xglyph::model::{Anchor, FeatureFile, Font, KernPair};
+use xglyph::model::{Anchor, FeatureFile, Font, GlyphModels, KernPair};
 use xglyph::otf::{otf, ttf, variable_ttf_with_anchors};
 use xglyph::outline::outline_font;
 use xglyph::source::load_font;
@@ -460,6 +460,7 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
             .map(|g| MasterGlyph {
                 advance: g.advance,
                 path: g.path.clone(),
+                drawn: true,
             })
             .collect(),
         kerning: vec![KernPair {
@@ -476,11 +477,13 @@ fn variable_family() -> (OutlinedFamily, Vec<Vec<Vec<Anchor>>>) {
             _ => vec![anchor("_top", 20.0, 520.0), anchor("top", 30.0, 800.0)],
         })
         .collect();
+    let models = GlyphModels::full(1, &model, default.glyphs.len());
     let family = OutlinedFamily {
         designspace,
         default,
         masters: vec![bold],
         model,
+        models,
     };
     (family, vec![bold_anchors])
 }

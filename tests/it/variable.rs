@@ -32,7 +32,7 @@ use ttf_parser::{Face, GlyphId};
 use xglyph::designspace::{Axis, Designspace, Location, NamedInstance};
 use xglyph::family::{MasterGlyph, OutlinedFamily, OutlinedMaster};
 use xglyph::import::font::glyph_outline;
-use xglyph::model::{FontInfo, KernPair};
+use xglyph::model::{FontInfo, GlyphModels, KernPair};
 use xglyph::otf::{glyph_order, variable_ttf};
 use xglyph::outline::{OutlinedFont, OutlinedGlyph};
 
@@ -69,6 +69,7 @@ fn family(
 ) -> OutlinedFamily {
     let locations: Vec<Location> = masters.iter().map(|m| at(m.1)).collect();
     let model = designspace.model(&locations).expect("valid masters");
+    let models = GlyphModels::full(masters.len(), &model, default.glyphs.len());
     OutlinedFamily {
         designspace,
         default,
@@ -82,6 +83,7 @@ fn family(
             })
             .collect(),
         model,
+        models,
     }
 }
 
@@ -99,6 +101,7 @@ fn bundled() -> &'static OutlinedFamily {
             .map(|g| MasterGlyph {
                 advance: g.advance * 1.15,
                 path: map * g.path.clone(),
+                drawn: true,
             })
             .collect();
         let mut kerning: Vec<KernPair> = font
@@ -219,10 +222,12 @@ fn tiny() -> OutlinedFamily {
             MasterGlyph {
                 advance: 2.0 * rx + 80.3,
                 path: ring(40.0, rx, 260.0, t),
+                drawn: true,
             },
             MasterGlyph {
                 advance: stem_w + 120.6,
                 path: stem(60.0, stem_w, 720.0),
+                drawn: true,
             },
         ]
     };
@@ -1097,10 +1102,12 @@ fn a_glyph_with_more_than_32_variations_imports() {
                 MasterGlyph {
                     advance: 2.0 * (230.0 + d) + 80.3,
                     path: ring(40.0, 230.0 + d, 260.0 - d, 70.0 + d),
+                    drawn: true,
                 },
                 MasterGlyph {
                     advance: 80.0 + d + 120.6,
                     path: stem(60.0, 80.0 + d, 720.0 + d),
+                    drawn: true,
                 },
             ]);
         }
@@ -1112,7 +1119,9 @@ fn a_glyph_with_more_than_32_variations_imports() {
         rules_last: false,
     };
     let model = designspace.model(&locations).expect("valid masters");
+    let models = GlyphModels::full(locations.len(), &model, base.default.glyphs.len());
     let family = OutlinedFamily {
+        models,
         designspace,
         default: base.default.clone(),
         masters: masters

@@ -130,7 +130,7 @@ fn build(
         // The glyph's own masters and model (every master but sparse ones that do not
         // draw it).
         let (drawing, model) = match source {
-            Some(i) => family.models.of(i),
+            Some(i) => family.glyph_model(i),
             None => (&family.models.sets[0].0[..], model),
         };
         for master in drawing.iter().map(|&m| &family.masters[m]) {

@@ -1,0 +1,386 @@
+//! Sparse masters as a user meets them, on `tests/fixtures/sparse`: the two-master weight
+//! font of `tests/fixtures/masters` with a sparse master `O 550` (`sparse = true`) that
+//! draws only `O`, with a narrower counter and a wider advance than the blend gives there.
+//! `check`, `fmt` and `build` through the CLI; the variable TTF read back with skrifa
+//! (tuples per glyph, advances, outlines against the blended X-splines); the static
+//! instances; the exported designspace (a layer of the default UFO) compiled by fontmake
+//! and fontc; and the errors a sparse master can have.
+//!
+//! Tests that need fontmake or fontc print `skipped: …` and pass when they are missing,
+//! unless `XGLYPH_REQUIRE_TOOLS=1` (CI).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use kurbo::BezPath;
+use skrifa::instance::{LocationRef, Size};
+use skrifa::raw::TableProvider;
+use skrifa::{FontRef, MetadataProvider};
+use xglyph::designspace::Location;
+use xglyph::model::Family;
+
+use crate::common::cli::xglyph;
+use crate::common::fonts::{glyph_id, skrifa_outline};
+use crate::common::{paths, tools};
+
+struct Built {
+    _tmp: tempfile::TempDir,
+    out: PathBuf,
+    stdout: String,
+}
+
+fn fixture() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/sparse")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 path")
+}
+
+/// `fixture` built once with the CLI.
+fn build(fixture: &Path) -> Built {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let out = tmp.path().join("out");
+    let (code, stdout, stderr) = xglyph(&["build", s(fixture), "-o", s(&out)]);
+    assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
+    Built {
+        _tmp: tmp,
+        out,
+        stdout,
+    }
+}
+
+fn built() -> &'static Built {
+    static BUILT: OnceLock<Built> = OnceLock::new();
+    BUILT.get_or_init(|| build(&fixture()))
+}
+
+fn family() -> &'static Family {
+    static FAMILY: OnceLock<Family> = OnceLock::new();
+    FAMILY.get_or_init(|| xglyph::source::load_family(&fixture()).expect("loads").0)
+}
+
+fn wght(v: f64) -> Location {
+    Location([("wght".to_string(), v)].into_iter().collect())
+}
+
+fn variable_font(out: &Path) -> Vec<u8> {
+    fs::read(out.join("MastersTest[wght].ttf")).expect("the variable TTF")
+}
+
+/// The glyph `name` of `font`.
+fn glyph<'a>(font: &'a xglyph::model::Font, name: &str) -> &'a xglyph::model::Glyph {
+    font.glyphs.iter().find(|g| g.name == name).expect("glyph")
+}
+
+/// A glyph's X-spline contours as one dense polyline path (the true curve, sampled).
+fn xspline_path(g: &xglyph::model::Glyph) -> BezPath {
+    let mut out = BezPath::new();
+    for c in &g.contours {
+        out.extend(paths::xspline_polyline(c.spline(), 64).iter());
+    }
+    out
+}
+
+#[test]
+fn the_fixture_checks_clean_is_canonical_and_reports_the_sparse_master() {
+    let (code, out, err) = xglyph(&["check", s(&fixture())]);
+    assert_eq!(
+        (code, out.as_str(), err.as_str()),
+        (0, "0 errors, 0 warnings\n", "")
+    );
+    let (code, out, err) = xglyph(&["fmt", "--check", s(&fixture())]);
+    assert_eq!(code, 0, "{out}{err}");
+    let b = built();
+    assert!(
+        b.stdout.contains(
+            "masters: Regular (wght 400, default), Bold (wght 700), O 550 (wght 550); named \
+             instances:"
+        ),
+        "{}",
+        b.stdout
+    );
+    assert!(b.stdout.contains("checked at 13 positions"), "{}", b.stdout);
+    // The loader fills what the sparse master leaves out, and knows what it draws.
+    let f = family();
+    let sparse = &f.masters[1];
+    assert!(sparse.sparse && !f.masters[0].sparse);
+    let drawn: Vec<&str> = f
+        .default
+        .glyphs
+        .iter()
+        .zip(&sparse.drawn)
+        .filter(|(_, &d)| d)
+        .map(|(g, _)| g.name.as_str())
+        .collect();
+    assert_eq!(drawn, ["O"]);
+}
+
+#[test]
+fn each_glyph_varies_with_its_own_masters() {
+    let vf = variable_font(&built().out);
+    let font = FontRef::new(&vf).expect("parses");
+    let gvar = font.gvar().expect("gvar");
+    let peaks = |name: &str| -> Vec<[f32; 3]> {
+        gvar.glyph_variation_data(glyph_id(&font, name))
+            .expect("reads")
+            .expect("varies")
+            .tuples()
+            .map(|t| {
+                let peak = t.peak().values[0].get().to_f32();
+                let (lo, hi) = t
+                    .intermediate_start()
+                    .zip(t.intermediate_end())
+                    .map_or((0.0, 0.0), |(a, b)| {
+                        (a.values[0].get().to_f32(), b.values[0].get().to_f32())
+                    });
+                [lo, peak, hi]
+            })
+            .collect()
+    };
+    // `O`: Bold from the sparse master outwards, and the sparse master's own tent.
+    assert_eq!(peaks("O"), [[0.5, 1.0, 1.0], [0.0, 0.5, 1.0]]);
+    // The others: Bold alone, over the whole axis, as without the sparse master.
+    for name in ["n", "H", "ndot"] {
+        assert_eq!(peaks(name).len(), 1, "{name}");
+        assert_eq!(peaks(name)[0][1], 1.0, "{name}");
+    }
+}
+
+#[test]
+fn the_variable_font_follows_the_blended_x_splines_of_each_glyphs_own_model() {
+    let b = built();
+    let vf = variable_font(&b.out);
+    let font = FontRef::new(&vf).expect("parses");
+    let f = family();
+    // Tolerance 0.5, plus the quadratic conversion (0.5) and the grid (two roundings of
+    // at most sqrt(2)/2), as in tests/it/corners.rs.
+    let bound = 0.5 + 0.5 + 2.0 * std::f64::consts::FRAC_1_SQRT_2;
+    let mut worst: f64 = 0.0;
+    for w in [400.0, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0] {
+        let at = wght(w);
+        let instance = f.instance_at(&at).expect("blends");
+        let location = font.axes().location([("wght", w as f32)]);
+        for name in ["O", "n", "H"] {
+            let gid = glyph_id(&font, name);
+            let mine = skrifa_outline(&font, gid, LocationRef::from(&location));
+            let want = xspline_path(glyph(&instance, name));
+            let d = paths::two_sided(&mine, &want, 16);
+            worst = worst.max(d);
+            assert!(d <= bound, "{name} at wght {w}: {d} > {bound}");
+            let advance = font
+                .glyph_metrics(Size::unscaled(), LocationRef::from(&location))
+                .advance_width(gid)
+                .expect("advance");
+            assert!(
+                (f64::from(advance) - glyph(&instance, name).advance).abs() <= 0.5,
+                "{name} at wght {w}: advance {advance}"
+            );
+        }
+    }
+    println!("worst distance to the blended X-splines: {worst:.3}");
+    // At 550 `O` is the sparse master's own drawing: its advance, and its counter (the
+    // inner contour's leftmost point), not the blend of Regular and Bold.
+    let at550 = f.instance_at(&wght(550.0)).expect("blends");
+    let o = glyph(&at550, "O");
+    assert_eq!(o.advance, 750.0);
+    assert_eq!(o.contours[1].points()[4].pos.x, 169.1);
+    let bold_o = f.masters[0]
+        .glyphs
+        .iter()
+        .find(|g| g.name == "O")
+        .expect("O");
+    assert_eq!(
+        (glyph(&f.default, "O").advance + bold_o.advance) / 2.0,
+        740.0
+    );
+    // `n` there is exactly the blend of Regular and Bold.
+    let n = glyph(&at550, "n");
+    assert_eq!(n.advance, 575.0);
+}
+
+#[test]
+fn a_glyph_the_sparse_master_does_not_draw_is_the_same_as_without_it() {
+    let with = variable_font(&built().out);
+    let without = build(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/masters"));
+    let without = variable_font(&without.out);
+    let (a, b) = (
+        FontRef::new(&with).expect("parses"),
+        FontRef::new(&without).expect("parses"),
+    );
+    for w in [450.0, 550.0, 625.0] {
+        let (la, lb) = (
+            a.axes().location([("wght", w)]),
+            b.axes().location([("wght", w)]),
+        );
+        for name in ["n", "H", "ndot", "dotcomb"] {
+            let pa = skrifa_outline(&a, glyph_id(&a, name), LocationRef::from(&la));
+            let pb = skrifa_outline(&b, glyph_id(&b, name), LocationRef::from(&lb));
+            assert_eq!(pa, pb, "{name} at wght {w}");
+        }
+    }
+}
+
+#[test]
+fn the_static_instances_blend_o_through_the_sparse_master() {
+    let b = built();
+    let medium = fs::read(b.out.join("MastersTest-Medium.ttf")).expect("Medium");
+    let font = FontRef::new(&medium).expect("parses");
+    let advance = |name: &str| {
+        font.glyph_metrics(Size::unscaled(), LocationRef::default())
+            .advance_width(glyph_id(&font, name))
+            .expect("advance")
+    };
+    // wght 500 is two thirds of the way from Regular (720) to the sparse master (750);
+    // Regular to Bold alone would give 733.
+    assert_eq!(advance("O"), 740.0);
+    assert_eq!(advance("n"), 570.0);
+}
+
+#[test]
+fn the_designspace_puts_the_sparse_master_on_a_layer_that_fontmake_and_fontc_read() {
+    let b = built();
+    let layer = b.out.join("MastersTest-Regular.ufo/glyphs.O_ 550");
+    let mut files: Vec<String> = fs::read_dir(&layer)
+        .expect("the layer's folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["O_.glif", "contents.plist"]);
+    assert!(!b.out.join("MastersTest-O550.ufo").exists());
+    let ds = fs::read_to_string(b.out.join("MastersTest.designspace")).expect("designspace");
+    assert!(
+        ds.contains(
+            "<source familyname=\"Masters Test\" stylename=\"O 550\" name=\"master.O 550\" \
+             filename=\"MastersTest-Regular.ufo\" layer=\"O 550\">"
+        ),
+        "{ds}"
+    );
+    if !tools::designspace_compilers_available() {
+        return;
+    }
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let report = tools::check_designspace_compilers(
+        &b.out.join("MastersTest.designspace"),
+        &b.out.join("MastersTest[wght].ttf"),
+        tmp.path(),
+        0.5,
+        &["450", "500", "550", "600", "650"],
+    );
+    println!("{report}");
+    assert!(
+        report.contains("ok    MastersTest-Regular.ufo layer O 550: 1 glyphs (O), each with"),
+        "{report}"
+    );
+    // Both compilers, 5 positions each, and the advances at the sparse master.
+    let outlines = report
+        .lines()
+        .filter(|l| l.starts_with("ok ") && l.contains(": outlines at "))
+        .count();
+    assert_eq!(outlines, 10, "{report}");
+    for compiler in ["fontmake.ttf", "font.ttf"] {
+        assert!(
+            report.contains(&format!("ok    {compiler}: advances at wght 550")),
+            "{report}"
+        );
+    }
+    assert!(report.contains("designspace_check: all passed"), "{report}");
+}
+
+/// `check` of the fixture with `edit` applied: exit code and output.
+fn check_edited(test: &str, edit: impl FnOnce(&Path)) -> (i32, String) {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("sparse-{test}"));
+    let _ = fs::remove_dir_all(&tmp);
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    edit(&font);
+    let out = Command::new(env!("CARGO_BIN_EXE_xglyph"))
+        .args(["check", "font"])
+        .current_dir(&tmp)
+        .output()
+        .expect("runs");
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code().unwrap_or(-1), text)
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    fs::create_dir_all(to).expect("mkdir");
+    for entry in fs::read_dir(from).expect("read_dir") {
+        let path = entry.expect("entry").path();
+        let dest = to.join(path.file_name().expect("name"));
+        if path.is_dir() {
+            copy_dir(&path, &dest);
+        } else {
+            fs::copy(&path, &dest).expect("copy");
+        }
+    }
+}
+
+fn replace(path: &Path, old: &str, new: &str) {
+    let text = fs::read_to_string(path).expect("read");
+    assert!(text.contains(old), "{} has no {old:?}", path.display());
+    fs::write(path, text.replacen(old, new, 1)).expect("write");
+}
+
+#[test]
+fn sparse_master_errors_name_the_place_to_fix() {
+    let cases: Vec<(&str, Box<dyn FnOnce(&Path)>, &str)> = vec![
+        (
+            "kerning",
+            Box::new(|f: &Path| {
+                fs::write(
+                    f.join("w550/kerning.toml"),
+                    "[[pair]]\nleft = \"O\"\nright = \"O\"\nvalue = -10\n",
+                )
+                .expect("write")
+            }),
+            "font/w550/kerning.toml: error: master `O 550` is sparse, so it has no kerning of \
+             its own (its pairs blend from the full masters); remove this file, or make the \
+             master full",
+        ),
+        (
+            "not a boolean",
+            Box::new(|f: &Path| replace(&f.join("font.toml"), "sparse = true", "sparse = \"yes\"")),
+            "font/font.toml:29:10: error: `sparse` must be true or false, found string",
+        ),
+        (
+            "only sparse at the end",
+            Box::new(|f: &Path| {
+                replace(
+                    &f.join("font.toml"),
+                    "location = { wght = 550 }",
+                    "location = { wght = 700 }",
+                );
+                replace(
+                    &f.join("font.toml"),
+                    "location = { wght = 700 }\n\n[[master]]",
+                    "location = { wght = 600 }\n\n[[master]]",
+                );
+            }),
+            "font/font.toml:18:7: error: axis `wght` ends at max = 700 but no master is there \
+             (only sparse master `O 550`, which draws some glyphs only); add a `[[master]]` \
+             with location { wght = 700 }, or set max to the default",
+        ),
+        (
+            "glyph only in the sparse master",
+            Box::new(|f: &Path| {
+                fs::write(
+                    f.join("w550/x.toml"),
+                    "name = \"x\"\nadvance = 500\n\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [50, 100, 0]]\n",
+                )
+                .expect("write")
+            }),
+            "font/w550/x.toml:1:8: error: glyph `x` is not in the default master; add it there \
+             too, or remove this file",
+        ),
+    ];
+    for (test, edit, error) in cases {
+        let (code, out) = check_edited(test, edit);
+        assert_eq!(code, 1, "{test}: {out}");
+        let errors: Vec<&str> = out.lines().filter(|l| l.contains(": error: ")).collect();
+        assert_eq!(errors, [error], "{test}: {out}");
+    }
+}
