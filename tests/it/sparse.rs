@@ -325,9 +325,12 @@ fn replace(path: &Path, old: &str, new: &str) {
     fs::write(path, text.replacen(old, new, 1)).expect("write");
 }
 
+/// A change to the fixture's copy.
+type Edit = Box<dyn FnOnce(&Path)>;
+
 #[test]
 fn sparse_master_errors_name_the_place_to_fix() {
-    let cases: Vec<(&str, Box<dyn FnOnce(&Path)>, &str)> = vec![
+    let cases: Vec<(&str, Edit, &str)> = vec![
         (
             "kerning",
             Box::new(|f: &Path| {
