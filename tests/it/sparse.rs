@@ -96,8 +96,8 @@ fn the_fixture_checks_clean_is_canonical_and_reports_the_sparse_master() {
     let b = built();
     assert!(
         b.stdout.contains(
-            "masters: Regular (wght 400, default), Bold (wght 700), O 550 (wght 550); named \
-             instances:"
+            "masters: Regular (wght 400, default), Bold (wght 700), O 550 (wght 550, sparse: 1 \
+             glyph); named instances:"
         ),
         "{}",
         b.stdout
