@@ -73,6 +73,17 @@ impl OutlinedFamily {
         self.designspace.weights(&self.model, location)
     }
 
+    /// The masters with kerning of their own (every one but the sparse ones) and their
+    /// model: [`Self::model`] when there is no sparse master.
+    pub fn kerning_model(&self) -> (&[usize], &VariationModel) {
+        let (set, model) = (&self.models.kerning.0, &self.models.kerning.1);
+        if set.len() == self.masters.len() {
+            (set, &self.model)
+        } else {
+            (set, model)
+        }
+    }
+
     /// The masters (indices into [`Self::masters`]) that draw glyph `i` of
     /// [`Self::default`], and their model: [`Self::model`] when every master draws it.
     pub fn glyph_model(&self, i: usize) -> (&[usize], &VariationModel) {

@@ -69,7 +69,7 @@ pub(crate) struct LayoutSource<'a> {
     /// Per master, its kerning by glyph id.
     pub kerning: Vec<KernPairs>,
     /// How the masters blend (`None` for a static font).
-    pub model: Option<&'a VariationModel>,
+    pub model: Option<LayoutModels<'a>>,
     /// The rules as `rvrn` feature variations: per box (normalised ranges by axis index,
     /// the first that holds deciding), the glyph ids it substitutes.
     pub rules: &'a [RuleRegion],
@@ -79,6 +79,16 @@ pub(crate) struct LayoutSource<'a> {
     pub axis_count: u16,
     /// The font's own `features.fea`.
     pub features: Option<&'a FeatureFile>,
+}
+
+/// Which masters blend for each value of a variable font's layout: per glyph (glyph
+/// order) for its anchors, and the full masters for kerning. Each is a set of non-default
+/// masters (indices into the per-master lists, the default not counted) and its model.
+pub(crate) struct LayoutModels<'a> {
+    /// Per glyph, the masters that draw it and their model.
+    pub glyphs: Vec<(&'a [usize], &'a VariationModel)>,
+    /// The masters with kerning of their own and their model.
+    pub kerning: (&'a [usize], &'a VariationModel),
 }
 
 /// A box of the design space (per constrained axis: index, normalised min and max) and
@@ -391,24 +401,30 @@ struct Generated {
 impl Generated {
     fn new(source: &LayoutSource, user: &BTreeSet<[u8; 4]>) -> Result<Self, OtfError> {
         let axes = usize::from(source.axis_count);
-        let regions: Vec<VariationRegion> = source
-            .model
-            .map_or(&[][..], |m| &m.regions)
-            .iter()
-            .map(|r| variation_region(r, axes))
-            .collect();
-        let vary = |values: &[i16]| Varying {
+        // A value in every master (default first), blended by the masters of `set`.
+        let vary = |set: Option<(&[usize], &VariationModel)>, values: &[i16]| Varying {
             default: values[0],
-            deltas: source.model.map_or_else(Vec::new, |model| {
-                let values: Vec<i32> = values.iter().map(|&v| i32::from(v)).collect();
-                regions
+            deltas: set.map_or_else(Vec::new, |(masters, model)| {
+                let values: Vec<i32> = std::iter::once(values[0])
+                    .chain(masters.iter().map(|&m| values[m + 1]))
+                    .map(i32::from)
+                    .collect();
+                model
+                    .regions
                     .iter()
                     .zip(model.int_deltas(&values))
                     .filter(|&(_, d)| d != 0)
                     // Wrapping as i16 arithmetic would (the values are i16 already).
-                    .map(|(r, d)| (r.clone(), d as i16))
+                    .map(|(r, d)| (variation_region(r, axes), d as i16))
                     .collect()
             }),
+        };
+        let kerning_set = source.model.as_ref().map(|m| m.kerning);
+        let glyph_set = |gid: u16| {
+            source
+                .model
+                .as_ref()
+                .map(|m| m.glyphs[usize::from(gid)])
         };
         let masters = source.kerning.len();
         let mut pairs: BTreeMap<(u16, u16), Vec<i16>> = BTreeMap::new();
@@ -421,7 +437,10 @@ impl Generated {
                 }
             }
         }
-        let kerning = pairs.iter().map(|(&k, v)| (k, vary(v))).collect();
+        let kerning = pairs
+            .iter()
+            .map(|(&k, v)| (k, vary(kerning_set, v)))
+            .collect();
 
         let mut marks: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>> = BTreeMap::new();
         let mut attach: BTreeMap<String, BTreeMap<u16, (Varying, Varying)>> = BTreeMap::new();
@@ -449,7 +468,7 @@ impl Generated {
                     xs.push(grid::to_i16(a.position.0, what)?);
                     ys.push(grid::to_i16(a.position.1, what)?);
                 }
-                let value = (vary(&xs), vary(&ys));
+                let value = (vary(glyph_set(gid), &xs), vary(glyph_set(gid), &ys));
                 match anchor.attaches_to() {
                     Some(base) => {
                         mark_glyphs.insert(gid);

@@ -39,7 +39,7 @@ use write_fonts::tables::gvar::GlyphDelta;
 use write_fonts::types::Tag;
 use write_fonts::BuilderError;
 
-use super::features::{layout_tables, LayoutSource, RuleRegion};
+use super::features::{layout_tables, LayoutModels, LayoutSource, RuleRegion};
 use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
 use super::truetype::TtGlyph;
@@ -196,7 +196,15 @@ fn build(
         outline_marks: set.glyphs.iter().map(|g| g.outline_mark).collect(),
         anchors,
         kerning,
-        model: Some(model),
+        model: Some(LayoutModels {
+            glyphs: (0..set.glyphs.len())
+                .map(|gid| match gid.checked_sub(synthesised) {
+                    Some(i) => family.glyph_model(i),
+                    None => (&family.models.sets[0].0[..], model),
+                })
+                .collect(),
+            kerning: family.kerning_model(),
+        }),
         rules: &rules,
         rules_feature: if designspace.rules_last {
             *b"rclt"
