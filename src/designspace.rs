@@ -353,11 +353,13 @@ impl VariationModel {
         deltas
     }
 
-    /// [`Self::deltas_by`] for whole numbers, rounded half up as OpenType tools do: the
-    /// deltas of `gvar`, `HVAR` and the layout's variation store.
+    /// [`Self::deltas_by`] for whole numbers, rounded half to even as fontTools' varLib
+    /// rounds them (Python's `round`, for `gvar`, `HVAR` and the variation store): the
+    /// deltas of `gvar`, `HVAR` and the layout's variation store. A half arises only where a
+    /// master's prediction weighs an odd delta by 1/2 (a master inside a corner region).
     pub fn int_deltas(&self, values: &[i32]) -> Vec<i32> {
         let values: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
-        self.deltas_by(&values, |d| (d + 0.5).floor())
+        self.deltas_by(&values, f64::round_ties_even)
             .into_iter()
             .map(|d| d as i32)
             .collect()
@@ -841,7 +843,7 @@ mod tests {
     /// Two axes normalised as user value / 100, with masters on both and three corners,
     /// one of them between the others (`w` 50). Expected values are fontTools 4.68's
     /// `VariationModel(locations, axisOrder=["w", "h"])`: `supports`,
-    /// `getMasterScalars` and `getDeltas(round=otRound)`, for the same master order.
+    /// `getMasterScalars` and `getDeltas(round=round)`, for the same master order.
     #[test]
     fn corner_masters_blend_as_fonttools() {
         let ds = Designspace {
@@ -909,6 +911,35 @@ mod tests {
         assert_eq!(
             model.int_deltas(&[10, 57, 3, 21, 30, 41, -4, -20]),
             vec![16, -7, 11, 20, 2, -14, -9]
+        );
+    }
+
+    /// A master inside a corner region, where its prediction is a half: fontTools 4.68's
+    /// `getDeltas(round=round)` (what varLib uses for `gvar` and `HVAR`) gives 108, where
+    /// `otRound` would give 109.
+    #[test]
+    fn deltas_round_half_to_even_as_varlib() {
+        let ds = Designspace {
+            axes: vec![
+                Axis::linear("w", "W", 0.0, 0.0, 100.0),
+                Axis::linear("h", "H", -100.0, 0.0, 0.0),
+            ],
+            instances: vec![],
+            rules: Vec::new(),
+            rules_last: false,
+        };
+        let loc =
+            |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());
+        let masters = [
+            loc(100.0, 0.0),
+            loc(0.0, -100.0),
+            loc(100.0, -100.0),
+            loc(50.0, -50.0),
+        ];
+        let model = ds.model(&masters).unwrap();
+        assert_eq!(
+            model.int_deltas(&[560, 590, 448, 448, 620]),
+            vec![30, -112, -30, 108]
         );
     }
 

@@ -374,6 +374,7 @@ pub fn outline_family_with(
         .collect::<Result<_, _>>()
         .map_err(|e| at_location(e, ds, &locations))?;
     models.of_glyph = order.iter().map(|&gi| models.of_glyph[gi]).collect();
+    models.own_of_glyph = order.iter().map(|&gi| models.own_of_glyph[gi]).collect();
 
     let mut summary = FamilySummary {
         compatible_segments: 0,

@@ -115,7 +115,7 @@ impl Family {
             .map(|(set, model)| GlyphModels::spread(&self.designspace, n, (set, model), location))
             .collect();
         let glyphs = (0..self.default.glyphs.len())
-            .map(|gi| self.blend_glyph(gi, &per_set[models.of_glyph[gi]]))
+            .map(|gi| self.blend_glyph(gi, &per_set[models.own_of_glyph[gi]]))
             .collect::<Result<Vec<_>, _>>()?;
         let (set, model) = &models.kerning;
         let kerning_weights = GlyphModels::spread(&self.designspace, n, (set, model), location);
@@ -152,7 +152,7 @@ impl Family {
                 if self.masters[m].drawn[gi] {
                     continue;
                 }
-                let w = GlyphModels::spread(&self.designspace, n, models.of(gi), &location);
+                let w = GlyphModels::spread(&self.designspace, n, models.own(gi), &location);
                 self.masters[m].glyphs[gi] = self.blend_glyph(gi, &w)?;
             }
             let (set, model) = &models.kerning;

@@ -93,8 +93,12 @@ pub struct GlyphModels {
     /// Each distinct set of non-default masters (indices into [`Family::masters`],
     /// ascending) with its model; the first is every master.
     pub sets: Vec<(Vec<usize>, VariationModel)>,
-    /// Per glyph, its set in [`Self::sets`].
+    /// Per glyph, the set its outline blends with: the masters that draw it or any glyph
+    /// it places as a component.
     pub of_glyph: Vec<usize>,
+    /// Per glyph, the set its own numbers (points, offsets, advance, anchors) blend with:
+    /// the masters that draw it.
+    pub own_of_glyph: Vec<usize>,
     /// The full (non-sparse) masters and their model, for kerning.
     pub kerning: (Vec<usize>, VariationModel),
 }
@@ -106,13 +110,20 @@ impl GlyphModels {
         GlyphModels {
             sets: vec![(all.clone(), model.clone())],
             of_glyph: vec![0; glyphs],
+            own_of_glyph: vec![0; glyphs],
             kerning: (all, model.clone()),
         }
     }
 
-    /// The masters that draw glyph `gi` and their model.
+    /// The masters glyph `gi`'s outline blends from and their model.
     pub fn of(&self, gi: usize) -> (&[usize], &VariationModel) {
         let (set, model) = &self.sets[self.of_glyph[gi]];
+        (set, model)
+    }
+
+    /// The masters that draw glyph `gi` and their model.
+    pub fn own(&self, gi: usize) -> (&[usize], &VariationModel) {
+        let (set, model) = &self.sets[self.own_of_glyph[gi]];
         (set, model)
     }
 
@@ -178,37 +189,67 @@ impl Family {
         let all: Vec<usize> = (0..self.masters.len()).collect();
         let full_model = self.model()?;
         let mut sets = vec![(all.clone(), full_model.clone())];
-        let mut of_glyph = Vec::with_capacity(self.default.glyphs.len());
-        for gi in 0..self.default.glyphs.len() {
-            let set: Vec<usize> = all
-                .iter()
-                .copied()
-                .filter(|&m| self.masters[m].drawn.get(gi).copied().unwrap_or(true))
-                .collect();
-            let k = match sets.iter().position(|(s, _)| *s == set) {
+        let mut find = |set: Vec<usize>| -> Result<usize, RegionError> {
+            Ok(match sets.iter().position(|(s, _)| *s == set) {
                 Some(k) => k,
                 None => {
                     let model = self.model_of(&set)?;
                     sets.push((set, model));
                     sets.len() - 1
                 }
-            };
-            of_glyph.push(k);
+            })
+        };
+        let drawn = |m: usize, gi: usize| self.masters[m].drawn.get(gi).copied().unwrap_or(true);
+        // A glyph's outline changes wherever one of its components' does: the masters
+        // that draw it or any glyph it places (recursively; the loader refuses cycles).
+        let index: HashMap<&str, usize> = (0..self.default.glyphs.len())
+            .map(|gi| (self.default.glyphs[gi].name.as_str(), gi))
+            .collect();
+        let mut outline_sets: Vec<Option<Vec<usize>>> = vec![None; self.default.glyphs.len()];
+        fn outline_set(
+            family: &Family,
+            index: &HashMap<&str, usize>,
+            memo: &mut [Option<Vec<usize>>],
+            gi: usize,
+            depth: usize,
+        ) -> Vec<usize> {
+            if let Some(set) = &memo[gi] {
+                return set.clone();
+            }
+            let mut set: Vec<usize> = (0..family.masters.len())
+                .filter(|&m| family.masters[m].drawn.get(gi).copied().unwrap_or(true))
+                .collect();
+            if depth < 64 {
+                for c in &family.default.glyphs[gi].components {
+                    if let Some(&base) = index.get(c.base.as_str()) {
+                        set.extend(outline_set(family, index, memo, base, depth + 1));
+                    }
+                }
+            }
+            set.sort_unstable();
+            set.dedup();
+            memo[gi] = Some(set.clone());
+            set
+        }
+        let mut of_glyph = Vec::with_capacity(self.default.glyphs.len());
+        let mut own_of_glyph = Vec::with_capacity(self.default.glyphs.len());
+        for gi in 0..self.default.glyphs.len() {
+            let own: Vec<usize> = all.iter().copied().filter(|&m| drawn(m, gi)).collect();
+            let outline = outline_set(self, &index, &mut outline_sets, gi, 0);
+            of_glyph.push(find(outline)?);
+            own_of_glyph.push(find(own)?);
         }
         let full: Vec<usize> = all
             .iter()
             .copied()
             .filter(|&m| !self.masters[m].sparse)
             .collect();
-        let kerning = if full.len() == all.len() {
-            (full, full_model)
-        } else {
-            let model = self.model_of(&full)?;
-            (full, model)
-        };
+        let k = find(full.clone())?;
+        let kerning = (full, sets[k].1.clone());
         Ok(GlyphModels {
             sets,
             of_glyph,
+            own_of_glyph,
             kerning,
         })
     }

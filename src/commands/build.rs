@@ -234,19 +234,14 @@ fn masters_line(family: &Family) -> String {
         family.default.info.style,
         at(&Location::default())
     )];
-    masters.extend(
-        family
-            .masters
-            .iter()
-            .map(|m| match m.sparse {
-                true => {
-                    let drawn = m.drawn.iter().filter(|&&d| d).count();
-                    let glyphs = if drawn == 1 { "glyph" } else { "glyphs" };
-                    format!("{} ({}, sparse: {drawn} {glyphs})", m.name, at(&m.location))
-                }
-                false => format!("{} ({})", m.name, at(&m.location)),
-            }),
-    );
+    masters.extend(family.masters.iter().map(|m| match m.sparse {
+        true => {
+            let drawn = m.drawn.iter().filter(|&&d| d).count();
+            let glyphs = if drawn == 1 { "glyph" } else { "glyphs" };
+            format!("{} ({}, sparse: {drawn} {glyphs})", m.name, at(&m.location))
+        }
+        false => format!("{} ({})", m.name, at(&m.location)),
+    }));
     let instances: Vec<String> = ds
         .instances
         .iter()

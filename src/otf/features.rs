@@ -420,12 +420,7 @@ impl Generated {
             }),
         };
         let kerning_set = source.model.as_ref().map(|m| m.kerning);
-        let glyph_set = |gid: u16| {
-            source
-                .model
-                .as_ref()
-                .map(|m| m.glyphs[usize::from(gid)])
-        };
+        let glyph_set = |gid: u16| source.model.as_ref().map(|m| m.glyphs[usize::from(gid)]);
         let masters = source.kerning.len();
         let mut pairs: BTreeMap<(u16, u16), Vec<i16>> = BTreeMap::new();
         for (m, kerning) in source.kerning.iter().enumerate() {

@@ -387,3 +387,137 @@ fn sparse_master_errors_name_the_place_to_fix() {
         assert_eq!(errors, [error], "{test}: {out}");
     }
 }
+
+/// `tests/fixtures/corners` (weight × width, with the corner Bold Condensed) and a sparse
+/// master in the middle of the plane, `{ wght = 550, wdth = 87.5 }`, that draws only `n`:
+/// 60 units wider than the default's, with its `top` anchor 30 units to the right.
+fn corners_with_a_sparse_middle(dir: &Path) -> PathBuf {
+    let font = dir.join("font");
+    copy_dir(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/corners"),
+        &font,
+    );
+    let toml = fs::read_to_string(font.join("font.toml")).expect("font.toml");
+    let at = toml.find("\n[[instance]]").expect("an instance");
+    let master = "\n[[master]]\nname = \"Middle\"\nfolder = \"middle\"\nlocation = { wght = \
+                  550, wdth = 87.5 }\nsparse = true\n";
+    fs::write(
+        font.join("font.toml"),
+        format!("{}{master}{}", &toml[..at], &toml[at..]),
+    )
+    .expect("write");
+    fs::create_dir(font.join("middle")).expect("mkdir");
+    let n = fs::read_to_string(font.join("n.toml")).expect("n");
+    let mut out = String::new();
+    for line in n.lines() {
+        if line.starts_with("unicode") {
+            continue;
+        }
+        let line = match line {
+            "advance = 560" => "advance = 620".to_string(),
+            "position = [290, 500]" => "position = [350, 500]".to_string(),
+            l if l.starts_with("  [") => {
+                let v: Vec<f64> = l
+                    .trim()
+                    .trim_start_matches('[')
+                    .trim_end_matches("],")
+                    .split(", ")
+                    .map(|x| x.parse().expect("a number"))
+                    .collect();
+                format!("  [{}, {}, {}],", v[0] * 60.0 / 56.0, v[1], v[2])
+            }
+            l => l.to_string(),
+        };
+        out.push_str(&line);
+        out.push('\n');
+    }
+    fs::write(font.join("middle/n.toml"), out).expect("write");
+    font
+}
+
+#[test]
+fn a_sparse_master_off_the_axes_blends_with_fonttools_sub_models() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let font = corners_with_a_sparse_middle(tmp.path());
+    let (code, out, err) = xglyph(&["check", s(&font)]);
+    assert_eq!(
+        (code, out.as_str(), err.as_str()),
+        (0, "0 errors, 0 warnings\n", "")
+    );
+    let b = build(&font);
+    let (f, _) = xglyph::source::load_family(&font).expect("loads");
+    let vf = fs::read(b.out.join("CornersTest[wght,wdth].ttf")).expect("the variable TTF");
+    let vf = FontRef::new(&vf).expect("parses");
+    let bound = 0.5 + 0.5 + 2.0 * std::f64::consts::FRAC_1_SQRT_2;
+    let mut worst: f64 = 0.0;
+    for wg in [400.0, 475.0, 550.0, 625.0, 700.0] {
+        for wd in [75.0, 81.25, 87.5, 93.75, 100.0] {
+            let at = Location(
+                [("wght".to_string(), wg), ("wdth".to_string(), wd)]
+                    .into_iter()
+                    .collect(),
+            );
+            let instance = f.instance_at(&at).expect("blends");
+            let location = vf
+                .axes()
+                .location([("wght", wg as f32), ("wdth", wd as f32)]);
+            for name in ["n", "O", "H"] {
+                let gid = glyph_id(&vf, name);
+                let mine = skrifa_outline(&vf, gid, LocationRef::from(&location));
+                let d = paths::two_sided(&mine, &xspline_path(glyph(&instance, name)), 16);
+                worst = worst.max(d);
+                assert!(d <= bound, "{name} at {wg}, {wd}: {d}");
+                let advance = vf
+                    .glyph_metrics(Size::unscaled(), LocationRef::from(&location))
+                    .advance_width(gid)
+                    .expect("advance");
+                // The variable font rounds each master's advance and the blend of their
+                // deltas: within 1 unit of the exact blend.
+                assert!(
+                    (f64::from(advance) - glyph(&instance, name).advance).abs() <= 1.0,
+                    "{name} at {wg}, {wd}: advance {advance}, blend {}",
+                    glyph(&instance, name).advance
+                );
+            }
+        }
+    }
+    println!("worst distance to the blended X-splines over the grid: {worst:.3}");
+    // In the middle `n` is the sparse master's own.
+    let middle = f
+        .instance_at(&Location(
+            [("wght".to_string(), 550.0), ("wdth".to_string(), 87.5)]
+                .into_iter()
+                .collect(),
+        ))
+        .expect("blends");
+    assert_eq!(glyph(&middle, "n").advance, 620.0);
+    assert_eq!(glyph(&middle, "n").anchors[0].position, (350.0, 500.0));
+    if !tools::designspace_compilers_available() {
+        return;
+    }
+    let dir = tempfile::tempdir().expect("temp dir");
+    let report = tools::check_designspace_compilers(
+        &b.out.join("CornersTest.designspace"),
+        &b.out.join("CornersTest[wght,wdth].ttf"),
+        dir.path(),
+        0.5,
+        &[
+            "wght=550,wdth=87.5",
+            "wght=500,wdth=90",
+            "wght=620,wdth=80",
+            "wght=700,wdth=75",
+            "wght=450,wdth=95",
+        ],
+    );
+    println!("{report}");
+    assert!(
+        report.contains("ok    CornersTest-Regular.ufo layer Middle: 1 glyphs (n), each with"),
+        "{report}"
+    );
+    let outlines = report
+        .lines()
+        .filter(|l| l.starts_with("ok ") && l.contains(": outlines at "))
+        .count();
+    assert_eq!(outlines, 10, "{report}");
+    assert!(report.contains("designspace_check: all passed"), "{report}");
+}
