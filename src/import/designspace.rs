@@ -287,15 +287,21 @@ fn check_regions(
         RegionFailure::Uncovered { axis, user } => {
             let a = &designspace.axes[axis];
             let end = crate::source::emit::number(user);
-            match others.iter().find(|s| s.sparse && s.location.get(a) == user) {
+            match others
+                .iter()
+                .find(|s| s.sparse && s.location.get(a) == user)
+            {
                 Some(s) => format!(
-                    "axis `{}` ends at {end} but only source `{}`, on the layer {:?}, sits                      there; xglyph needs a master that draws every glyph (a source on a                      default layer) at each axis end",
+                    "axis `{}` ends at {end} but only source `{}`, on the layer {:?}, sits \
+                     there; xglyph needs a master that draws every glyph (a source on a \
+                     default layer) at each axis end",
                     a.name,
                     s.style,
                     s.layer.as_deref().unwrap_or_default()
                 ),
                 None => format!(
-                    "axis `{}` ends at {end} but no source sits there; xglyph needs a master                      at each axis end",
+                    "axis `{}` ends at {end} but no source sits there; xglyph needs a master \
+                     at each axis end",
                     a.name
                 ),
             }

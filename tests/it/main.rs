@@ -42,6 +42,7 @@ mod source_docs;
 mod source_emit;
 mod source_fmt;
 mod source_malformed;
+mod sparse_import;
 mod studio_browser;
 mod svg;
 mod terminal;
