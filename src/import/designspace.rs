@@ -6,18 +6,29 @@
 //! The source at every axis default becomes the font folder itself; every other source a
 //! master whose folder is its style name in lower case without spaces (`bold/`).
 //!
-//! A glyph that every source fits from its outline (foreign UFOs, without xglyph's lib) is
-//! fitted again for all sources at once ([`super::masters`]): one X-spline structure,
-//! each source's points fitted to its own outline, and the blend halfway between the
-//! default and each other source measured against the blended outlines. Limits: the
-//! sources' outlines of such a glyph must have one Bézier structure (else the error names
-//! the glyph); a glyph taken from xglyph's lib in one source and fitted in another must
-//! come out compatible by itself (else the error names the glyph and master). Axis maps
-//! become the axes' `map`; locations are read as user coordinates (`uservalue`, else
-//! `xvalue` through the inverse map); `<rules>` become `[[rule]]`s (conditions in user
-//! values). Discrete axes, `<mappings>` (avar 2), sources on a layer other than the
-//! default, and sources that xglyph's masters cannot hold (two at the default, an axis end
-//! without a source) are not supported: an error says which, before any UFO is read.
+//! A source on a UFO layer (`layer="…"`, fontmake's sparse "support" masters) becomes a
+//! sparse master ([`Master::sparse`]): it draws only the glyphs its layer has
+//! ([`super::import_ufo_layer`]: no kerning, info or features of its own), a glyph its
+//! layer holds empty while the default draws it counts as not drawn (as fontTools takes
+//! it), and [`Family::fill_sparse`] blends the rest from the masters that draw them; its
+//! folder holds only the glyphs it draws ([`family_sources`]). The sources on default
+//! layers must cover each axis end by themselves; the sparse ones are extra places. A
+//! default source on a layer is read from that layer as a whole font.
+//!
+//! A glyph that every source drawing it fits from its outline (foreign UFOs, without
+//! xglyph's lib) is fitted again for those sources at once ([`super::masters`]): one
+//! X-spline structure, each source's points fitted to its own outline, and the blend
+//! halfway between the default and each other of those sources measured against the
+//! blended outlines. Limits: the sources' outlines of such a glyph must have one Bézier
+//! structure (else the error names the glyph); a glyph taken from xglyph's lib in one
+//! source and fitted in another must come out compatible by itself (else the error names
+//! the glyph and master); a glyph in a layer that the default source lacks is an error
+//! naming it and the source. Axis maps become the axes' `map`; locations are read as user
+//! coordinates (`uservalue`, else `xvalue` through the inverse map); `<rules>` become
+//! `[[rule]]`s (conditions in user values). Discrete axes, `<mappings>` (avar 2), and
+//! sources that xglyph's masters cannot hold (two at the default, an axis end without a
+//! source on a default layer) are not supported: an error says which, before any UFO is
+//! read.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -196,12 +207,20 @@ pub fn import_designspace(
                     format!(
                         "{} {}",
                         a.name,
-                        crate::source::emit::number(location.get(a))
+                        crate::source::emit::computed_number(location.get(a))
                     )
                 })
                 .collect::<Vec<_>>()
                 .join(" ")
         });
+        // The same instance twice (name and place) is one.
+        if designspace
+            .instances
+            .iter()
+            .any(|i| i.name == name && i.location == location)
+        {
+            continue;
+        }
         designspace.instances.push(NamedInstance { name, location });
     }
     let mut family = Family {
