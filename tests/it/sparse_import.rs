@@ -7,7 +7,8 @@
 //! (wght 900) draw `O` (two ellipses, the stroke 40 and 200 units) and `H` (three
 //! rectangles, stems 40 and 200); the layer `support` of the Light UFO, a source at wght
 //! 600, draws `O` with a stroke of 100 (the full masters' blend there: 140) and holds `H`
-//! empty, which fontTools takes as not drawn. Tests that need Python, fontmake or fontTools
+//! empty, which fontTools takes as not drawn; `O.alt`, a composite of `O` in the full
+//! masters only, follows the layer's `O` there. Tests that need Python, fontmake or fontTools
 //! print `skipped: …` when they are missing, unless `XGLYPH_REQUIRE_TOOLS=1`.
 
 use std::collections::BTreeMap;
@@ -75,6 +76,8 @@ def master(stroke, style, layer_stroke=None):
     o = f.newGlyph("O"); o.unicodes = [ord("O")]; draw_o(o, stroke)
     h = f.newGlyph("H"); h.unicodes = [ord("H")]; draw_h(h, stroke)
     sp = f.newGlyph("space"); sp.unicodes = [32]; sp.width = 250
+    alt = f.newGlyph("O.alt"); alt.width = o.width + 20
+    alt.getPointPen().addComponent("O", (1, 0, 0, 1, 10, 0))
     if layer_stroke is not None:
         layer = f.newLayer("support")
         draw_o(layer.newGlyph("O"), layer_stroke)
@@ -242,10 +245,10 @@ fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
     assert_eq!(toml.matches("sparse = true").count(), 1, "{toml}");
     // The sparse folder holds only what its layer draws: no H (empty there), no space,
     // no kerning.
-    assert_eq!(files(&font.join("support")), ["O_.toml"]);
+    assert_eq!(files(&font.join("support")), ["O_.alt.toml", "O_.toml"]);
     assert_eq!(
         files(&font.join("bold")),
-        ["H_.toml", "O_.toml", "space.toml"]
+        ["H_.toml", "O_.alt.toml", "O_.toml", "space.toml"]
     );
 
     let (code, stdout, stderr) = xglyph(&["check", s(&font)]);
@@ -262,8 +265,10 @@ fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
         .arg(&ds)
         .args(["-o", "variable", "--output-path"])
         .arg(&theirs));
-    let compared: BTreeMap<String, BTreeMap<String, Compared>> =
-        python_json(COMPARE, &[&ours, &theirs, &"600,350,750", &"O", &"H"]);
+    let compared: BTreeMap<String, BTreeMap<String, Compared>> = python_json(
+        COMPARE,
+        &[&ours, &theirs, &"600,350,750", &"O", &"H", &"O.alt"],
+    );
     // At the sparse source: O as the layer draws it (stroke 100: the width 2 · 310 = 620,
     // where the full masters' blend would give 2 · 330 = 660), H as the full masters
     // blend it (the layer's empty H is not drawn).
@@ -273,6 +278,12 @@ fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
     assert!(o.distance <= 2.0, "O at wght 600: {support:?}");
     assert!((o.width[0] - 620.0).abs() <= 2.0, "{support:?}");
     assert_eq!(o.advance, [720.0, 720.0], "{support:?}");
+    // The composite of O follows the layer's O there, as fontmake's composite does: it
+    // is drawn in the sparse folder, its offset and advance the full masters' blend.
+    let alt = &support["O.alt"];
+    assert!(alt.distance <= 2.0, "O.alt at wght 600: {support:?}");
+    assert!((alt.width[0] - 620.0).abs() <= 2.0, "{support:?}");
+    assert_eq!(alt.advance, [780.0, 780.0], "{support:?}");
     assert_eq!(h.contours, [3, 3], "{support:?}");
     assert!(h.distance <= 1.0, "H at wght 600: {support:?}");
     // Stems of 40 + 160 · 500/800 = 140 at wght 600: the advance 500 + 280.
