@@ -332,7 +332,7 @@ fn ufo_options(args: &ImportArgs, progress: Progress) -> ImportOptions {
 fn check_designspace_flags(args: &ImportArgs) -> Result<(), ImportError> {
     refuse_font_flags(
         args,
-        "a designspace (it imports every glyph of each source's default layer)",
+        "a designspace (it imports every glyph of each source's layer)",
     )
 }
 

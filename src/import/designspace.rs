@@ -6,18 +6,29 @@
 //! The source at every axis default becomes the font folder itself; every other source a
 //! master whose folder is its style name in lower case without spaces (`bold/`).
 //!
-//! A glyph that every source fits from its outline (foreign UFOs, without xglyph's lib) is
-//! fitted again for all sources at once ([`super::masters`]): one X-spline structure,
-//! each source's points fitted to its own outline, and the blend halfway between the
-//! default and each other source measured against the blended outlines. Limits: the
-//! sources' outlines of such a glyph must have one Bézier structure (else the error names
-//! the glyph); a glyph taken from xglyph's lib in one source and fitted in another must
-//! come out compatible by itself (else the error names the glyph and master). Axis maps
-//! become the axes' `map`; locations are read as user coordinates (`uservalue`, else
-//! `xvalue` through the inverse map); `<rules>` become `[[rule]]`s (conditions in user
-//! values). Discrete axes, `<mappings>` (avar 2), sources on a layer other than the
-//! default, and sources that xglyph's masters cannot hold (two at the default, an axis end
-//! without a source) are not supported: an error says which, before any UFO is read.
+//! A source on a UFO layer (`layer="…"`, fontmake's sparse "support" masters) becomes a
+//! sparse master ([`Master::sparse`]): it draws only the glyphs its layer has
+//! ([`super::import_ufo_layer`]: no kerning, info or features of its own), a glyph its
+//! layer holds empty while the default draws it counts as not drawn (as fontTools takes
+//! it), and [`Family::fill_sparse`] blends the rest from the masters that draw them; its
+//! folder holds only the glyphs it draws ([`family_sources`]). The sources on default
+//! layers must cover each axis end by themselves; the sparse ones are extra places. A
+//! default source on a layer is read from that layer as a whole font.
+//!
+//! A glyph that every source drawing it fits from its outline (foreign UFOs, without
+//! xglyph's lib) is fitted again for those sources at once ([`super::masters`]): one
+//! X-spline structure, each source's points fitted to its own outline, and the blend
+//! halfway between the default and each other of those sources measured against the
+//! blended outlines. Limits: the sources' outlines of such a glyph must have one Bézier
+//! structure (else the error names the glyph); a glyph taken from xglyph's lib in one
+//! source and fitted in another must come out compatible by itself (else the error names
+//! the glyph and master); a glyph in a layer that the default source lacks is an error
+//! naming it and the source. Axis maps become the axes' `map`; locations are read as user
+//! coordinates (`uservalue`, else `xvalue` through the inverse map); `<rules>` become
+//! `[[rule]]`s (conditions in user values). Discrete axes, `<mappings>` (avar 2), and
+//! sources that xglyph's masters cannot hold (two at the default, an axis end without a
+//! source on a default layer) are not supported: an error says which, before any UFO is
+//! read.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -28,7 +39,8 @@ use rayon::prelude::*;
 
 use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
-use super::{grid_for, import_ufo, ImportError, ImportOptions, Imported, SourceGlyph};
+use super::UfoLayer;
+use super::{grid_for, import_ufo_layer, ImportError, ImportOptions, Imported, SourceGlyph};
 use crate::designspace::{
     Axis, Designspace, Location, NamedInstance, RegionError, Rule, MAX_RULE_BOXES,
 };
@@ -74,48 +86,89 @@ pub fn import_designspace(
             .clone()
             .or_else(|| s.name.clone())
             .unwrap_or_else(|| s.filename.trim_end_matches(".ufo").to_string());
-        if s.layer.is_some() {
-            return Err(fail(format!(
-                "source `{style}` reads the layer {:?}; only default layers are supported",
-                s.layer.as_deref().unwrap_or_default()
-            )));
-        }
         let location = location(&designspace, &s.location)
             .map_err(|m| fail(format!("source `{style}`: {m}")))?;
-        sources.push((style, location, base.join(&s.filename)));
+        sources.push(Source {
+            style,
+            location,
+            ufo: base.join(&s.filename),
+            layer: s.layer.clone(),
+            sparse: false,
+        });
     }
     let at_default = |l: &Location| designspace.normalize(l).iter().all(|&v| v == 0.0);
+    // The default source: one on a default layer if there is one.
     let default_index = sources
         .iter()
-        .position(|(_, l, _)| at_default(l))
+        .position(|s| at_default(&s.location) && s.layer.is_none())
+        .or_else(|| sources.iter().position(|s| at_default(&s.location)))
         .ok_or_else(|| fail("no source sits at the default of every axis".into()))?;
+    // Every other source on a layer is a sparse master, as in fontmake.
+    for (i, s) in sources.iter_mut().enumerate() {
+        s.sparse = i != default_index && s.layer.is_some();
+    }
     check_regions(&designspace, &sources, default_index).map_err(fail)?;
     distinct_styles(&designspace, &mut sources, default_index).map_err(fail)?;
     let mut imported = Vec::new();
-    for (style, location, ufo) in &sources {
-        imported.push((style.clone(), location.clone(), import_ufo(ufo, opts)?));
+    for s in &sources {
+        let layer = s.layer.as_deref().map(|name| {
+            if s.sparse {
+                UfoLayer::Sparse(name)
+            } else {
+                UfoLayer::Full(name)
+            }
+        });
+        imported.push((
+            s.style.clone(),
+            s.location.clone(),
+            import_ufo_layer(&s.ufo, layer, opts)?,
+        ));
+    }
+    let sparse: Vec<bool> = sources.iter().map(|s| s.sparse).collect();
+    let drawn_in_default: HashMap<String, bool> = imported[default_index]
+        .2
+        .font
+        .glyphs
+        .iter()
+        .map(|g| (g.name.clone(), !is_empty(g)))
+        .collect();
+    for (k, one) in imported.iter_mut().enumerate() {
+        if sparse[k] {
+            leave_out_empty(&mut one.2, &drawn_in_default);
+        }
     }
     let tolerance = super::check_tolerance(
         opts.tolerance,
         imported[default_index].2.font.info.units_per_em,
     )?;
-    refit_compatible(&mut imported, default_index, tolerance).map_err(fail)?;
+    refit_compatible(&mut imported, &sparse, default_index, tolerance).map_err(fail)?;
     let (style, _, default) = imported.remove(default_index);
     let mut font = default.font;
     font.info.style = style.clone();
     let mut reports = vec![(style, default.report)];
     let mut masters = Vec::new();
-    for (style, location, other) in imported {
+    let others = sparse
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != default_index)
+        .map(|(_, &s)| s);
+    for ((style, location, other), sparse) in imported.into_iter().zip(others) {
         let folder = PathBuf::from(folder_name(&style));
-        let glyphs = parallel(&font.glyphs, &other.font.glyphs, &style).map_err(fail)?;
+        let (glyphs, drawn) =
+            parallel(&font.glyphs, &other.font.glyphs, &style, sparse).map_err(fail)?;
         masters.push(Master {
             name: style.clone(),
             folder,
             location,
-            drawn: vec![true; glyphs.len()],
+            drawn,
             glyphs,
-            kerning: other.font.kerning,
-            sparse: false,
+            // A sparse master's kerning is the full masters' blend ([`Family::fill_sparse`]).
+            kerning: if sparse {
+                Vec::new()
+            } else {
+                other.font.kerning
+            },
+            sparse,
         });
         reports.push((style, other.report));
     }
@@ -154,39 +207,187 @@ pub fn import_designspace(
                     format!(
                         "{} {}",
                         a.name,
-                        crate::source::emit::number(location.get(a))
+                        crate::source::emit::computed_number(location.get(a))
                     )
                 })
                 .collect::<Vec<_>>()
                 .join(" ")
         });
+        // The same instance twice (name and place) is one.
+        if designspace
+            .instances
+            .iter()
+            .any(|i| i.name == name && i.location == location)
+        {
+            continue;
+        }
         designspace.instances.push(NamedInstance { name, location });
     }
-    Ok(ImportedFamily {
-        family: Family {
-            default: font,
-            designspace,
-            masters,
-        },
-        reports,
-    })
+    let mut family = Family {
+        default: font,
+        designspace,
+        masters,
+    };
+    // What the sparse masters leave out, blended from the masters that draw it.
+    family.fill_sparse().map_err(|e| {
+        fail(format!(
+            "a glyph that a source on a layer does not draw cannot be blended there: {e}"
+        ))
+    })?;
+    draw_composites_over_drawn_bases(&mut family);
+    Ok(ImportedFamily { family, reports })
+}
+
+/// Marks drawn, in each sparse master, the composites it does not draw whose components
+/// (at any depth) it does: their outlines follow those bases there, as a TrueType
+/// composite's do in fontmake's font. Their advance and component offsets stay the fill's
+/// blend of the masters that draw them.
+fn draw_composites_over_drawn_bases(family: &mut Family) {
+    let index: HashMap<String, usize> = family
+        .default
+        .glyphs
+        .iter()
+        .enumerate()
+        .map(|(i, g)| (g.name.clone(), i))
+        .collect();
+    for m in family.masters.iter_mut().filter(|m| m.sparse) {
+        // Each pass reaches one level of nesting further.
+        loop {
+            let newly: Vec<usize> = (0..m.glyphs.len())
+                .filter(|&gi| !m.drawn.get(gi).copied().unwrap_or(true))
+                .filter(|&gi| {
+                    m.glyphs[gi].components.iter().any(|c| {
+                        index
+                            .get(&c.base)
+                            .is_some_and(|&b| m.drawn.get(b).copied().unwrap_or(true))
+                    })
+                })
+                .collect();
+            if newly.is_empty() {
+                break;
+            }
+            for gi in newly {
+                m.drawn[gi] = true;
+            }
+        }
+    }
+}
+
+/// Whether a glyph has no outline: no contours, no components.
+fn is_empty(g: &Glyph) -> bool {
+    g.contours.is_empty() && g.components.is_empty()
+}
+
+/// Leaves out of a sparse source's import the glyphs its layer holds empty while the
+/// default source draws them (`drawn_in_default` by name): fontTools takes such a glyph
+/// as missing from the sparse master, so it blends from the others there.
+fn leave_out_empty(one: &mut Imported, drawn_in_default: &HashMap<String, bool>) {
+    let empty: Vec<String> = one
+        .font
+        .glyphs
+        .iter()
+        .filter(|g| is_empty(g) && drawn_in_default.get(&g.name).copied().unwrap_or(false))
+        .map(|g| g.name.clone())
+        .collect();
+    if empty.is_empty() {
+        return;
+    }
+    one.font.glyphs.retain(|g| !empty.contains(&g.name));
+    one.report.rows.retain(|r| !empty.contains(&r.name));
+    for name in &empty {
+        one.outlines.remove(name);
+    }
+    one.report.notes.push(format!(
+        "{} left out: empty in the layer, drawn in the default source (taken as not drawn \
+         here, as fontTools does)",
+        empty.join(", ")
+    ));
+}
+
+/// One `<source>` of the designspace.
+struct Source {
+    /// Its style name (else its name, else its file name without `.ufo`).
+    style: String,
+    /// Where it sits (user coordinates).
+    location: Location,
+    /// Its UFO folder.
+    ufo: PathBuf,
+    /// The UFO layer it reads; `None` for the default layer.
+    layer: Option<String>,
+    /// On a layer, and not the default source: a sparse master, drawing only the glyphs
+    /// its layer has.
+    sparse: bool,
 }
 
 /// Refuses, before any UFO is read, sources that xglyph's masters cannot hold
 /// ([`Designspace::model`]): two sources at one place, or an axis end without a source on
-/// that axis alone.
+/// that axis alone. The full sources (on default layers) must cover the axis ends by
+/// themselves, since a glyph that no sparse source draws blends from them alone; the
+/// sparse sources are extra places.
 fn check_regions(
     designspace: &Designspace,
-    sources: &[(String, Location, PathBuf)],
+    sources: &[Source],
     default_index: usize,
 ) -> Result<(), String> {
-    let others: Vec<&(String, Location, PathBuf)> = sources
+    let others: Vec<&Source> = sources
         .iter()
         .enumerate()
         .filter(|&(i, _)| i != default_index)
         .map(|(_, s)| s)
         .collect();
-    let locations: Vec<Location> = others.iter().map(|s| s.1.clone()).collect();
+    let full: Vec<&Source> = others.iter().copied().filter(|s| !s.sparse).collect();
+    let default = &sources[default_index];
+    region_check(designspace, default, &full).map_err(|e| match e {
+        RegionFailure::Message(m) => m,
+        RegionFailure::Uncovered { axis, user } => {
+            let a = &designspace.axes[axis];
+            let end = crate::source::emit::number(user);
+            match others
+                .iter()
+                .find(|s| s.sparse && s.location.get(a) == user)
+            {
+                Some(s) => format!(
+                    "axis `{}` ends at {end} but only source `{}`, on the layer {:?}, sits \
+                     there; xglyph needs a master that draws every glyph (a source on a \
+                     default layer) at each axis end",
+                    a.name,
+                    s.style,
+                    s.layer.as_deref().unwrap_or_default()
+                ),
+                None => format!(
+                    "axis `{}` ends at {end} but no source sits there; xglyph needs a master \
+                     at each axis end",
+                    a.name
+                ),
+            }
+        }
+    })?;
+    if full.len() < others.len() {
+        region_check(designspace, default, &others).map_err(|e| match e {
+            RegionFailure::Message(m) => m,
+            // The full sources cover every end, so these do too.
+            RegionFailure::Uncovered { axis, .. } => format!(
+                "axis `{}`: the sources do not cover its ends",
+                designspace.axes[axis].name
+            ),
+        })?;
+    }
+    Ok(())
+}
+
+/// Why [`region_check`] refuses: a message, or an axis end without a source.
+enum RegionFailure {
+    Message(String),
+    Uncovered { axis: usize, user: f64 },
+}
+
+/// The model of `default` and `others`, its failures as messages naming the sources.
+fn region_check(
+    designspace: &Designspace,
+    default: &Source,
+    others: &[&Source],
+) -> Result<(), RegionFailure> {
+    let locations: Vec<Location> = others.iter().map(|s| s.location.clone()).collect();
     let place = |l: &Location| {
         designspace
             .axes
@@ -197,22 +398,19 @@ fn check_regions(
     };
     match designspace.model(&locations) {
         Ok(_) => Ok(()),
-        Err(RegionError::AtDefault { master }) => Err(format!(
+        Err(RegionError::AtDefault { master }) => Err(RegionFailure::Message(format!(
             "sources `{}` and `{}` both sit at the default of every axis",
-            sources[default_index].0, others[master].0
-        )),
-        Err(RegionError::Duplicate { first, second }) => Err(format!(
+            default.style, others[master].style
+        ))),
+        Err(RegionError::Duplicate { first, second }) => Err(RegionFailure::Message(format!(
             "sources `{}` and `{}` sit at the same place ({})",
-            others[first].0,
-            others[second].0,
-            place(&others[first].1)
-        )),
-        Err(RegionError::UncoveredEnd { axis, user }) => Err(format!(
-            "axis `{}` ends at {} but no source sits there; xglyph needs a master at each \
-             axis end",
-            designspace.axes[axis].name,
-            crate::source::emit::number(user)
-        )),
+            others[first].style,
+            others[second].style,
+            place(&others[first].location)
+        ))),
+        Err(RegionError::UncoveredEnd { axis, user }) => {
+            Err(RegionFailure::Uncovered { axis, user })
+        }
     }
 }
 
@@ -222,15 +420,18 @@ fn check_regions(
 /// collide are an error, before any UFO is read.
 fn distinct_styles(
     designspace: &Designspace,
-    sources: &mut [(String, Location, PathBuf)],
+    sources: &mut [Source],
     default_index: usize,
 ) -> Result<(), String> {
     let folder = |s: &str| folder_name(s);
-    let mut taken = vec![folder(&sources[default_index].0)];
-    for (i, (style, location, _)) in sources.iter_mut().enumerate() {
+    let mut taken = vec![folder(&sources[default_index].style)];
+    for (i, source) in sources.iter_mut().enumerate() {
         if i == default_index {
             continue;
         }
+        let Source {
+            style, location, ..
+        } = source;
         if taken.contains(&folder(style)) {
             for a in &designspace.axes {
                 let v = location.get(a);
@@ -245,7 +446,7 @@ fn distinct_styles(
         .iter()
         .enumerate()
         .filter(|&(i, _)| i != default_index)
-        .map(|(_, (s, _, _))| (folder(s), s.as_str()))
+        .map(|(_, s)| (folder(&s.style), s.style.as_str()))
         .collect();
     named.sort();
     match named.windows(2).find(|w| w[0].0 == w[1].0) {
@@ -322,43 +523,54 @@ fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<Vec<Rule>, String> 
     Ok(out)
 }
 
-/// Fits again, with one structure for all sources ([`import_compatible_glyph`]), every
-/// glyph that every source fitted from its outline (foreign UFOs: fitted one source at a
-/// time, the masters matched only by luck). The glyphs' components, anchors and advances
-/// stay as each source's import made them; the report rows are replaced.
+/// Fits again, with one structure for all sources that draw it
+/// ([`import_compatible_glyph`]), every glyph that each of them fitted from its outline
+/// (foreign UFOs: fitted one source at a time, the masters matched only by luck). A glyph
+/// is drawn by the default, every full source and the sparse sources (`sparse[i]`) whose
+/// layer has it; the checkpoints are the halfway blends among those. The glyphs'
+/// components, anchors and advances stay as each source's import made them; the report
+/// rows are replaced.
 fn refit_compatible(
     imported: &mut [(String, Location, Imported)],
+    sparse: &[bool],
     default_index: usize,
     tolerance: f64,
 ) -> Result<(), String> {
-    // The default first, as the compatible import takes them.
-    let mut order: Vec<usize> = vec![default_index];
-    order.extend((0..imported.len()).filter(|&i| i != default_index));
-    let checkpoints = Checkpoint::halfways(order.len());
-    let names: Vec<String> = imported[default_index]
+    // Per glyph, the sources that draw it, the default first, as the compatible import
+    // takes them.
+    let drawing = |name: &str| -> Vec<usize> {
+        let mut order: Vec<usize> = vec![default_index];
+        order.extend((0..imported.len()).filter(|&i| {
+            i != default_index
+                && (!sparse[i] || imported[i].2.font.glyphs.iter().any(|g| g.name == name))
+        }));
+        order
+    };
+    let jobs: Vec<(String, Vec<usize>)> = imported[default_index]
         .2
         .outlines
         .keys()
-        .filter(|name| {
+        .map(|name| (name.clone(), drawing(name)))
+        .filter(|(name, order)| {
             order
                 .iter()
-                .all(|&i| imported[i].2.outlines.contains_key(*name))
+                .all(|&i| imported[i].2.outlines.contains_key(name))
         })
-        .cloned()
         .collect();
     let grid = grid_for(tolerance);
-    let refits = names
+    let refits = jobs
         .par_iter()
-        .map(|name| {
+        .map(|(name, order)| {
             let sources: Vec<SourceGlyph> = order
                 .iter()
                 .map(|&i| imported[i].2.outlines[name].clone())
                 .collect();
+            let checkpoints = Checkpoint::halfways(order.len());
             import_compatible_glyph(&sources, &checkpoints, tolerance, grid)
         })
         .collect::<Result<Vec<_>, String>>()?;
-    for fitted in refits {
-        for (f, &i) in fitted.into_iter().zip(&order) {
+    for (fitted, (_, order)) in refits.into_iter().zip(&jobs) {
+        for (f, &i) in fitted.into_iter().zip(order) {
             let one = &mut imported[i].2;
             if let Some(g) = one.font.glyphs.iter_mut().find(|g| g.name == f.glyph.name) {
                 g.contours = f.glyph.contours;
@@ -471,24 +683,42 @@ pub(crate) fn folder_name(style: &str) -> String {
 }
 
 /// The master's glyphs in the default's order, checked compatible with the default's
-/// (glyph set, contour and point counts, sharp points).
-fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyph>, String> {
+/// (glyph set, contour and point counts, sharp points), and which of them it draws. A
+/// sparse master (a source on a layer) may lack glyphs: each holds the default's glyph,
+/// not drawn, until [`Family::fill_sparse`] blends it.
+fn parallel(
+    default: &[Glyph],
+    master: &[Glyph],
+    style: &str,
+    sparse: bool,
+) -> Result<(Vec<Glyph>, Vec<bool>), String> {
     let by_name: HashMap<&str, &Glyph> = master.iter().map(|g| (g.name.as_str(), g)).collect();
     if let Some(extra) = master
         .iter()
         .find(|g| !default.iter().any(|d| d.name == g.name))
     {
-        return Err(format!(
-            "master `{style}` has the glyph `{}`, which the default source lacks",
-            extra.name
-        ));
+        return Err(if sparse {
+            format!(
+                "source `{style}` draws the glyph `{}` in its layer, which the default \
+                 source lacks",
+                extra.name
+            )
+        } else {
+            format!(
+                "master `{style}` has the glyph `{}`, which the default source lacks",
+                extra.name
+            )
+        });
     }
     default
         .iter()
         .map(|d| {
-            let m = by_name
-                .get(d.name.as_str())
-                .ok_or_else(|| format!("master `{style}` has no glyph `{}`", d.name))?;
+            let Some(m) = by_name.get(d.name.as_str()) else {
+                if sparse {
+                    return Ok((d.clone(), false));
+                }
+                return Err(format!("master `{style}` has no glyph `{}`", d.name));
+            };
             let shape = |g: &Glyph| -> Vec<Vec<bool>> {
                 g.contours
                     .iter()
@@ -515,14 +745,16 @@ fn parallel(default: &[Glyph], master: &[Glyph], style: &str) -> Result<Vec<Glyp
             }
             let mut g = (*m).clone();
             g.unicodes = d.unicodes.clone();
-            Ok(g)
+            Ok((g, true))
         })
-        .collect()
+        .collect::<Result<Vec<_>, String>>()
+        .map(|v| v.into_iter().unzip())
 }
 
 /// Every source file of an imported family as `(relative path, text)`: `font.toml` with the
 /// axes, masters and instances, the default master's glyph files and kerning, then each
 /// master's folder (`bold/a.toml` …, glyph files without `unicode`, and `bold/kerning.toml`).
+/// A sparse master's folder holds only the glyphs it draws, and no kerning.
 pub fn family_sources(family: &Family) -> Vec<(String, String)> {
     let mut files = crate::source::emit::font_sources(&family.default);
     files[0].1 = crate::source::emit::family_font_toml(
@@ -533,13 +765,16 @@ pub fn family_sources(family: &Family) -> Vec<(String, String)> {
     for m in &family.masters {
         let folder = m.folder.to_string_lossy();
         let stems = crate::names::file_stems(m.glyphs.iter().map(|g| g.name.as_str()));
-        for (g, stem) in m.glyphs.iter().zip(stems) {
+        for (i, (g, stem)) in m.glyphs.iter().zip(stems).enumerate() {
+            if !m.drawn.get(i).copied().unwrap_or(true) {
+                continue;
+            }
             files.push((
                 format!("{folder}/{stem}.toml"),
                 crate::source::emit::master_glyph_toml(g),
             ));
         }
-        if !m.kerning.is_empty() {
+        if !m.kerning.is_empty() && !m.sparse {
             files.push((
                 format!("{folder}/kerning.toml"),
                 crate::source::emit::kerning_toml(&m.kerning),

@@ -41,7 +41,7 @@ pub mod ufo;
 pub mod variable;
 pub mod webfont;
 
-pub use ufo::import_ufo;
+pub use ufo::{import_ufo, import_ufo_layer, UfoLayer};
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt;

@@ -21,9 +21,10 @@
 //! categories are not read: xglyph classes glyphs itself); `features.fea` comes in (written
 //! next to the glyph files; `check` compiles it) with its includes inlined and renamed
 //! glyphs renamed ([`super::fea`]). Limits: guidelines, images and other layers are not
-//! imported (the model has no place for them); a glyph name outside the OpenType `post`
-//! rule is renamed as SVG file names are (`names::glyph_name_from`), in components,
-//! kerning and features too.
+//! imported (the model has no place for them; a designspace source on a layer reads that
+//! layer, [`import_ufo_layer`]); a glyph name outside the OpenType `post` rule is renamed
+//! as SVG file names are (`names::glyph_name_from`), in components, kerning and features
+//! too.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -48,6 +49,28 @@ const MAX_DEPTH: usize = 64;
 
 /// Imports the UFO folder at `path`.
 pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportError> {
+    import_ufo_layer(path, None, opts)
+}
+
+/// Which glyphs of a UFO an import reads ([`import_ufo_layer`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UfoLayer<'a> {
+    /// The named layer as a whole font: its glyphs, with the UFO's info, kerning and
+    /// features (a designspace's default source on a layer).
+    Full(&'a str),
+    /// The named layer's glyphs only, as a sparse master draws them (a designspace
+    /// source on a layer): no kerning, no features, and the layer may hold any number of
+    /// glyphs. A component whose base the layer lacks is resolved in the default layer.
+    Sparse(&'a str),
+}
+
+/// Imports the UFO folder at `path`, reading its default layer (`layer` `None`, as
+/// [`import_ufo`]) or the named layer `layer`. The font info is the UFO's either way.
+pub fn import_ufo_layer(
+    path: &Path,
+    layer: Option<UfoLayer<'_>>,
+    opts: &ImportOptions,
+) -> Result<Imported, ImportError> {
     let ufo = norad::Font::load(path).map_err(|e| {
         ImportError::at(
             path,
@@ -57,14 +80,31 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     let upm = units_per_em(&ufo).map_err(|m| ImportError::at(path, m))?;
     let tolerance = super::check_tolerance(opts.tolerance, upm)?;
     let info = font_info(&ufo, upm, tolerance, opts);
-    let names = glyph_names(&ufo).map_err(|m| ImportError::at(path, m))?;
-    let layer = ufo.default_layer();
-    let glyphs: Vec<&norad::Glyph> = layer.iter().collect();
-    if glyphs.is_empty() {
+    let (layers, sparse): (Vec<&norad::Layer>, bool) = match layer {
+        None => (vec![ufo.default_layer()], false),
+        Some(UfoLayer::Full(name) | UfoLayer::Sparse(name)) => {
+            let named = ufo
+                .layers
+                .get(name)
+                .ok_or_else(|| ImportError::at(path, format!("the UFO has no layer {name:?}")))?;
+            match layer {
+                Some(UfoLayer::Sparse(_)) => (vec![named, ufo.default_layer()], true),
+                _ => (vec![named], false),
+            }
+        }
+    };
+    let names = glyph_names(&layers).map_err(|m| ImportError::at(path, m))?;
+    let glyphs: Vec<&norad::Glyph> = layers[0].iter().collect();
+    if glyphs.is_empty() && !sparse {
         // The sources of a font need at least one glyph (`check` refuses an empty folder).
         return Err(ImportError::at(
             path,
-            "the UFO has no glyphs in its default layer",
+            match layer {
+                None => "the UFO has no glyphs in its default layer".to_string(),
+                Some(UfoLayer::Full(name) | UfoLayer::Sparse(name)) => {
+                    format!("the UFO has no glyphs in its layer {name:?}")
+                }
+            },
         ));
     }
     let grid = grid_for(tolerance);
@@ -76,7 +116,7 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
     let mut fitted = glyphs
         .par_iter()
         .map(|g| {
-            let one = import_one(layer, g, &names, (tolerance, bound), grid);
+            let one = import_one(&layers, g, &names, (tolerance, bound), grid);
             if let Some(tell) = &opts.progress.0 {
                 tell(done.fetch_add(1, Ordering::Relaxed) + 1, glyphs.len());
             }
@@ -143,8 +183,13 @@ pub fn import_ufo(path: &Path, opts: &ImportOptions) -> Result<Imported, ImportE
         let combining = g.unicodes.iter().any(|&c| crate::source::is_combining(c));
         g.outline_mark = (marks.contains(g.name.as_str()) || combining) && !g.attaches_by_anchor();
     }
-    let kerning = kerning(&ufo, &names);
-    let features = if ufo.features.trim().is_empty() {
+    // A sparse layer has no kerning or features of its own: the full masters' apply.
+    let kerning = if sparse {
+        Vec::new()
+    } else {
+        kerning(&ufo, &names)
+    };
+    let features = if sparse || ufo.features.trim().is_empty() {
         None
     } else {
         let next_to = path.parent().unwrap_or(Path::new("."));
@@ -251,11 +296,15 @@ fn version_text(major: Option<i32>, minor: Option<u32>, lib: Option<String>) -> 
     major.map(|_| format!("{}.{:03}", numbers.0, numbers.1))
 }
 
-/// UFO glyph name -> model glyph name, refusing two that would become one.
-fn glyph_names(ufo: &norad::Font) -> Result<HashMap<String, String>, String> {
+/// UFO glyph name -> model glyph name over `layers` (a name in several is one glyph),
+/// refusing two that would become one.
+fn glyph_names(layers: &[&norad::Layer]) -> Result<HashMap<String, String>, String> {
     let mut out = HashMap::new();
     let mut taken: BTreeMap<String, String> = BTreeMap::new();
-    for g in ufo.default_layer().iter() {
+    for g in layers.iter().flat_map(|l| l.iter()) {
+        if out.contains_key(g.name().as_str()) {
+            continue;
+        }
         let new = crate::names::glyph_name_from(g.name());
         if let Some(other) = taken.insert(new.clone(), g.name().to_string()) {
             return Err(format!(
@@ -269,7 +318,7 @@ fn glyph_names(ufo: &norad::Font) -> Result<HashMap<String, String>, String> {
 }
 
 fn import_one(
-    layer: &norad::Layer,
+    layers: &[&norad::Layer],
     g: &norad::Glyph,
     names: &HashMap<String, String>,
     (tolerance, bound): (f64, f64),
@@ -289,7 +338,7 @@ fn import_one(
                 offset: (t.x_offset, t.y_offset),
             }),
             Some(_) => {
-                let path = resolved_path(layer, &c.base, affine(t), 0)
+                let path = resolved_path(layers, &c.base, affine(t), 0)
                     .map_err(|m| format!("glyph `{}`: {m}", g.name()))?;
                 drawn.extend(path);
             }
@@ -412,9 +461,10 @@ fn contours_path(g: &norad::Glyph, transform: Affine) -> BezPath {
     path
 }
 
-/// A glyph's whole outline (contours and components, recursively), transformed.
+/// A glyph's whole outline (contours and components, recursively), transformed; each
+/// glyph taken from the first of `layers` that has it.
 fn resolved_path(
-    layer: &norad::Layer,
+    layers: &[&norad::Layer],
     name: &str,
     transform: Affine,
     depth: usize,
@@ -424,13 +474,14 @@ fn resolved_path(
             "components nest more than {MAX_DEPTH} deep at `{name}` (a cycle?)"
         ));
     }
-    let g = layer
-        .get_glyph(name)
+    let g = layers
+        .iter()
+        .find_map(|l| l.get_glyph(name))
         .ok_or_else(|| format!("places `{name}`, which is not in the UFO"))?;
     let mut path = contours_path(g, transform);
     for c in &g.components {
         path.extend(resolved_path(
-            layer,
+            layers,
             &c.base,
             transform * affine(c.transform),
             depth + 1,

@@ -43,6 +43,7 @@ mod source_emit;
 mod source_fmt;
 mod source_malformed;
 mod sparse;
+mod sparse_import;
 mod studio_browser;
 mod svg;
 mod terminal;

@@ -1,0 +1,362 @@
+//! Designspace import of sources on a UFO layer (fontmake's sparse "support" masters): the
+//! source becomes a `sparse = true` master whose folder holds only the glyphs its layer
+//! draws, and the variable font built from the import matches fontmake's at the sparse
+//! source's place, for the glyph the layer draws and for one it leaves to the full masters.
+//!
+//! The designspace is made by Python (ufoLib2): `Light` (wght 100, default) and `Bold`
+//! (wght 900) draw `O` (two ellipses, the stroke 40 and 200 units) and `H` (three
+//! rectangles, stems 40 and 200); the layer `support` of the Light UFO, a source at wght
+//! 600, draws `O` with a stroke of 100 (the full masters' blend there: 140) and holds `H`
+//! empty, which fontTools takes as not drawn; `O.alt`, a composite of `O` in the full
+//! masters only, follows the layer's `O` there. Tests that need Python, fontmake or fontTools
+//! print `skipped: …` when they are missing, unless `XGLYPH_REQUIRE_TOOLS=1`.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::Path;
+use std::process::Command;
+
+use crate::common::cli::{import_fails, import_ok, xglyph};
+use crate::common::tools::{available, program_runs, python_imports, python_json, run};
+
+/// Writes `sparse.designspace` with its two UFOs into the folder `argv[1]`; with `argv[2]`
+/// = "extra", the layer also draws a glyph `X` that the default source lacks.
+const MAKE: &str = r#"
+import sys, math
+from pathlib import Path
+import ufoLib2
+from fontTools.designspaceLib import DesignSpaceDocument, AxisDescriptor, SourceDescriptor
+
+out = Path(sys.argv[1])
+extra = len(sys.argv) > 2 and sys.argv[2] == "extra"
+K = 0.5522847498
+
+def ellipse(pen, cx, cy, rx, ry, clockwise):
+    pts = [(cx + rx, cy), (cx, cy + ry), (cx - rx, cy), (cx, cy - ry)]
+    if clockwise:
+        pts = pts[::-1]
+    pen.moveTo(pts[0])
+    for i in range(4):
+        a, b = pts[i], pts[(i + 1) % 4]
+        # A quarter arc: the handles along the tangents, K times the other radius.
+        A = (a[0] - cx, a[1] - cy)
+        B = (b[0] - cx, b[1] - cy)
+        c1 = (a[0] + K * B[0], a[1] + K * B[1])
+        c2 = (b[0] + K * A[0], b[1] + K * A[1])
+        pen.curveTo(c1, c2, b)
+    pen.closePath()
+
+def draw_o(glyph, stroke):
+    rx, ry = 260 + stroke / 2, 350
+    glyph.width = 2 * rx + 100
+    pen = glyph.getPen()
+    ellipse(pen, glyph.width / 2, 350, rx, ry, False)
+    ellipse(pen, glyph.width / 2, 350, rx - stroke, ry - stroke * 0.6, True)
+
+def rect(pen, x0, y0, x1, y1):
+    pen.moveTo((x0, y0)); pen.lineTo((x1, y0)); pen.lineTo((x1, y1)); pen.lineTo((x0, y1))
+    pen.closePath()
+
+def draw_h(glyph, stem):
+    glyph.width = 500 + 2 * stem
+    pen = glyph.getPen()
+    rect(pen, 50, 0, 50 + stem, 700)
+    rect(pen, 450 + stem, 0, 450 + 2 * stem, 700)
+    rect(pen, 50 + stem, 330, 450 + stem, 330 + stem * 0.5)
+
+def master(stroke, style, layer_stroke=None):
+    f = ufoLib2.Font()
+    f.info.familyName = "Sparse Test"
+    f.info.styleName = style
+    f.info.unitsPerEm = 1000
+    f.info.ascender = 800
+    f.info.descender = -200
+    f.info.xHeight = 500
+    f.info.capHeight = 700
+    o = f.newGlyph("O"); o.unicodes = [ord("O")]; draw_o(o, stroke)
+    h = f.newGlyph("H"); h.unicodes = [ord("H")]; draw_h(h, stroke)
+    sp = f.newGlyph("space"); sp.unicodes = [32]; sp.width = 250
+    alt = f.newGlyph("O.alt"); alt.width = o.width + 20
+    alt.getPointPen().addComponent("O", (1, 0, 0, 1, 10, 0))
+    if layer_stroke is not None:
+        layer = f.newLayer("support")
+        draw_o(layer.newGlyph("O"), layer_stroke)
+        layer.newGlyph("H").width = 600
+        if extra:
+            x = layer.newGlyph("X"); x.width = 500
+            rect(x.getPen(), 0, 0, 100, 100)
+    return f
+
+master(40, "Light", 100).save(out / "Light.ufo", overwrite=True)
+master(200, "Bold").save(out / "Bold.ufo", overwrite=True)
+doc = DesignSpaceDocument()
+doc.addAxis(AxisDescriptor(tag="wght", name="Weight", minimum=100, default=100, maximum=900))
+for filename, name, wght, layer in [
+    ("Light.ufo", "Light", 100, None),
+    ("Bold.ufo", "Bold", 900, None),
+    ("Light.ufo", "Support", 600, "support"),
+]:
+    doc.addSource(SourceDescriptor(filename=filename, styleName=name, name=name,
+                                   location={"Weight": wght}, layerName=layer))
+doc.write(out / "sparse.designspace")
+print("{}")
+"#;
+
+/// Instances the variable fonts `argv[1]` (xglyph's) and `argv[2]` (fontmake's) at each
+/// `wght` of `argv[3]` (comma-separated) with fontTools' instancer; per place and glyph
+/// of `argv[4:]`: the two-sided distance between their outlines (samples of each to the
+/// other's polyline), each one's contour count, advance and bounding box width.
+const COMPARE: &str = r#"
+import sys, json
+import numpy as np
+from fontTools.ttLib import TTFont
+from fontTools.varLib.instancer import instantiateVariableFont
+from fontTools.pens.basePen import BasePen
+from fontTools.pens.boundsPen import BoundsPen
+
+def samples(font, name, steps=16):
+    gs = font.getGlyphSet()
+    contours = []
+    class P(BasePen):
+        def _moveTo(self, p):
+            self.cur = self.start = p
+            contours.append([p])
+        def _lineTo(self, p):
+            a = self.cur
+            for i in range(1, steps + 1):
+                t = i / steps
+                contours[-1].append((a[0] + (p[0] - a[0]) * t, a[1] + (p[1] - a[1]) * t))
+            self.cur = p
+        def _qCurveToOne(self, c, p):
+            a = self.cur
+            for i in range(1, steps + 1):
+                t = i / steps; u = 1 - t
+                contours[-1].append(tuple(u * u * a[k] + 2 * u * t * c[k] + t * t * p[k] for k in range(2)))
+            self.cur = p
+        def _curveToOne(self, c1, c2, p):
+            a = self.cur
+            for i in range(1, steps + 1):
+                t = i / steps; u = 1 - t
+                contours[-1].append(tuple(u ** 3 * a[k] + 3 * u * u * t * c1[k] + 3 * u * t * t * c2[k] + t ** 3 * p[k] for k in range(2)))
+            self.cur = p
+        def _closePath(self):
+            if self.cur != self.start:
+                self._lineTo(self.start)
+    gs[name].draw(P(gs))
+    b = BoundsPen(gs)
+    gs[name].draw(b)
+    return contours, gs[name].width, b.bounds
+
+def one_sided(xs, ys):
+    worst = 0.0
+    X = np.array([p for c in xs for p in c])
+    best = np.full(len(X), np.inf)
+    for c in ys:
+        Y = np.array(c)
+        P, D = Y[:-1], Y[1:] - Y[:-1]
+        L = (D ** 2).sum(-1); L[L == 0] = 1e-12
+        t = (((X[:, None, :] - P[None]) * D[None]).sum(-1) / L[None]).clip(0, 1)
+        d = np.sqrt(((X[:, None, :] - (P[None] + t[..., None] * D[None])) ** 2).sum(-1))
+        best = np.minimum(best, d.min(1))
+    return float(best.max())
+
+out = {}
+fonts = [TTFont(sys.argv[1]), TTFont(sys.argv[2])]
+for wght in sys.argv[3].split(","):
+    loc = {"wght": float(wght)}
+    a, b = (instantiateVariableFont(f, loc) for f in fonts)
+    here = out[wght] = {}
+    for name in sys.argv[4:]:
+        ca, wa, ba = samples(a, name)
+        cb, wb, bb = samples(b, name)
+        here[name] = {
+            "distance": max(one_sided(ca, cb), one_sided(cb, ca)),
+            "contours": [len(ca), len(cb)],
+            "advance": [wa, wb],
+            "width": [ba[2] - ba[0], bb[2] - bb[0]],
+        }
+print(json.dumps(out))
+"#;
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 path")
+}
+
+/// Whether Python with ufoLib2 and fontTools' instancer, and fontmake, are there.
+fn tools() -> bool {
+    available(
+        python_imports("ufoLib2, numpy, fontTools.designspaceLib, fontTools.varLib.instancer")
+            && program_runs("fontmake", &["--help"]),
+        "fontmake/fontTools/ufoLib2/numpy",
+        "pip install fontmake ufoLib2 numpy",
+    )
+}
+
+/// The files of `dir`, sorted.
+fn files(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir)
+        .expect("reads the folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[derive(serde::Deserialize, Debug)]
+struct Compared {
+    distance: f64,
+    contours: [usize; 2],
+    advance: [f64; 2],
+    width: [f64; 2],
+}
+
+#[test]
+fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
+    if !tools() {
+        return;
+    }
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let src = tmp.path().join("src");
+    fs::create_dir(&src).expect("creates");
+    let _: serde_json::Value = python_json(MAKE, &[&src]);
+    let ds = src.join("sparse.designspace");
+
+    let font = tmp.path().join("font");
+    let report = import_ok(&[s(&ds)], &font);
+    assert!(
+        report.contains("H left out: empty in the layer, drawn in the default source"),
+        "{report}"
+    );
+    let toml = fs::read_to_string(font.join("font.toml")).expect("font.toml");
+    assert_eq!(toml.matches("[[master]]").count(), 2, "{toml}");
+    assert!(
+        toml.contains(
+            "[[master]]\nname = \"Bold\"\nfolder = \"bold\"\nlocation = { wght = 900 }\n\n"
+        ),
+        "{toml}"
+    );
+    assert!(
+        toml.contains(
+            "[[master]]\nname = \"Support\"\nfolder = \"support\"\nlocation = { wght = 600 }\n\
+             sparse = true\n"
+        ),
+        "{toml}"
+    );
+    assert_eq!(toml.matches("sparse = true").count(), 1, "{toml}");
+    // The sparse folder holds only what its layer draws: no H (empty there), no space,
+    // no kerning.
+    assert_eq!(files(&font.join("support")), ["O_.alt.toml", "O_.toml"]);
+    assert_eq!(
+        files(&font.join("bold")),
+        ["H_.toml", "O_.alt.toml", "O_.toml", "space.toml"]
+    );
+
+    let (code, stdout, stderr) = xglyph(&["check", s(&font)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let out = tmp.path().join("out");
+    let (code, stdout, stderr) = xglyph(&["build", s(&font), "-o", s(&out)]);
+    assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
+    let ours = out.join("SparseTest[wght].ttf");
+    assert!(ours.exists(), "{:?}", files(&out));
+
+    let theirs = tmp.path().join("fontmake.ttf");
+    run(Command::new("fontmake")
+        .arg("-m")
+        .arg(&ds)
+        .args(["-o", "variable", "--output-path"])
+        .arg(&theirs));
+    let compared: BTreeMap<String, BTreeMap<String, Compared>> = python_json(
+        COMPARE,
+        &[&ours, &theirs, &"600,350,750", &"O", &"H", &"O.alt"],
+    );
+    // At the sparse source: O as the layer draws it (stroke 100: the width 2 · 310 = 620,
+    // where the full masters' blend would give 2 · 330 = 660), H as the full masters
+    // blend it (the layer's empty H is not drawn).
+    let support = &compared["600"];
+    let (o, h) = (&support["O"], &support["H"]);
+    assert_eq!(o.contours, [2, 2], "{support:?}");
+    assert!(o.distance <= 2.0, "O at wght 600: {support:?}");
+    assert!((o.width[0] - 620.0).abs() <= 2.0, "{support:?}");
+    assert_eq!(o.advance, [720.0, 720.0], "{support:?}");
+    // The composite of O follows the layer's O there, as fontmake's composite does: it
+    // is drawn in the sparse folder, its offset and advance the full masters' blend.
+    let alt = &support["O.alt"];
+    assert!(alt.distance <= 2.0, "O.alt at wght 600: {support:?}");
+    assert!((alt.width[0] - 620.0).abs() <= 2.0, "{support:?}");
+    assert_eq!(alt.advance, [780.0, 780.0], "{support:?}");
+    assert_eq!(h.contours, [3, 3], "{support:?}");
+    assert!(h.distance <= 1.0, "H at wght 600: {support:?}");
+    // Stems of 40 + 160 · 500/800 = 140 at wght 600: the advance 500 + 280.
+    assert_eq!(h.advance, [780.0, 780.0], "{support:?}");
+    // Between the default and the sparse source, and between it and Bold.
+    for wght in ["350", "750"] {
+        let between = &compared[wght];
+        for (name, c) in between {
+            assert!(c.distance <= 2.0, "{name} at wght {wght}: {between:?}");
+            assert_eq!(c.advance[0], c.advance[1], "{name} at wght {wght}");
+        }
+    }
+}
+
+#[test]
+fn a_glyph_only_the_layer_draws_is_refused_with_its_name_and_source() {
+    if !available(
+        python_imports("ufoLib2, fontTools.designspaceLib"),
+        "ufoLib2/fontTools",
+        "pip install ufoLib2 fonttools",
+    ) {
+        return;
+    }
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let _: serde_json::Value = python_json(MAKE, &[&tmp.path(), &"extra"]);
+    let ds = tmp.path().join("sparse.designspace");
+    let err = import_fails(&[s(&ds)], &tmp.path().join("font"));
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: source `Support` draws the glyph `X` in its layer, which the default \
+             source lacks\n",
+            ds.display()
+        )
+    );
+}
+
+/// A designspace whose only source at an axis end is on a layer: refused before any UFO
+/// is read (the UFOs named need not exist).
+#[test]
+fn a_layer_source_alone_at_an_axis_end_is_refused() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let ds = tmp.path().join("end.designspace");
+    fs::write(
+        &ds,
+        r#"<?xml version='1.0' encoding='UTF-8'?>
+<designspace format="4.1">
+  <axes>
+    <axis tag="wght" name="Weight" minimum="100" maximum="900" default="100"/>
+  </axes>
+  <sources>
+    <source filename="Light.ufo" name="Light" stylename="Light">
+      <location><dimension name="Weight" xvalue="100"/></location>
+    </source>
+    <source filename="Light.ufo" name="Support" stylename="Support" layer="support">
+      <location><dimension name="Weight" xvalue="600"/></location>
+    </source>
+    <source filename="Light.ufo" name="Heavy" stylename="Heavy" layer="heavy">
+      <location><dimension name="Weight" xvalue="900"/></location>
+    </source>
+  </sources>
+</designspace>
+"#,
+    )
+    .expect("writes");
+    let err = import_fails(&[s(&ds)], &tmp.path().join("font"));
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: axis `Weight` ends at 900 but only source `Heavy`, on the layer \
+             \"heavy\", sits there; xglyph needs a master that draws every glyph (a source \
+             on a default layer) at each axis end\n",
+            ds.display()
+        )
+    );
+}
