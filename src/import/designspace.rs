@@ -234,43 +234,7 @@ pub fn import_designspace(
             "a glyph that a source on a layer does not draw cannot be blended there: {e}"
         ))
     })?;
-    draw_composites_over_drawn_bases(&mut family);
     Ok(ImportedFamily { family, reports })
-}
-
-/// Marks drawn, in each sparse master, the composites it does not draw whose components
-/// (at any depth) it does: their outlines follow those bases there, as a TrueType
-/// composite's do in fontmake's font. Their advance and component offsets stay the fill's
-/// blend of the masters that draw them.
-fn draw_composites_over_drawn_bases(family: &mut Family) {
-    let index: HashMap<String, usize> = family
-        .default
-        .glyphs
-        .iter()
-        .enumerate()
-        .map(|(i, g)| (g.name.clone(), i))
-        .collect();
-    for m in family.masters.iter_mut().filter(|m| m.sparse) {
-        // Each pass reaches one level of nesting further.
-        loop {
-            let newly: Vec<usize> = (0..m.glyphs.len())
-                .filter(|&gi| !m.drawn.get(gi).copied().unwrap_or(true))
-                .filter(|&gi| {
-                    m.glyphs[gi].components.iter().any(|c| {
-                        index
-                            .get(&c.base)
-                            .is_some_and(|&b| m.drawn.get(b).copied().unwrap_or(true))
-                    })
-                })
-                .collect();
-            if newly.is_empty() {
-                break;
-            }
-            for gi in newly {
-                m.drawn[gi] = true;
-            }
-        }
-    }
 }
 
 /// Whether a glyph has no outline: no contours, no components.

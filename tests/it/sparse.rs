@@ -521,3 +521,42 @@ fn a_sparse_master_off_the_axes_blends_with_fonttools_sub_models() {
     assert_eq!(outlines, 10, "{report}");
     assert!(report.contains("designspace_check: all passed"), "{report}");
 }
+
+#[test]
+fn the_exported_designspace_imports_back_with_the_sparse_master() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let imported = tmp.path().join("imported");
+    crate::common::cli::import_ok(&[s(&b.out.join("MastersTest.designspace"))], &imported);
+    let (back, _) = xglyph::source::load_family(&imported).expect("loads");
+    let f = family();
+    let masters = |f: &Family| -> Vec<(String, f64, bool, usize)> {
+        f.masters
+            .iter()
+            .map(|m| {
+                let drawn = m.drawn.iter().filter(|&&d| d).count();
+                (m.name.clone(), m.location.0["wght"], m.sparse, drawn)
+            })
+            .collect()
+    };
+    assert_eq!(masters(&back), masters(f));
+    let folder = &back.masters[1].folder;
+    let mut files: Vec<String> = fs::read_dir(imported.join(folder))
+        .expect("the sparse folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["O_.toml"]);
+    // The X-spline sources come back from the UFO lib: the sparse master's O exactly.
+    let o = |f: &Family| {
+        let i = f
+            .default
+            .glyphs
+            .iter()
+            .position(|g| g.name == "O")
+            .expect("O");
+        f.masters[1].glyphs[i].clone()
+    };
+    assert_eq!(o(&back).contours, o(f).contours);
+    assert_eq!(o(&back).advance, 750.0);
+}
