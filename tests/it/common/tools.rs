@@ -74,6 +74,15 @@ pub fn designspace_compilers_available() -> bool {
     )
 }
 
+/// The outline comparisons of a [`check_designspace_compilers`] report that passed: one
+/// per compiler and position.
+pub fn outlines_compared(report: &str) -> usize {
+    report
+        .lines()
+        .filter(|l| l.starts_with("ok ") && l.contains(": outlines at "))
+        .count()
+}
+
 /// Compiles the designspace `ds` with fontmake and with fontc into `dir`, then runs
 /// `tests/it/designspace_check.py` against xglyph's variable font `ours` at the user
 /// `positions`; returns the check's report (it exits 0 only when every check holds).
