@@ -11,9 +11,11 @@
 //! (`wght` 100..400..900 gives Thin, Regular and Black), each place inside an axis where a
 //! `gvar` variation peaks (an intermediate master, as Noto Sans has at Bold), and each
 //! peak of a variation on several axes at once (a corner master, as Inter's `opsz` ×
-//! `wght` has). The
-//! masters' outlines are measured against their originals, and the midpoint between the
-//! default and each other master against the blend of their Bézier outlines.
+//! `wght` has). A master at a peak is sparse when only some glyphs vary there
+//! (`drawn_per_glyph`) and its kerning is the full masters' blend (`kerned_masters`):
+//! each glyph is fitted in the masters it varies at. The masters' outlines are measured
+//! against their originals, and the midpoint between the default and each other master
+//! against the blend of their Bézier outlines.
 //!
 //! Axis maps: `avar` becomes each axis's `map`, in user units (`read_axis_maps`).
 //!
@@ -50,6 +52,9 @@ struct MasterAt {
     name: String,
     location: Location,
     coords: skrifa::instance::Location,
+    /// For a master at a `gvar` peak (inside an axis, or a corner): that peak, per axis in
+    /// F2Dot14 units (0 where unused). `None` for the default and the axis ends.
+    peak: Option<Vec<i16>>,
 }
 
 /// Imports a variable font: axes, named instances and one master per axis end.
@@ -145,31 +150,59 @@ pub fn import_variable_font(
         }
         per_glyph.push(versions);
     }
-    let checkpoints = Checkpoint::halfways(masters.len());
+    // Per glyph, the masters it varies at (sparse masters where a glyph has no tuple of
+    // its own), unless the kerning there needs every glyph.
+    let mut drawn = drawn_per_glyph(&font, &source.ids, &masters);
+    for m in kerned_masters(&designspace, &masters, &kerning.pairs) {
+        for d in &mut drawn {
+            d[m] = true;
+        }
+    }
     let grid = grid_for(tolerance);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut fitted = per_glyph
         .par_iter()
-        .map(|versions| {
-            let one = import_compatible_glyph(versions, &checkpoints, tolerance, grid);
+        .zip(&drawn)
+        .map(|(versions, drawn)| {
+            let mine: Vec<SourceGlyph> = versions
+                .iter()
+                .zip(drawn)
+                .filter(|(_, &d)| d)
+                .map(|(v, _)| v.clone())
+                .collect();
+            let checkpoints = Checkpoint::halfways(mine.len());
+            let one = import_compatible_glyph(&mine, &checkpoints, tolerance, grid);
             if let Some(tell) = &opts.progress.0 {
                 let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 tell(n, per_glyph.len());
             }
-            one
+            one.map(|fits| (fits, drawn.clone()))
         })
         .collect::<Result<Vec<_>, String>>()
         .map_err(fail)?;
-    fitted.sort_by(|a, b| crate::model::glyph_order(&a[0].glyph.name, &b[0].glyph.name));
+    fitted.sort_by(|a, b| crate::model::glyph_order(&a.0[0].glyph.name, &b.0[0].glyph.name));
     let mut glyphs: Vec<Vec<Glyph>> = vec![Vec::new(); masters.len()];
     let mut rows: Vec<Vec<GlyphReport>> = vec![Vec::new(); masters.len()];
-    for versions in fitted {
-        for (k, f) in versions.into_iter().enumerate() {
+    let mut drawn: Vec<Vec<bool>> = vec![Vec::new(); masters.len()];
+    for (versions, present) in fitted {
+        let default = versions[0].clone();
+        let mut versions = versions.into_iter();
+        for (k, &here) in present.iter().enumerate() {
+            drawn[k].push(here);
+            // A master that does not draw the glyph holds the default's until
+            // `fill_sparse` blends it.
+            let f = match here {
+                true => versions.next().unwrap_or_else(|| default.clone()),
+                false => default.clone(),
+            };
             super::check_fitted_limits(&f.glyph)?;
             glyphs[k].push(f.glyph);
-            rows[k].push(f.report);
+            if here {
+                rows[k].push(f.report);
+            }
         }
     }
+    let mut drawn = drawn.into_iter().skip(1);
     // Every master gets the default's anchors (anchor variations are not read), so the
     // masters keep the same anchor names in the same order.
     anchors.give(glyphs.iter_mut().flatten());
@@ -233,24 +266,164 @@ pub fn import_variable_font(
             report(rows.next().unwrap_or_default(), Vec::new()),
         ));
         let glyphs: Vec<Glyph> = glyphs.next().unwrap_or_default();
+        let drawn = drawn.next().unwrap_or_default();
+        let sparse = drawn.iter().any(|&d| !d);
+        let kerning = kerning.next().unwrap_or_default();
         others.push(Master {
             folder: folder_name(&m.name).into(),
             name: m.name,
             location: m.location,
-            drawn: vec![true; glyphs.len()],
+            drawn,
             glyphs,
-            kerning: kerning.next().unwrap_or_default(),
-            sparse: false,
+            kerning: if sparse { Vec::new() } else { kerning },
+            sparse,
         });
     }
-    Ok(ImportedFamily {
-        family: Family {
-            default,
-            designspace,
-            masters: others,
-        },
-        reports,
-    })
+    let mut family = Family {
+        default,
+        designspace,
+        masters: others,
+    };
+    family.fill_sparse().map_err(|e| {
+        fail(format!(
+            "a glyph without variations at a peak cannot be blended there: {e}"
+        ))
+    })?;
+    Ok(ImportedFamily { family, reports })
+}
+
+/// Per glyph (in `ids` order), per master: whether the glyph varies there in its own
+/// right. The default and the axis ends always count; a master at a `gvar` peak counts
+/// for a glyph with a variation tuple peaking there, or with a region that starts or ends
+/// there on one of its axes (a glyph whose regions are cut at it), and for a composite
+/// when one of its components counts. A glyph that does not count at a peak blends there
+/// from its other masters, as fontTools' sub-models do for a sparse master.
+fn drawn_per_glyph(font: &FontRef, ids: &[u16], masters: &[MasterAt]) -> Vec<Vec<bool>> {
+    let Ok(gvar) = font.gvar() else {
+        return vec![vec![true; masters.len()]; ids.len()];
+    };
+    let axes = font.axes().len();
+    // Per glyph id, each tuple's (start, peak, end) per axis, in F2Dot14 units.
+    let tuples = |gid: u16| -> Vec<Vec<[i16; 3]>> {
+        let Ok(Some(data)) = gvar.glyph_variation_data(skrifa::GlyphId::new(u32::from(gid))) else {
+            return Vec::new();
+        };
+        data.tuples()
+            .map(|t| {
+                let peak = t.peak();
+                (0..axes)
+                    .map(|a| {
+                        let p = peak.values.get(a).map_or(0, |v| v.get().to_bits());
+                        let bound = |tuple: Option<skrifa::raw::tables::variations::Tuple>,
+                                     implied: i16| {
+                            tuple
+                                .and_then(|t| t.values.get(a).map(|v| v.get().to_bits()))
+                                .unwrap_or(implied)
+                        };
+                        [
+                            bound(t.intermediate_start(), p.min(0)),
+                            p,
+                            bound(t.intermediate_end(), p.max(0)),
+                        ]
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let own = |gid: u16| -> Vec<bool> {
+        let tuples = tuples(gid);
+        masters
+            .iter()
+            .map(|m| match &m.peak {
+                None => true,
+                Some(peak) => tuples.iter().any(|t| {
+                    t.iter().zip(peak).all(|(r, &p)| r[1] == p)
+                        || t.iter()
+                            .zip(peak)
+                            .any(|(r, &p)| p != 0 && (r[0] == p || r[2] == p))
+                }),
+            })
+            .collect()
+    };
+    // A composite varies wherever one of its components does (its outline is read whole).
+    let components = |gid: u16| -> Vec<u16> {
+        let (Ok(loca), Ok(glyf)) = (font.loca(None), font.glyf()) else {
+            return Vec::new();
+        };
+        match loca.get_glyf(skrifa::GlyphId::new(u32::from(gid)), &glyf) {
+            Ok(Some(skrifa::raw::tables::glyf::Glyph::Composite(c))) => c
+                .components()
+                .filter_map(|c| u16::try_from(c.glyph.to_u32()).ok())
+                .collect(),
+            _ => Vec::new(),
+        }
+    };
+    fn with_components(
+        gid: u16,
+        own: &dyn Fn(u16) -> Vec<bool>,
+        components: &dyn Fn(u16) -> Vec<u16>,
+        depth: usize,
+    ) -> Vec<bool> {
+        let mut drawn = own(gid);
+        if depth < 16 {
+            for c in components(gid) {
+                for (d, c) in drawn
+                    .iter_mut()
+                    .zip(with_components(c, own, components, depth + 1))
+                {
+                    *d |= c;
+                }
+            }
+        }
+        drawn
+    }
+    ids.iter()
+        .map(|&gid| with_components(gid, &own, &components, 0))
+        .collect()
+}
+
+/// The masters at `gvar` peaks whose kerning is not what the full masters (the default
+/// and the axis ends) blend to there, within a unit: such a master keeps every glyph, so
+/// that its kerning stays its own.
+fn kerned_masters(
+    designspace: &Designspace,
+    masters: &[MasterAt],
+    pairs: &[Vec<crate::model::KernPair>],
+) -> Vec<usize> {
+    let full: Vec<usize> = (1..masters.len())
+        .filter(|&m| masters[m].peak.is_none())
+        .collect();
+    let locations: Vec<Location> = full.iter().map(|&m| masters[m].location.clone()).collect();
+    let Ok(model) = designspace.model(&locations) else {
+        return (1..masters.len()).collect();
+    };
+    let value = |m: usize, left: &str, right: &str| -> f64 {
+        pairs
+            .get(m)
+            .and_then(|p| p.iter().find(|k| k.left == left && k.right == right))
+            .map_or(0.0, |k| k.value)
+    };
+    (1..masters.len())
+        .filter(|&m| masters[m].peak.is_some())
+        .filter(|&m| {
+            let w = designspace.weights(&model, &masters[m].location);
+            let sources = std::iter::once(0).chain(full.iter().copied());
+            let keys: std::collections::BTreeSet<(&str, &str)> = std::iter::once(m)
+                .chain(sources.clone())
+                .filter_map(|k| pairs.get(k))
+                .flatten()
+                .map(|k| (k.left.as_str(), k.right.as_str()))
+                .collect();
+            keys.into_iter().any(|(l, r)| {
+                let blend: f64 = w
+                    .iter()
+                    .zip(sources.clone())
+                    .map(|(w, k)| w * value(k, l, r))
+                    .sum();
+                (blend - value(m, l, r)).abs() > 1.0
+            })
+        })
+        .collect()
 }
 
 /// The default location, then each axis end other than the default, then each peak
@@ -280,28 +453,38 @@ fn master_locations(font: &FontRef, ds: &Designspace, peaks: &Peaks) -> Vec<Mast
         name: named(&default).unwrap_or_else(|| "Regular".into()),
         coords: at(default.clone()),
         location: default,
+        peak: None,
     }];
-    let mut places: Vec<Vec<(&Axis, f64)>> = Vec::new();
-    for (a, inner) in ds.axes.iter().zip(&peaks.inner) {
-        let mut users: Vec<f64> = [a.min, a.max]
+    let axes = ds.axes.len();
+    // Each place (axis and user value per axis it is on) and its peak.
+    type Place<'a> = (Vec<(&'a Axis, f64)>, Option<Vec<i16>>);
+    let mut places: Vec<Place> = Vec::new();
+    for (k, (a, inner)) in ds.axes.iter().zip(&peaks.inner).enumerate() {
+        let mut users: Vec<(f64, Option<Vec<i16>>)> = [a.min, a.max]
             .into_iter()
             .filter(|&end| end != a.default)
-            .chain(inner.iter().map(|&p| user_at_peak(a, p)))
+            .map(|end| (end, None))
+            .chain(inner.iter().map(|&p| {
+                let mut peak = vec![0; axes];
+                peak[k] = p.to_bits();
+                (user_at_peak(a, p), Some(peak))
+            }))
             .collect();
-        users.sort_by(f64::total_cmp);
-        places.extend(users.into_iter().map(|u| vec![(a, u)]));
+        users.sort_by(|x, y| x.0.total_cmp(&y.0));
+        places.extend(users.into_iter().map(|(u, peak)| (vec![(a, u)], peak)));
     }
     for corner in &peaks.corners {
-        places.push(
+        places.push((
             ds.axes
                 .iter()
                 .zip(corner)
                 .filter(|(_, p)| p.to_bits() != 0)
                 .map(|(a, &p)| (a, user_at_peak(a, p)))
                 .collect(),
-        );
+            Some(corner.iter().map(|p| p.to_bits()).collect()),
+        ));
     }
-    for place in places {
+    for (place, peak) in places {
         let location = Location(place.iter().map(|(a, u)| (a.tag.clone(), *u)).collect());
         let name = named(&location).unwrap_or_else(|| {
             place
@@ -314,6 +497,7 @@ fn master_locations(font: &FontRef, ds: &Designspace, peaks: &Peaks) -> Vec<Mast
             name,
             coords: at(location.clone()),
             location,
+            peak,
         });
     }
     out

@@ -552,3 +552,63 @@ fn the_exported_designspace_imports_back_with_the_sparse_master() {
     assert_eq!(o(&back).contours, o(f).contours);
     assert_eq!(o(&back).advance, 750.0);
 }
+
+#[test]
+fn the_variable_font_imports_back_with_a_sparse_master_at_its_peak() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let imported = tmp.path().join("imported");
+    crate::common::cli::import_ok(&[s(&b.out.join("MastersTest[wght].ttf"))], &imported);
+    let (back, _) = xglyph::source::load_family(&imported).expect("loads");
+    // The peak of O's own tuple at 550 (sparse, drawing O), and Bold at the axis end.
+    let masters: Vec<(String, f64, bool)> = back
+        .masters
+        .iter()
+        .map(|m| (m.name.clone(), m.location.0["wght"], m.sparse))
+        .collect();
+    assert_eq!(
+        masters,
+        [
+            ("Weight 550".to_string(), 550.0, true),
+            ("Bold".to_string(), 700.0, false)
+        ]
+    );
+    let mut files: Vec<String> = fs::read_dir(imported.join(&back.masters[0].folder))
+        .expect("the sparse folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["O_.toml"]);
+    // Rebuilt, it is the same font: outlines and advances at and around the peak.
+    let rebuilt = tmp.path().join("rebuilt");
+    let (code, _, stderr) = xglyph(&["build", s(&imported), "-o", s(&rebuilt)]);
+    assert_eq!((code, stderr.as_str()), (0, ""));
+    let before = variable_font(&b.out);
+    let after = fs::read(rebuilt.join("Imported[wght].ttf"))
+        .or_else(|_| fs::read(rebuilt.join("MastersTest[wght].ttf")))
+        .expect("the rebuilt variable TTF");
+    let (before, after) = (
+        FontRef::new(&before).expect("parses"),
+        FontRef::new(&after).expect("parses"),
+    );
+    for w in [450.0, 550.0, 650.0] {
+        let (lb, la) = (
+            before.axes().location([("wght", w)]),
+            after.axes().location([("wght", w)]),
+        );
+        for name in ["O", "n", "H"] {
+            let advance = |f: &FontRef, l: &skrifa::instance::Location| {
+                f.glyph_metrics(Size::unscaled(), LocationRef::from(l))
+                    .advance_width(glyph_id(f, name))
+                    .expect("advance")
+            };
+            assert_eq!(advance(&before, &lb), advance(&after, &la), "{name} at {w}");
+            let d = paths::two_sided(
+                &skrifa_outline(&before, glyph_id(&before, name), LocationRef::from(&lb)),
+                &skrifa_outline(&after, glyph_id(&after, name), LocationRef::from(&la)),
+                16,
+            );
+            assert!(d <= 2.0, "{name} at {w}: {d}");
+        }
+    }
+}
