@@ -62,8 +62,9 @@ pub struct MasterGlyph {
     pub advance: f64,
     /// Same elements as the default master's path for this glyph, other coordinates.
     pub path: BezPath,
-    /// Whether this master draws the glyph. When a sparse master does not, the advance
-    /// and path are the blend of the masters that do, at this master's location.
+    /// Whether the glyph's outline blends with this master: it draws the glyph or one of
+    /// the glyph's components. When a sparse master does neither, the advance and path are
+    /// the blend of the masters that do, at this master's location.
     pub drawn: bool,
 }
 
