@@ -18,8 +18,12 @@
 //!   multilinearly, and a sparse one as fontTools blends it: there some weights can be
 //!   negative between the masters.
 //!
-//! Limits: every axis end needs a master on that axis (OpenType's blend falls back to the
-//! default beyond the outermost master); no extrapolation beyond the axes.
+//! - An axis end without a master on that axis: past the outermost master the axis blends
+//!   back towards the default, which it reaches at the end (OpenType's regions, as
+//!   fontmake and fontc build them). `check` warns about such an end
+//!   ([`Designspace::uncovered_ends`]).
+//!
+//! Limits: no extrapolation beyond the axes.
 
 use std::collections::BTreeMap;
 
@@ -375,9 +379,29 @@ impl Designspace {
             .collect()
     }
 
+    /// The axis ends (axis index, user value) that no master on that axis alone sits at,
+    /// among `masters` (user locations, the default master left out). The blend is defined
+    /// there all the same: past its outermost master an axis blends back towards the
+    /// default, reaching it at the end, as OpenType's regions do.
+    pub fn uncovered_ends(&self, masters: &[Location]) -> Vec<(usize, f64)> {
+        let norms: Vec<Vec<f64>> = masters.iter().map(|l| self.normalize(l)).collect();
+        let mut ends = Vec::new();
+        for (axis, a) in self.axes.iter().enumerate() {
+            for (end, user) in [(-1.0, a.min), (1.0, a.max)] {
+                let covered = norms
+                    .iter()
+                    .any(|n| off_default(n) == [axis] && n[axis] == end);
+                if user != a.default && !covered {
+                    ends.push((axis, user));
+                }
+            }
+        }
+        ends
+    }
+
     /// The blend of the non-default masters at `masters` (user locations, in master order,
     /// the default master left out), or why they do not form a valid set: a master at the
-    /// default, two masters at the same place, or an axis end with no master on that axis.
+    /// default, or two masters at the same place.
     pub fn model(&self, masters: &[Location]) -> Result<VariationModel, RegionError> {
         let norms: Vec<Vec<f64>> = masters.iter().map(|l| self.normalize(l)).collect();
         for (i, norm) in norms.iter().enumerate() {
@@ -392,14 +416,6 @@ impl Designspace {
             }
         }
         let off = |m: usize| off_default(&norms[m]);
-        for (axis, a) in self.axes.iter().enumerate() {
-            for (end, user) in [(-1.0, a.min), (1.0, a.max)] {
-                let covered = (0..norms.len()).any(|m| off(m) == [axis] && norms[m][axis] == end);
-                if user != a.default && !covered {
-                    return Err(RegionError::UncoveredEnd { axis, user });
-                }
-            }
-        }
         let order = model_order(&norms, self.axes.len());
         let mut regions: Vec<Option<Region>> = vec![None; norms.len()];
         for (k, &m) in order.iter().enumerate() {
@@ -614,7 +630,9 @@ fn model_order(norms: &[Vec<f64>], axis_count: usize) -> Vec<usize> {
 }
 
 /// The tent of master `m`, on `axis` alone: from its neighbour towards the default (or the
-/// default) to its neighbour away from it (or its own peak, when it is the outermost).
+/// default) to its neighbour away from it (or, when it is the outermost, the axis end: its
+/// own peak when it sits there, else the blend goes back to the default at the end, as in
+/// fontTools).
 fn on_axis_region(norms: &[Vec<f64>], m: usize, axis: usize) -> Region {
     let peak = norms[m][axis];
     let same_side: Vec<f64> = norms
@@ -633,7 +651,7 @@ fn on_axis_region(norms: &[Vec<f64>], m: usize, axis: usize) -> Region {
         .copied()
         .filter(|v| v.abs() > peak.abs())
         .min_by(|a, b| a.abs().total_cmp(&b.abs()))
-        .unwrap_or(peak);
+        .unwrap_or(peak.signum());
     Region {
         tents: vec![Tent {
             axis,
@@ -702,13 +720,6 @@ pub enum RegionError {
     AtDefault {
         /// The master.
         master: usize,
-    },
-    /// An axis end (`min` or `max` away from the default) has no master.
-    UncoveredEnd {
-        /// Index of the axis.
-        axis: usize,
-        /// The user value of the end.
-        user: f64,
     },
     /// Two masters at the same location.
     Duplicate {
@@ -957,25 +968,41 @@ mod tests {
                 second: 1
             })
         );
+    }
+
+    /// An axis end without a master on that axis: the blend goes back to the default there,
+    /// with fontTools' master scalars (`VariationModel.getMasterScalars`, fontTools 4.68:
+    /// a master at 2/3 gives `[0.25, 0.75]` at 0.5, `[0.4, 0.6]` at 0.8, `[1, 0]` at 1; a
+    /// corner alone at (1, -1) beside a master at (1, 0) gives `[0.5, 0.25, 0.25]` at
+    /// (0.5, -0.5) and the default at (0, -1)).
+    #[test]
+    fn an_uncovered_end_blends_back_to_the_default_as_fonttools() {
+        let ds = wght();
+        let model = ds.model(&[at(600.0)]).expect("a valid set");
+        assert_eq!(ds.uncovered_ends(&[at(600.0)]), vec![(0, 700.0)]);
+        assert!(ds.uncovered_ends(&[at(700.0)]).is_empty());
+        let close = |got: Vec<f64>, want: &[f64]| {
+            assert_eq!(got.len(), want.len());
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-12, "{got:?} against {want:?}");
+            }
+        };
+        close(model.weights_at(&[0.5]), &[0.25, 0.75]);
+        close(model.weights_at(&[2.0 / 3.0]), &[0.0, 1.0]);
+        close(model.weights_at(&[0.8]), &[0.4, 0.6]);
+        close(model.weights_at(&[1.0]), &[1.0, 0.0]);
+
         // A corner master alone leaves the width axis's end without a master on it.
         let mut two = wght();
         two.axes
             .push(Axis::linear("wdth", "Width", 75.0, 100.0, 100.0));
         let mut corner = at(700.0);
         corner.0.insert("wdth".into(), 75.0);
-        assert_eq!(
-            two.model(&[at(700.0), corner]),
-            Err(RegionError::UncoveredEnd {
-                axis: 1,
-                user: 75.0
-            })
-        );
-        assert_eq!(
-            ds.model(&[at(600.0)]),
-            Err(RegionError::UncoveredEnd {
-                axis: 0,
-                user: 700.0
-            })
-        );
+        let masters = [at(700.0), corner];
+        assert_eq!(two.uncovered_ends(&masters), vec![(1, 75.0)]);
+        let model = two.model(&masters).expect("a valid set");
+        close(model.weights_at(&[0.5, -0.5]), &[0.5, 0.25, 0.25]);
+        close(model.weights_at(&[0.0, -1.0]), &[1.0, 0.0, 0.0]);
+        close(model.weights_at(&[1.0, -1.0]), &[0.0, 0.0, 1.0]);
     }
 }

@@ -134,9 +134,9 @@ impl Family {
 
     /// Fills in what sparse masters leave out: each glyph a sparse master does not draw
     /// becomes the blend of the masters that draw it, at the sparse master's location, and
-    /// a sparse master's kerning the full masters' blend there. So every master holds every
-    /// glyph, and a blend over all masters gives, along one axis, exactly what the
-    /// glyphs' own models give. The loader calls this once.
+    /// a sparse master's kerning, unless it has its own, the kerned masters' blend there.
+    /// So every master holds every glyph, and a blend over all masters gives, along one
+    /// axis, exactly what the glyphs' own models give. The loader calls this once.
     pub fn fill_sparse(&mut self) -> Result<(), InstanceError> {
         if !self.has_sparse() {
             return Ok(());
@@ -155,9 +155,11 @@ impl Family {
                 let w = GlyphModels::spread(&self.designspace, n, models.own(gi), &location);
                 self.masters[m].glyphs[gi] = self.blend_glyph(gi, &w)?;
             }
-            let (set, model) = &models.kerning;
-            let w = GlyphModels::spread(&self.designspace, n, (set, model), &location);
-            self.masters[m].kerning = self.kerning_at(&w);
+            if !self.masters[m].kerned {
+                let (set, model) = &models.kerning;
+                let w = GlyphModels::spread(&self.designspace, n, (set, model), &location);
+                self.masters[m].kerning = self.kerning_at(&w);
+            }
         }
         Ok(())
     }

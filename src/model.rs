@@ -74,12 +74,15 @@ pub struct Master {
     /// glyph a sparse master does not draw holds the blend of the glyph's other masters at
     /// this location ([`Family::fill_sparse`]).
     pub glyphs: Vec<Glyph>,
-    /// This master's kerning; a pair it lacks is 0 here. A sparse master's is the blend of
-    /// the full masters' kerning at its location.
+    /// This master's kerning; a pair it lacks is 0 here. A sparse master without kerning
+    /// of its own holds the blend of the kerned masters' kerning at its location.
     pub kerning: Vec<KernPair>,
-    /// A sparse master (`sparse = true`): it draws only some glyphs, and has no kerning of
-    /// its own, as a designspace source on a UFO layer.
+    /// A sparse master (`sparse = true`): it draws only some glyphs, as a designspace
+    /// source on a UFO layer, or a source UFO that lacks some glyphs.
     pub sparse: bool,
+    /// Whether [`Self::kerning`] is the master's own: always for a full master; for a
+    /// sparse master, when its folder has a `kerning.toml`.
+    pub kerned: bool,
     /// Per glyph (parallel to [`Self::glyphs`]), whether this master draws it: always for
     /// a full master.
     pub drawn: Vec<bool>,
@@ -87,7 +90,8 @@ pub struct Master {
 
 /// Which masters blend for each glyph, and how: fontTools' sub-models. A glyph that a
 /// sparse master does not draw blends from the default and the masters that draw it
-/// (their own [`VariationModel`]); kerning blends from the full masters.
+/// (their own [`VariationModel`]); kerning blends from the kerned masters
+/// ([`Master::kerned`]).
 #[derive(Clone, Debug)]
 pub struct GlyphModels {
     /// Each distinct set of non-default masters (indices into [`Family::masters`],
@@ -99,7 +103,7 @@ pub struct GlyphModels {
     /// Per glyph, the set its own numbers (points, offsets, advance, anchors) blend with:
     /// the masters that draw it.
     pub own_of_glyph: Vec<usize>,
-    /// The full (non-sparse) masters and their model, for kerning.
+    /// The masters with kerning of their own ([`Master::kerned`]) and their model.
     pub kerning: (Vec<usize>, VariationModel),
 }
 
@@ -239,13 +243,13 @@ impl Family {
             of_glyph.push(find(outline)?);
             own_of_glyph.push(find(own)?);
         }
-        let full: Vec<usize> = all
+        let kerned: Vec<usize> = all
             .iter()
             .copied()
-            .filter(|&m| !self.masters[m].sparse)
+            .filter(|&m| self.masters[m].kerned)
             .collect();
-        let k = find(full.clone())?;
-        let kerning = (full, sets[k].1.clone());
+        let k = find(kerned.clone())?;
+        let kerning = (kerned, sets[k].1.clone());
         Ok(GlyphModels {
             sets,
             of_glyph,

@@ -11,9 +11,11 @@
 //! ([`super::import_ufo_layer`]: no kerning, info or features of its own), a glyph its
 //! layer holds empty while the default draws it counts as not drawn (as fontTools takes
 //! it), and [`Family::fill_sparse`] blends the rest from the masters that draw them; its
-//! folder holds only the glyphs it draws ([`family_sources`]). The sources on default
-//! layers must cover each axis end by themselves; the sparse ones are extra places. A
-//! default source on a layer is read from that layer as a whole font.
+//! folder holds only the glyphs it draws ([`family_sources`]). A source on a default layer
+//! that lacks some of the default's glyphs is sparse too, as fontmake takes it, and keeps
+//! its kerning ([`Master::kerned`]). A default source on a layer is read from that layer as
+//! a whole font. An axis end without a source is kept as fontTools blends it: the design
+//! returns to the default there.
 //!
 //! A glyph that every source drawing it fits from its outline (foreign UFOs, without
 //! xglyph's lib) is fitted again for those sources at once ([`super::masters`]): one
@@ -25,9 +27,9 @@
 //! the glyph and master); a glyph in a layer that the default source lacks is an error
 //! naming it and the source. Axis maps become the axes' `map`; locations are read as user
 //! coordinates (`uservalue`, else `xvalue` through the inverse map); `<rules>` become
-//! `[[rule]]`s (conditions in user values). Discrete axes, `<mappings>` (avar 2), and
-//! sources that xglyph's masters cannot hold (two at the default, an axis end without a
-//! source on a default layer) are not supported: an error says which, before any UFO is
+//! `[[rule]]`s (conditions in user values; glyph names renamed as the UFO import renames
+//! them). Discrete axes, `<mappings>` (avar 2), and sources that xglyph's masters cannot
+//! hold (two at one place) are not supported: an error says which, before any UFO is
 //! read.
 
 use std::collections::{BTreeMap, HashMap};
@@ -124,7 +126,6 @@ pub fn import_designspace(
             import_ufo_layer(&s.ufo, layer, opts)?,
         ));
     }
-    let sparse: Vec<bool> = sources.iter().map(|s| s.sparse).collect();
     let drawn_in_default: HashMap<String, bool> = imported[default_index]
         .2
         .font
@@ -133,10 +134,23 @@ pub fn import_designspace(
         .map(|g| (g.name.clone(), !is_empty(g)))
         .collect();
     for (k, one) in imported.iter_mut().enumerate() {
-        if sparse[k] {
+        if sources[k].sparse {
             leave_out_empty(&mut one.2, &drawn_in_default);
         }
     }
+    // A source on a default layer that lacks some of the default's glyphs is sparse for
+    // its outlines, as fontmake takes it; its kerning stays its own.
+    let sparse: Vec<bool> = imported
+        .iter()
+        .zip(&sources)
+        .map(|((_, _, one), s)| {
+            s.sparse
+                || drawn_in_default
+                    .keys()
+                    .any(|name| !one.font.glyphs.iter().any(|g| &g.name == name))
+        })
+        .collect();
+    let kerned: Vec<bool> = sources.iter().map(|s| !s.sparse).collect();
     let tolerance = super::check_tolerance(
         opts.tolerance,
         imported[default_index].2.font.info.units_per_em,
@@ -149,10 +163,11 @@ pub fn import_designspace(
     let mut masters = Vec::new();
     let others = sparse
         .iter()
+        .zip(&kerned)
         .enumerate()
         .filter(|&(i, _)| i != default_index)
-        .map(|(_, &s)| s);
-    for ((style, location, other), sparse) in imported.into_iter().zip(others) {
+        .map(|(_, (&s, &k))| (s, k));
+    for ((style, location, other), (sparse, kerned)) in imported.into_iter().zip(others) {
         let folder = PathBuf::from(folder_name(&style));
         let (glyphs, drawn) =
             parallel(&font.glyphs, &other.font.glyphs, &style, sparse).map_err(fail)?;
@@ -162,15 +177,30 @@ pub fn import_designspace(
             location,
             drawn,
             glyphs,
-            // A sparse master's kerning is the full masters' blend ([`Family::fill_sparse`]).
-            kerning: if sparse {
-                Vec::new()
-            } else {
+            // A source on a layer has no kerning: the kerned masters' blend
+            // ([`Family::fill_sparse`]).
+            kerning: if kerned {
                 other.font.kerning
+            } else {
+                Vec::new()
             },
             sparse,
+            kerned,
         });
         reports.push((style, other.report));
+    }
+    // The rules name glyphs as the UFOs do; the import renamed the names outside the
+    // OpenType `post` rule (`names::glyph_name_from`), so the rules follow.
+    let has = |n: &str| font.glyphs.iter().any(|g| g.name == n);
+    for rule in &mut designspace.rules {
+        for (from, to) in &mut rule.substitutions {
+            for name in [&mut *from, &mut *to] {
+                let renamed = crate::names::glyph_name_from(name);
+                if !has(name) && has(&renamed) {
+                    *name = renamed;
+                }
+            }
+        }
     }
     for rule in &designspace.rules {
         for (from, to) in &rule.substitutions {
@@ -231,7 +261,7 @@ pub fn import_designspace(
     // What the sparse masters leave out, blended from the masters that draw it.
     family.fill_sparse().map_err(|e| {
         fail(format!(
-            "a glyph that a source on a layer does not draw cannot be blended there: {e}"
+            "a glyph that a source does not draw cannot be blended there: {e}"
         ))
     })?;
     Ok(ImportedFamily { family, reports })
@@ -284,10 +314,9 @@ struct Source {
 }
 
 /// Refuses, before any UFO is read, sources that xglyph's masters cannot hold
-/// ([`Designspace::model`]): two sources at one place, or an axis end without a source on
-/// that axis alone. The full sources (on default layers) must cover the axis ends by
-/// themselves, since a glyph that no sparse source draws blends from them alone; the
-/// sparse sources are extra places.
+/// ([`Designspace::model`]): two sources at one place. An axis end without a source is
+/// kept as fontTools blends it: past the outermost source the design goes back to the
+/// default (`check` and `build` warn about it).
 fn check_regions(
     designspace: &Designspace,
     sources: &[Source],
@@ -299,58 +328,6 @@ fn check_regions(
         .filter(|&(i, _)| i != default_index)
         .map(|(_, s)| s)
         .collect();
-    let full: Vec<&Source> = others.iter().copied().filter(|s| !s.sparse).collect();
-    let default = &sources[default_index];
-    region_check(designspace, default, &full).map_err(|e| match e {
-        RegionFailure::Message(m) => m,
-        RegionFailure::Uncovered { axis, user } => {
-            let a = &designspace.axes[axis];
-            let end = crate::source::emit::number(user);
-            match others
-                .iter()
-                .find(|s| s.sparse && s.location.get(a) == user)
-            {
-                Some(s) => format!(
-                    "axis `{}` ends at {end} but only source `{}`, on the layer {:?}, sits \
-                     there; xglyph needs a master that draws every glyph (a source on a \
-                     default layer) at each axis end",
-                    a.name,
-                    s.style,
-                    s.layer.as_deref().unwrap_or_default()
-                ),
-                None => format!(
-                    "axis `{}` ends at {end} but no source sits there; xglyph needs a master \
-                     at each axis end",
-                    a.name
-                ),
-            }
-        }
-    })?;
-    if full.len() < others.len() {
-        region_check(designspace, default, &others).map_err(|e| match e {
-            RegionFailure::Message(m) => m,
-            // The full sources cover every end, so these do too.
-            RegionFailure::Uncovered { axis, .. } => format!(
-                "axis `{}`: the sources do not cover its ends",
-                designspace.axes[axis].name
-            ),
-        })?;
-    }
-    Ok(())
-}
-
-/// Why [`region_check`] refuses: a message, or an axis end without a source.
-enum RegionFailure {
-    Message(String),
-    Uncovered { axis: usize, user: f64 },
-}
-
-/// The model of `default` and `others`, its failures as messages naming the sources.
-fn region_check(
-    designspace: &Designspace,
-    default: &Source,
-    others: &[&Source],
-) -> Result<(), RegionFailure> {
     let locations: Vec<Location> = others.iter().map(|s| s.location.clone()).collect();
     let place = |l: &Location| {
         designspace
@@ -362,19 +339,16 @@ fn region_check(
     };
     match designspace.model(&locations) {
         Ok(_) => Ok(()),
-        Err(RegionError::AtDefault { master }) => Err(RegionFailure::Message(format!(
+        Err(RegionError::AtDefault { master }) => Err(format!(
             "sources `{}` and `{}` both sit at the default of every axis",
-            default.style, others[master].style
-        ))),
-        Err(RegionError::Duplicate { first, second }) => Err(RegionFailure::Message(format!(
+            sources[default_index].style, others[master].style
+        )),
+        Err(RegionError::Duplicate { first, second }) => Err(format!(
             "sources `{}` and `{}` sit at the same place ({})",
             others[first].style,
             others[second].style,
             place(&others[first].location)
-        ))),
-        Err(RegionError::UncoveredEnd { axis, user }) => {
-            Err(RegionFailure::Uncovered { axis, user })
-        }
+        )),
     }
 }
 
@@ -648,8 +622,8 @@ pub(crate) fn folder_name(style: &str) -> String {
 
 /// The master's glyphs in the default's order, checked compatible with the default's
 /// (glyph set, contour and point counts, sharp points), and which of them it draws. A
-/// sparse master (a source on a layer) may lack glyphs: each holds the default's glyph,
-/// not drawn, until [`Family::fill_sparse`] blends it.
+/// sparse master may lack glyphs: each holds the default's glyph, not drawn, until
+/// [`Family::fill_sparse`] blends it.
 fn parallel(
     default: &[Glyph],
     master: &[Glyph],
@@ -677,11 +651,9 @@ fn parallel(
     default
         .iter()
         .map(|d| {
+            // A master that lacks the glyph is sparse (see `import_designspace`).
             let Some(m) = by_name.get(d.name.as_str()) else {
-                if sparse {
-                    return Ok((d.clone(), false));
-                }
-                return Err(format!("master `{style}` has no glyph `{}`", d.name));
+                return Ok((d.clone(), false));
             };
             let shape = |g: &Glyph| -> Vec<Vec<bool>> {
                 g.contours
@@ -718,7 +690,8 @@ fn parallel(
 /// Every source file of an imported family as `(relative path, text)`: `font.toml` with the
 /// axes, masters and instances, the default master's glyph files and kerning, then each
 /// master's folder (`bold/a.toml` …, glyph files without `unicode`, and `bold/kerning.toml`).
-/// A sparse master's folder holds only the glyphs it draws, and no kerning.
+/// A sparse master's folder holds only the glyphs it draws, and its kerning only when it
+/// has its own ([`Master::kerned`]).
 pub fn family_sources(family: &Family) -> Vec<(String, String)> {
     let mut files = crate::source::emit::font_sources(&family.default);
     files[0].1 = crate::source::emit::family_font_toml(
@@ -738,7 +711,9 @@ pub fn family_sources(family: &Family) -> Vec<(String, String)> {
                 crate::source::emit::master_glyph_toml(g),
             ));
         }
-        if !m.kerning.is_empty() && !m.sparse {
+        // A sparse master with kerning of its own keeps it even when empty: without the
+        // file, it would blend the others' kerning.
+        if m.kerned && (m.sparse || !m.kerning.is_empty()) {
             files.push((
                 format!("{folder}/kerning.toml"),
                 crate::source::emit::kerning_toml(&m.kerning),

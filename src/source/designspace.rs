@@ -260,22 +260,10 @@ pub(super) fn load_designspace(ctx: &mut Ctx<'_>, dir: &Path) -> Option<Designsp
     if !designspace.axes.is_empty() {
         let locations: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();
         if let Err(e) = designspace.model(&locations) {
-            region_error(ctx, &e, &designspace, &masters, &axes);
+            region_error(ctx, &e, &designspace, &masters);
             return None;
         }
-        // Glyphs that no sparse master draws blend from the full masters alone, so those
-        // must cover the axes by themselves.
-        let full: Vec<Location> = masters
-            .iter()
-            .filter(|m| !m.0.sparse)
-            .map(|m| m.0.location.clone())
-            .collect();
-        if full.len() < masters.len() {
-            if let Err(e) = designspace.model(&full) {
-                region_error(ctx, &e, &designspace, &masters, &axes);
-                return None;
-            }
-        }
+        uncovered_end_warnings(ctx, &designspace, &masters, &axes);
     }
     Some(DesignspaceSpec {
         designspace,
@@ -839,14 +827,12 @@ fn describe(designspace: &Designspace, location: &Location) -> String {
         .join(", ")
 }
 
-/// Reports why the master set cannot blend, at the master's `location` (or, for an axis
-/// end without a master, at that end's value).
+/// Reports why the master set cannot blend, at the master's `location`.
 fn region_error(
     ctx: &mut Ctx<'_>,
     e: &RegionError,
     designspace: &Designspace,
     masters: &[(MasterSpec, usize, usize)],
-    axes: &[(Axis, AxisSpans)],
 ) {
     match *e {
         RegionError::AtDefault { master } => {
@@ -873,41 +859,106 @@ fn region_error(
                 ),
             );
         }
-        RegionError::UncoveredEnd { axis, user } => {
-            let (a, spans) = &axes[axis];
-            let (key, at) = if user == a.max {
-                ("max", spans.max)
-            } else {
-                ("min", spans.min)
-            };
-            // A corner master at that end does not cover it: its delta is what it adds to
-            // the masters on each of its axes. Nor does a sparse master: the glyphs it
-            // does not draw need a full master there.
+    }
+}
+
+/// Warns about each axis end without a master on that axis alone, at that end's `min` or
+/// `max`: past the outermost master the design blends back to the default, which is
+/// seldom meant. An end where only sparse masters sit gets its own warning: the glyphs
+/// they do not draw blend back there.
+fn uncovered_end_warnings(
+    ctx: &mut Ctx<'_>,
+    designspace: &Designspace,
+    masters: &[(MasterSpec, usize, usize)],
+    axes: &[(Axis, AxisSpans)],
+) {
+    let all: Vec<Location> = masters.iter().map(|m| m.0.location.clone()).collect();
+    let full: Vec<Location> = masters
+        .iter()
+        .filter(|m| !m.0.sparse)
+        .map(|m| m.0.location.clone())
+        .collect();
+    let uncovered = designspace.uncovered_ends(&all);
+    for (axis, user) in designspace.uncovered_ends(&full) {
+        let (a, spans) = &axes[axis];
+        let (key, at) = if user == a.max {
+            ("max", spans.max)
+        } else {
+            ("min", spans.min)
+        };
+        let end = emit::number(user);
+        if !uncovered.contains(&(axis, user)) {
             let sparse = masters
                 .iter()
                 .find(|(m, _, _)| m.sparse && m.location.get(a) == user)
-                .map(|(m, _, _)| {
-                    format!(
-                        " (only sparse master `{}`, which draws some glyphs only)",
-                        m.name
-                    )
-                });
-            let corner = masters
-                .iter()
-                .find(|(m, _, _)| m.location.get(a) == user)
-                .map(|(m, _, _)| format!(" (only corner master `{}`, which blends from the masters on each of its axes)", m.name));
-            let corner = sparse.or(corner).unwrap_or_default();
-            ctx.err(
+                .map_or_else(String::new, |(m, _, _)| m.name.clone());
+            ctx.warn(
                 at,
                 format!(
-                    "axis `{}` ends at {key} = {} but no master is there{corner}; add a \
-                     `[[master]]` with location {{ {} = {} }}, or set {key} to the default",
-                    a.tag,
-                    emit::number(user),
-                    a.tag,
-                    emit::number(user)
+                    "axis `{}` ends at {key} = {end} where only sparse master `{sparse}` is: a \
+                     glyph it does not draw blends back to the default there, past the \
+                     outermost master that draws it",
+                    a.tag
                 ),
             );
+            continue;
         }
+        // The outermost master on this axis alone, on that side of the default.
+        let on_axis = |l: &Location| {
+            designspace
+                .axes
+                .iter()
+                .enumerate()
+                .all(|(k, b)| k == axis || l.get(b) == b.default)
+        };
+        let outermost = masters
+            .iter()
+            .filter(|(m, _, _)| {
+                let v = m.location.get(a);
+                on_axis(&m.location) && (v - a.default) * (user - a.default) > 0.0
+            })
+            .max_by(|x, y| {
+                let d = |m: &MasterSpec| (m.location.get(a) - a.default).abs();
+                d(&x.0).total_cmp(&d(&y.0))
+            });
+        let what = match outermost {
+            Some((m, _, _)) => {
+                let v = emit::number(m.location.get(a));
+                format!(
+                    "past master `{}` ({} = {v}) the design blends back to the default, \
+                     which it reaches at {end}, as fontmake and fontc build it; add a \
+                     `[[master]]` with location {{ {} = {end} }}, or set {key} to {v}",
+                    m.name, a.tag, a.tag
+                )
+            }
+            None => {
+                // A corner master at that end does not cover it: its delta is what it
+                // adds to the masters on each of its axes.
+                let corner = masters
+                    .iter()
+                    .find(|(m, _, _)| m.location.get(a) == user)
+                    .map(|(m, _, _)| {
+                        format!(
+                            " (only corner master `{}`, which blends from the masters on \
+                             each of its axes)",
+                            m.name
+                        )
+                    })
+                    .unwrap_or_default();
+                format!(
+                    "no master on this axis alone is on that side, so along the axis the \
+                     design stays the default there{corner}; add a `[[master]]` with location \
+                     {{ {} = {end} }}, or set {key} to the default",
+                    a.tag
+                )
+            }
+        };
+        ctx.warn(
+            at,
+            format!(
+                "axis `{}` ends at {key} = {end} but no master is there: {what}",
+                a.tag
+            ),
+        );
     }
 }

@@ -290,19 +290,6 @@ fn load_sources_with(
         let mkern_path = mdir.join("kerning.toml");
         master_order.push(mkern_path.clone());
         let (mkerning, mkern_text) = match regular_file(&mkern_path) {
-            Ok(true) if m.sparse => {
-                out.push(Diagnostic::whole(
-                    &mkern_path,
-                    Severity::Error,
-                    format!(
-                        "master `{}` is sparse, so it has no kerning of its own (its pairs \
-                         blend from the full masters); remove this file, or make the master \
-                         full",
-                        m.name
-                    ),
-                ));
-                (None, None)
-            }
             Ok(true) => {
                 let text = read(&mkern_path, &mut out);
                 let pairs = text.as_deref().and_then(|text| {
@@ -420,6 +407,8 @@ fn model_masters(
             };
             by_name.insert(glyph.name.clone(), glyph);
         }
+        // A sparse master's kerning is its own when its folder has a `kerning.toml`.
+        let kerned = !s.sparse || m.kern.is_some();
         if let (Some(files), Some((path, text))) = (files.as_deref_mut(), m.kern) {
             files.push(SourceFile {
                 path,
@@ -447,6 +436,7 @@ fn model_masters(
             glyphs,
             kerning: m.kerning,
             sparse: s.sparse,
+            kerned,
             drawn,
         });
     }

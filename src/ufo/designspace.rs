@@ -26,7 +26,7 @@ use norad::designspace::{self, DesignSpaceDocument, Dimension};
 use super::{ufo_dir_name, UfoError};
 use crate::designspace::{Designspace, Location};
 use crate::family::OutlinedFamily;
-use crate::model::{Family, FontInfo, Glyph};
+use crate::model::{Family, FontInfo, Glyph, Master};
 use crate::outline::OutlinedFont;
 use crate::reuse::{OutlineKeys, Reuse};
 use crate::svg::output_stem;
@@ -224,10 +224,19 @@ pub fn output_files_reusing(
     reuse: &Reuse,
 ) -> Result<Vec<(PathBuf, Vec<u8>)>, UfoError> {
     let fonts: Vec<OutlinedFont> = std::iter::once(family.default.clone())
-        .chain((0..family.masters.len()).map(|m| master_font(family, model, m)))
+        .chain((0..family.masters.len()).map(|m| {
+            let font = master_font(family, model, m);
+            let master = &model.masters[m];
+            if master.sparse && master.kerned {
+                drawn_only(font, master)
+            } else {
+                font
+            }
+        }))
         .collect();
-    // A sparse master is a layer of the default master's UFO; every other master a UFO.
-    let sparse = |k: usize| k > 0 && model.masters[k - 1].sparse;
+    // A sparse master without kerning of its own is a layer of the default master's UFO;
+    // every other master a UFO.
+    let sparse = |k: usize| k > 0 && model.masters[k - 1].sparse && !model.masters[k - 1].kerned;
     let dirs: Vec<String> = fonts.iter().map(ufo_dir_name).collect();
     let mut seen = HashSet::new();
     if let Some(dir) = dirs
@@ -273,6 +282,35 @@ pub fn output_files_reusing(
         xml.into_bytes(),
     ));
     Ok(out)
+}
+
+/// A sparse master with kerning of its own as a UFO of its own (a layer holds no kerning):
+/// the glyphs it draws and the bases of their components, which fontmake and fontc take
+/// as a source that is sparse for outlines and kerned. A base the master does not draw
+/// is written as its blend there, which along one axis changes no outline.
+fn drawn_only(mut font: OutlinedFont, master: &Master) -> OutlinedFont {
+    let mut keep: HashSet<String> = master
+        .glyphs
+        .iter()
+        .zip(&master.drawn)
+        .filter(|&(_, &d)| d)
+        .map(|(g, _)| g.name.clone())
+        .collect();
+    let by_name: HashMap<&str, &crate::outline::OutlinedGlyph> =
+        font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
+    let mut todo: Vec<String> = keep.iter().cloned().collect();
+    while let Some(name) = todo.pop() {
+        for c in by_name
+            .get(name.as_str())
+            .map_or(&[][..], |g| &g.components[..])
+        {
+            if keep.insert(c.base.clone()) {
+                todo.push(c.base.clone());
+            }
+        }
+    }
+    font.glyphs.retain(|g| keep.contains(&g.name));
+    font
 }
 
 #[cfg(test)]

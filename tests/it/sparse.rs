@@ -9,6 +9,7 @@
 //! Tests that need fontmake or fontc print `skipped: …` and pass when they are missing,
 //! unless `XGLYPH_REQUIRE_TOOLS=1` (CI).
 
+use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -328,40 +329,9 @@ type Edit = Box<dyn FnOnce(&Path)>;
 fn sparse_master_errors_name_the_place_to_fix() {
     let cases: Vec<(&str, Edit, &str)> = vec![
         (
-            "kerning",
-            Box::new(|f: &Path| {
-                fs::write(
-                    f.join("w550/kerning.toml"),
-                    "[[pair]]\nleft = \"O\"\nright = \"O\"\nvalue = -10\n",
-                )
-                .expect("write")
-            }),
-            "font/w550/kerning.toml: error: master `O 550` is sparse, so it has no kerning of \
-             its own (its pairs blend from the full masters); remove this file, or make the \
-             master full",
-        ),
-        (
             "not a boolean",
             Box::new(|f: &Path| replace(&f.join("font.toml"), "sparse = true", "sparse = \"yes\"")),
             "font/font.toml:29:10: error: `sparse` must be true or false, found string",
-        ),
-        (
-            "only sparse at the end",
-            Box::new(|f: &Path| {
-                replace(
-                    &f.join("font.toml"),
-                    "location = { wght = 550 }",
-                    "location = { wght = 700 }",
-                );
-                replace(
-                    &f.join("font.toml"),
-                    "location = { wght = 700 }\n\n[[master]]",
-                    "location = { wght = 600 }\n\n[[master]]",
-                );
-            }),
-            "font/font.toml:18:7: error: axis `wght` ends at max = 700 but no master is there \
-             (only sparse master `O 550`, which draws some glyphs only); add a `[[master]]` \
-             with location { wght = 700 }, or set max to the default",
         ),
         (
             "glyph only in the sparse master",
@@ -383,6 +353,97 @@ fn sparse_master_errors_name_the_place_to_fix() {
         assert_eq!(errors, [error], "{test}: {out}");
     }
 }
+
+/// A sparse master with a `kerning.toml` kerns with its own pairs: `H O` -25 at wght 550
+/// where the full masters blend to -20, and `n O` (a pair it lacks) 0 there instead of -8.
+/// Its export is a UFO of its own holding only `O` (a layer has no kerning), which fontmake
+/// and fontc read as sparse for outlines and kerned.
+#[test]
+fn a_sparse_master_with_kerning_of_its_own_kerns_with_it() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("sparse-kerned");
+    let _ = fs::remove_dir_all(&tmp);
+    let font = tmp.join("font");
+    copy_dir(&fixture(), &font);
+    fs::write(
+        font.join("w550/kerning.toml"),
+        "[[pair]]\nleft = \"H\"\nright = \"O\"\nvalue = -25\n\n\
+         [[pair]]\nleft = \"O\"\nright = \"H\"\nvalue = -16\n",
+    )
+    .expect("write");
+    let (code, stdout, stderr) = xglyph(&["check", s(&font)]);
+    assert_eq!(
+        (code, stdout.as_str()),
+        (0, "0 errors, 0 warnings\n"),
+        "{stderr}"
+    );
+    let out = tmp.join("out");
+    let (code, stdout, stderr) = xglyph(&["build", s(&font), "-o", s(&out)]);
+    assert_eq!((code, stderr.as_str()), (0, ""), "{stdout}");
+    let mut files: Vec<String> = fs::read_dir(out.join("MastersTest-O550.ufo/glyphs"))
+        .expect("the sparse master's own UFO")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["O_.glif", "contents.plist"]);
+    assert!(!out.join("MastersTest-Regular.ufo/glyphs.O_ 550").exists());
+    if !tools::designspace_compilers_available() {
+        return;
+    }
+    let vf = out.join("MastersTest[wght].ttf");
+    let here = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it");
+    let kerning: BTreeMap<String, BTreeMap<String, i64>> =
+        tools::python_json(KERNING_AT, &[&vf, &"400,475,550,700", &here]);
+    let at = |w: &str| {
+        kerning[w]
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    assert_eq!(at("550"), "H O -25, O H -16");
+    assert_eq!(at("700"), "H O -30, O H -20, n O -16");
+    assert_eq!(at("400"), "H O -10, O H -12");
+    // Halfway to the sparse master: (-10 - 25) / 2 = -17.5, which the instancer rounds
+    // up (`otRound`), and (-12 - 16) / 2.
+    assert_eq!(at("475"), "H O -17, O H -14");
+
+    let report = tools::check_designspace_compilers(
+        &out.join("MastersTest.designspace"),
+        &vf,
+        &tmp,
+        0.5,
+        &["450", "550", "650"],
+    );
+    println!("{report}");
+    assert!(
+        report.contains("ok    MastersTest-O550.ufo: 1 glyphs (O), each with"),
+        "{report}"
+    );
+    assert_eq!(tools::outlines_compared(&report), 6, "{report}");
+    for compiler in ["fontmake.ttf", "font.ttf"] {
+        assert!(
+            report.contains(&format!("ok    {compiler}: kerning at wght 550 (2 pairs)")),
+            "{report}"
+        );
+    }
+    assert!(report.contains("designspace_check: all passed"), "{report}");
+}
+
+/// The GPOS kerning of the variable font `argv[1]` at each `wght` of `argv[2]`
+/// (comma-separated), by fontTools' instancer and `argv[3]/ufo_check.py`:
+/// `{wght: {"left right": value}}`.
+const KERNING_AT: &str = r#"
+import sys, json
+sys.path.insert(0, sys.argv[3])
+from fontTools.ttLib import TTFont
+from fontTools.varLib.instancer import instantiateVariableFont
+from ufo_check import kerning
+out = {}
+for w in sys.argv[2].split(","):
+    font = instantiateVariableFont(TTFont(sys.argv[1]), {"wght": float(w)})
+    out[w] = {f"{l} {r}": v for (l, r), v in kerning(font).items()}
+print(json.dumps(out))
+"#;
 
 /// `tests/fixtures/corners` (weight × width, with the corner Bold Condensed) and a sparse
 /// master in the middle of the plane, `{ wght = 550, wdth = 87.5 }`, that draws only `n`:

@@ -30,6 +30,7 @@ from fontTools.designspaceLib import DesignSpaceDocument, AxisDescriptor, Source
 
 out = Path(sys.argv[1])
 extra = len(sys.argv) > 2 and sys.argv[2] == "extra"
+missing = len(sys.argv) > 2 and sys.argv[2] == "missing"
 K = 0.5522847498
 
 def ellipse(pen, cx, cy, rx, ry, clockwise):
@@ -88,15 +89,28 @@ def master(stroke, style, layer_stroke=None):
             rect(x.getPen(), 0, 0, 100, 100)
     return f
 
-master(40, "Light", 100).save(out / "Light.ufo", overwrite=True)
-master(200, "Bold").save(out / "Bold.ufo", overwrite=True)
+if missing:
+    # Bold at wght 700 lacks H and kerns O O; the axis runs on to 900 without a source.
+    light, bold = master(40, "Light"), master(200, "Bold")
+    del bold["H"]
+    light.lib["public.glyphOrder"] = ["O", "H", "space", "O.alt"]
+    bold.lib["public.glyphOrder"] = ["O", "space", "O.alt"]
+    light.kerning[("O", "O")] = -10
+    bold.kerning[("O", "O")] = -40
+    light.save(out / "Light.ufo", overwrite=True)
+    bold.save(out / "Bold.ufo", overwrite=True)
+    sources = [("Light.ufo", "Light", 100, None), ("Bold.ufo", "Bold", 700, None)]
+else:
+    master(40, "Light", 100).save(out / "Light.ufo", overwrite=True)
+    master(200, "Bold").save(out / "Bold.ufo", overwrite=True)
+    sources = [
+        ("Light.ufo", "Light", 100, None),
+        ("Bold.ufo", "Bold", 900, None),
+        ("Light.ufo", "Support", 600, "support"),
+    ]
 doc = DesignSpaceDocument()
 doc.addAxis(AxisDescriptor(tag="wght", name="Weight", minimum=100, default=100, maximum=900))
-for filename, name, wght, layer in [
-    ("Light.ufo", "Light", 100, None),
-    ("Bold.ufo", "Bold", 900, None),
-    ("Light.ufo", "Support", 600, "support"),
-]:
+for filename, name, wght, layer in sources:
     doc.addSource(SourceDescriptor(filename=filename, styleName=name, name=name,
                                    location={"Weight": wght}, layerName=layer))
 doc.write(out / "sparse.designspace")
@@ -323,42 +337,77 @@ fn a_glyph_only_the_layer_draws_is_refused_with_its_name_and_source() {
     );
 }
 
-/// A designspace whose only source at an axis end is on a layer: refused before any UFO
-/// is read (the UFOs named need not exist).
+/// A source UFO that lacks a glyph (Bold, at wght 700, has no `H`) comes in as a sparse
+/// master that keeps its kerning, and an axis end without a source (900) stays as it is:
+/// the rebuild matches fontmake's and fontc's variable fonts of the original designspace,
+/// where `H` does not vary and everything returns to Light at wght 900.
 #[test]
-fn a_layer_source_alone_at_an_axis_end_is_refused() {
+fn a_source_lacking_a_glyph_and_an_open_axis_end_import_as_fontmake_builds_them() {
+    if !tools() || !crate::common::tools::designspace_compilers_available() {
+        return;
+    }
     let tmp = tempfile::tempdir().expect("temp dir");
-    let ds = tmp.path().join("end.designspace");
-    fs::write(
-        &ds,
-        r#"<?xml version='1.0' encoding='UTF-8'?>
-<designspace format="4.1">
-  <axes>
-    <axis tag="wght" name="Weight" minimum="100" maximum="900" default="100"/>
-  </axes>
-  <sources>
-    <source filename="Light.ufo" name="Light" stylename="Light">
-      <location><dimension name="Weight" xvalue="100"/></location>
-    </source>
-    <source filename="Light.ufo" name="Support" stylename="Support" layer="support">
-      <location><dimension name="Weight" xvalue="600"/></location>
-    </source>
-    <source filename="Light.ufo" name="Heavy" stylename="Heavy" layer="heavy">
-      <location><dimension name="Weight" xvalue="900"/></location>
-    </source>
-  </sources>
-</designspace>
-"#,
-    )
-    .expect("writes");
-    let err = import_fails(&[s(&ds)], &tmp.path().join("font"));
-    assert_eq!(
-        err,
-        format!(
-            "error: {}: axis `Weight` ends at 900 but only source `Heavy`, on the layer \
-             \"heavy\", sits there; xglyph needs a master that draws every glyph (a source \
-             on a default layer) at each axis end\n",
-            ds.display()
-        )
+    let src = tmp.path().join("src");
+    fs::create_dir(&src).expect("creates");
+    let _: serde_json::Value = python_json(MAKE, &[&src, &"missing"]);
+    let ds = src.join("sparse.designspace");
+
+    let font = tmp.path().join("font");
+    import_ok(&[s(&ds)], &font);
+    let toml = fs::read_to_string(font.join("font.toml")).expect("font.toml");
+    assert!(
+        toml.contains(
+            "[[master]]\nname = \"Bold\"\nfolder = \"bold\"\nlocation = { wght = 700 }\n\
+             sparse = true\n"
+        ),
+        "{toml}"
     );
+    assert_eq!(
+        files(&font.join("bold")),
+        ["O_.alt.toml", "O_.toml", "kerning.toml", "space.toml"]
+    );
+    let (code, stdout, stderr) = xglyph(&["check", s(&font)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert_eq!(
+        stdout
+            .lines()
+            .filter(|l| l.contains(": warning: "))
+            .collect::<Vec<_>>(),
+        [format!(
+            "{}:15:7: warning: axis `wght` ends at max = 900 but no master is there: past \
+             master `Bold` (wght = 700) the design blends back to the default, which it \
+             reaches at 900, as fontmake and fontc build it; add a `[[master]]` with location \
+             {{ wght = 900 }}, or set max to 700",
+            font.join("font.toml").display()
+        )],
+        "{stdout}"
+    );
+    let out = tmp.path().join("out");
+    let (code, stdout, stderr) = xglyph(&["build", s(&font), "-o", s(&out)]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let report = crate::common::tools::check_designspace_compilers(
+        &ds,
+        &out.join("SparseTest[wght].ttf"),
+        tmp.path(),
+        0.25,
+        &["300", "600", "700", "800", "900"],
+    );
+    println!("{report}");
+    assert!(
+        report.contains("ok    Bold.ufo: 3 glyphs (O, O.alt, space), each with"),
+        "{report}"
+    );
+    // Both compilers at 5 places, and the kerning at Bold its own.
+    assert_eq!(
+        crate::common::tools::outlines_compared(&report),
+        10,
+        "{report}"
+    );
+    for compiler in ["fontmake.ttf", "font.ttf"] {
+        assert!(
+            report.contains(&format!("ok    {compiler}: kerning at wght 700 (1 pairs)")),
+            "{report}"
+        );
+    }
+    assert!(report.contains("designspace_check: all passed"), "{report}");
 }
