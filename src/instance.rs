@@ -5,8 +5,10 @@
 //! sum over the masters (default first): control points' `x`, `y` and `s`, advances,
 //! component offsets and kerning values (a pair a master lacks counts as 0 there). At a
 //! master's location its weight is exactly 1 and the others exactly 0, so the instance is
-//! that master bit for bit. Inside the masters' span the weights are a convex combination,
-//! so `s` stays in [-1, 1] and a point sharp in every master stays sharp.
+//! that master bit for bit. With masters on the axes the weights are a convex combination,
+//! so `s` stays in [-1, 1]; sparse corner masters can weigh some masters negatively, and a
+//! blended `s` is then kept inside [-1, 1] ([`ControlPoint::blended`]). A point sharp in
+//! every master stays sharp.
 
 use std::collections::{HashMap, HashSet};
 use std::fmt;
@@ -177,7 +179,7 @@ impl Family {
                     let at = |f: fn(&ControlPoint) -> f64| {
                         blend(w, masters.iter().map(|g| f(&g.contours[ci].points()[pi])))
                     };
-                    ControlPoint::new(at(|p| p.pos.x), at(|p| p.pos.y), at(|p| p.s))
+                    ControlPoint::blended(at(|p| p.pos.x), at(|p| p.pos.y), at(|p| p.s))
                 })
                 .collect();
             let contour = Contour::new(points).map_err(|error| InstanceError::Contour {

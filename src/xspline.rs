@@ -43,6 +43,15 @@ impl ControlPoint {
         }
     }
 
+    /// The point `(x, y)` with shape `s` blended between masters, `s` kept inside
+    /// [-1, 1]: a position's weights sum to 1 only up to rounding (masters all at `s = 1`
+    /// can blend to 1 + 2⁻⁵²), and sparse corner masters weigh some masters negatively,
+    /// which can carry a blend past the range where the X-spline is defined. Every output
+    /// and every check of a fit blends the same way, so the clamp is part of the design.
+    pub fn blended(x: f64, y: f64, s: f64) -> Self {
+        ControlPoint::new(x, y, s.clamp(-1.0, 1.0))
+    }
+
     /// A sharp corner (`s = 0`): the curve passes through it with a G0 joint.
     pub fn is_sharp(&self) -> bool {
         self.s == 0.0

@@ -313,7 +313,7 @@ fn blend(masters: &[&XSpline], weights: &[f64]) -> Result<XSpline, XSplineError>
                 y += w * p.pos.y;
                 s += w * p.s;
             }
-            ControlPoint::new(x, y, s)
+            ControlPoint::blended(x, y, s)
         })
         .collect();
     XSpline::new(points)

@@ -242,7 +242,7 @@ pub fn blend_splines(splines: &[XSpline], weights: &[f64]) -> Option<XSpline> {
                 y += w * p.pos.y;
                 s += w * p.s;
             }
-            Some(ControlPoint::new(x, y, s))
+            Some(ControlPoint::blended(x, y, s))
         })
         .collect::<Option<Vec<_>>>()?;
     XSpline::new(points).ok()
