@@ -37,6 +37,7 @@ use norad::designspace::{DesignSpaceDocument, Dimension, RuleProcessing};
 
 use rayon::prelude::*;
 
+use super::discrete::{at_discrete_location, DiscreteLocation};
 use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
 use super::UfoLayer;
@@ -53,6 +54,9 @@ pub struct ImportedFamily {
     pub family: Family,
     /// Per source, its style name and import report, the default's first.
     pub reports: Vec<(String, Report)>,
+    /// The discrete location imported, when the designspace has discrete axes
+    /// ([`super::discrete`]).
+    pub discrete: Option<DiscreteLocation>,
 }
 
 /// Imports the designspace at `path` and every source UFO it names.
@@ -70,6 +74,7 @@ pub fn import_designspace(
         )
     })?;
     let fail = |message: String| ImportError::at(path, message);
+    let (doc, discrete) = at_discrete_location(doc, opts.at.as_deref()).map_err(fail)?;
     let axes = axes(&doc).map_err(fail)?;
     let mut designspace = Designspace {
         axes,
@@ -234,7 +239,11 @@ pub fn import_designspace(
             "a glyph that a source on a layer does not draw cannot be blended there: {e}"
         ))
     })?;
-    Ok(ImportedFamily { family, reports })
+    Ok(ImportedFamily {
+        family,
+        reports,
+        discrete,
+    })
 }
 
 /// Whether a glyph has no outline: no contours, no components.
@@ -547,7 +556,8 @@ fn refit_compatible(
     Ok(())
 }
 
-/// The continuous axes of `doc`, with their maps (`<map input="user" output="design">`).
+/// The axes of `doc` (continuous: [`at_discrete_location`] took out the discrete ones), with
+/// their maps (`<map input="user" output="design">`).
 fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
     if doc
         .axis_mappings
@@ -561,7 +571,7 @@ fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
         .map(|a| {
             let (Some(min), Some(max)) = (a.minimum, a.maximum) else {
                 return Err(format!(
-                    "axis `{}` is discrete (values, no minimum and maximum), which is not supported",
+                    "axis `{}` has neither values (a discrete axis) nor a minimum and maximum",
                     a.name
                 ));
             };

@@ -289,7 +289,11 @@ pub fn import_variable_font(
             "a glyph without variations at a peak cannot be blended there: {e}"
         ))
     })?;
-    Ok(ImportedFamily { family, reports })
+    Ok(ImportedFamily {
+        family,
+        reports,
+        discrete: None,
+    })
 }
 
 /// Per glyph (in `ids` order), per master: whether the glyph varies there in its own
