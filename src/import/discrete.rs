@@ -472,3 +472,214 @@ fn values(all: &[f64]) -> String {
 fn same(a: f64, b: f64) -> bool {
     (a - b).abs() <= SAME * a.abs().max(b.abs()).max(1.0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A designspace read by norad from `xml`.
+    fn doc(xml: &str) -> DesignSpaceDocument {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("test.designspace");
+        std::fs::write(&path, xml).expect("writes");
+        DesignSpaceDocument::load(&path).expect("loads")
+    }
+
+    /// Italic discrete (design 0 and 100), Weight and Width continuous; the italic has no
+    /// narrow source.
+    const XML: &str = r#"<?xml version='1.0' encoding='UTF-8'?>
+<designspace format="5.0">
+  <axes>
+    <axis tag="ital" name="Italic" values="0 1" default="0">
+      <map input="0" output="0"/><map input="1" output="100"/>
+    </axis>
+    <axis tag="wght" name="Weight" minimum="100" maximum="900" default="100"/>
+    <axis tag="wdth" name="Width" minimum="75" maximum="100" default="100"/>
+  </axes>
+  <rules>
+    <rule name="upright heavy">
+      <conditionset>
+        <condition name="Italic" minimum="0" maximum="0"/>
+        <condition name="Weight" minimum="600"/>
+      </conditionset>
+      <sub name="a" with="a.alt"/>
+    </rule>
+    <rule name="italic">
+      <conditionset><condition name="ital" minimum="50"/></conditionset>
+      <conditionset><condition name="Width" maximum="80"/></conditionset>
+      <sub name="b" with="b.alt"/>
+    </rule>
+  </rules>
+  <sources>
+    <source filename="L.ufo" name="L"><location><dimension name="Weight" xvalue="100"/></location></source>
+    <source filename="B.ufo" name="B"><location><dimension name="Weight" xvalue="900"/></location></source>
+    <source filename="N.ufo" name="N"><location><dimension name="Width" xvalue="75"/></location></source>
+    <source filename="LI.ufo" name="LI"><location><dimension name="Italic" xvalue="100"/></location></source>
+    <source filename="BI.ufo" name="BI">
+      <location><dimension name="Italic" xvalue="100"/><dimension name="Weight" xvalue="900"/></location>
+    </source>
+  </sources>
+  <instances>
+    <instance stylename="Regular"><location><dimension name="Weight" uservalue="400"/></location></instance>
+    <instance stylename="Italic"><location><dimension name="Italic" uservalue="1"/></location></instance>
+    <instance stylename="Narrow Italic">
+      <location><dimension name="Italic" uservalue="1"/><dimension name="Width" uservalue="75"/></location>
+    </instance>
+  </instances>
+</designspace>
+"#;
+
+    fn names(doc: &DesignSpaceDocument) -> Vec<String> {
+        doc.sources.iter().filter_map(|s| s.name.clone()).collect()
+    }
+
+    /// Each location as `(axis, user value)` pairs.
+    fn places(dims: impl Iterator<Item = Vec<Dimension>>) -> Vec<Vec<(String, f64)>> {
+        dims.map(|d| {
+            d.iter()
+                .map(|d| (d.name.clone(), d.uservalue.or(d.xvalue).unwrap_or(f64::NAN)))
+                .collect()
+        })
+        .collect()
+    }
+
+    /// Each rule's name and condition sets, each condition `(axis, min, max)`.
+    type Conditions = Vec<(String, Vec<Vec<(String, Option<f64>, Option<f64>)>>)>;
+
+    fn conditions(doc: &DesignSpaceDocument) -> Conditions {
+        doc.rules
+            .rules
+            .iter()
+            .map(|r| {
+                let sets = r
+                    .condition_sets
+                    .iter()
+                    .map(|s| {
+                        s.conditions
+                            .iter()
+                            .map(|c| (c.name.clone(), c.minimum, c.maximum))
+                            .collect()
+                    })
+                    .collect();
+                (r.name.clone().unwrap_or_default(), sets)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_default_location_keeps_its_sources_instances_and_rules() {
+        let (doc, place) = at_discrete_location(doc(XML), None).expect("cuts");
+        let place = place.expect("a discrete location");
+        let tags: Vec<&str> = doc.axes.iter().map(|a| a.tag.as_str()).collect();
+        assert_eq!(tags, ["wght", "wdth"]);
+        assert_eq!(names(&doc), ["L", "B", "N"]);
+        // Full locations, without the discrete axis.
+        let w = |v: f64| ("Weight".to_string(), v);
+        let d = |v: f64| ("Width".to_string(), v);
+        assert_eq!(
+            places(doc.sources.iter().map(|s| s.location.clone())),
+            [
+                vec![w(100.0), d(100.0)],
+                vec![w(900.0), d(100.0)],
+                vec![d(75.0), w(100.0)]
+            ]
+        );
+        assert_eq!(
+            places(doc.instances.iter().map(|i| i.location.clone())),
+            [vec![w(400.0), d(100.0)]]
+        );
+        // `upright heavy` keeps its Weight condition; `italic` keeps the set on Width
+        // only (Italic ≥ 50 fails at 0).
+        assert_eq!(
+            conditions(&doc),
+            [
+                (
+                    "upright heavy".to_string(),
+                    vec![vec![("Weight".to_string(), Some(600.0), None)]]
+                ),
+                (
+                    "italic".to_string(),
+                    vec![vec![("Width".to_string(), None, Some(80.0))]]
+                ),
+            ]
+        );
+        assert_eq!(place.at(), "ital=0");
+        assert_eq!((place.sources, place.instances), ((3, 5), (1, 3)));
+        assert!(place.notes.is_empty(), "{:?}", place.notes);
+        assert_eq!(
+            place.notices(),
+            [
+                "axis `Italic` (ital) is discrete, values 0, 1: imported ital=0; `--at ital=1` \
+              imports the other"
+            ]
+        );
+    }
+
+    #[test]
+    fn a_continuous_axis_that_no_source_there_leaves_is_pinned_at_its_default() {
+        let (doc, place) = at_discrete_location(doc(XML), Some("ital=1")).expect("cuts");
+        let place = place.expect("a discrete location");
+        let tags: Vec<&str> = doc.axes.iter().map(|a| a.tag.as_str()).collect();
+        assert_eq!(tags, ["wght"]);
+        assert_eq!(names(&doc), ["LI", "BI"]);
+        // The instance at Width 75 is left out; the one at the italic's default kept.
+        let styles: Vec<_> = doc.instances.iter().map(|i| i.stylename.clone()).collect();
+        assert_eq!(styles, [Some("Italic".to_string())]);
+        // `italic` holds on its first set everywhere here (an empty set), and its second
+        // (Width ≤ 80) fails at the pinned Width 100; `upright heavy` fails.
+        assert_eq!(conditions(&doc), [("italic".to_string(), vec![vec![]])]);
+        assert_eq!(
+            place.notes,
+            [
+                "axis `Width` (wdth) left out: no source at ital=1 leaves its default 100",
+                "named instances off the default of the axes left out, not kept: `Narrow Italic`",
+                "rules that do not apply here left out: upright heavy",
+            ]
+        );
+        assert!(place.notices().is_empty());
+    }
+
+    #[test]
+    fn a_designspace_without_discrete_axes_is_left_as_it_was() {
+        let xml = XML.replace(
+            r#"<axis tag="ital" name="Italic" values="0 1" default="0">
+      <map input="0" output="0"/><map input="1" output="100"/>
+    </axis>"#,
+            "",
+        );
+        let (cut, place) = at_discrete_location(doc(&xml), None).expect("cuts");
+        assert_eq!(place, None);
+        assert_eq!(cut, doc(&xml));
+    }
+
+    #[test]
+    fn notices_name_each_other_value() {
+        let place = DiscreteLocation {
+            axes: vec![
+                DiscreteAxis {
+                    name: "Weight".into(),
+                    tag: "wght".into(),
+                    values: vec![400.0, 700.0, 900.0],
+                    value: 400.0,
+                    named: false,
+                },
+                DiscreteAxis {
+                    name: "Italic".into(),
+                    tag: "ital".into(),
+                    values: vec![0.0, 1.0],
+                    value: 1.0,
+                    named: true,
+                },
+            ],
+            ..DiscreteLocation::default()
+        };
+        assert_eq!(place.at(), "wght=400,ital=1");
+        assert_eq!(
+            place.notices(),
+            [
+                "axis `Weight` (wght) is discrete, values 400, 700, 900: imported wght=400; \
+              `--at wght=700` or `--at wght=900` imports another"
+            ]
+        );
+    }
+}
