@@ -25,10 +25,13 @@
 //! the glyph and master); a glyph in a layer that the default source lacks is an error
 //! naming it and the source. Axis maps become the axes' `map`; locations are read as user
 //! coordinates (`uservalue`, else `xvalue` through the inverse map); `<rules>` become
-//! `[[rule]]`s (conditions in user values). Discrete axes, `<mappings>` (avar 2), and
-//! sources that xglyph's masters cannot hold (two at the default, an axis end without a
-//! source on a default layer) are not supported: an error says which, before any UFO is
-//! read.
+//! `[[rule]]`s (conditions in user values). A designspace 5 with discrete axes is imported
+//! at one discrete location (`--at ital=1`, else each at its default), as fontmake builds
+//! one variable font per location: [`super::discrete`] first cuts the document down to
+//! that location's sources, instances and rules and its continuous axes. `<mappings>`
+//! (avar 2), and sources that xglyph's masters cannot hold (two at the default, an axis
+//! end without a source on a default layer) are not supported: an error says which,
+//! before any UFO is read.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
