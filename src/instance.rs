@@ -299,27 +299,12 @@ pub fn parse_location(designspace: &Designspace, text: &str) -> Result<Location,
         ));
     }
     let mut location = Location::default();
-    for item in text.split(',') {
-        let Some((tag, value)) = item.split_once('=') else {
-            return Err(format!(
-                "{flag}: expected TAG=VALUE (several separated by commas), such as wght=650; \
-                 found `{item}`"
-            ));
-        };
-        let (tag, value) = (tag.trim(), value.trim());
+    for (tag, x) in assignments(text)? {
         let Some(axis) = designspace.axes.iter().find(|a| a.tag == tag) else {
             return Err(format!(
                 "{flag}: unknown axis `{tag}`; the font's axes are {}",
                 axes()
             ));
-        };
-        let x: f64 = match value.parse::<f64>() {
-            Ok(x) if x.is_finite() => x,
-            _ => {
-                return Err(format!(
-                    "{flag}: `{value}` is not a number (the {tag} value)"
-                ))
-            }
         };
         if !(axis.min..=axis.max).contains(&x) {
             return Err(format!(
@@ -329,11 +314,40 @@ pub fn parse_location(designspace: &Designspace, text: &str) -> Result<Location,
                 emit::number(axis.max)
             ));
         }
-        if location.0.insert(tag.to_string(), x).is_some() {
-            return Err(format!("{flag}: axis `{tag}` is given twice"));
-        }
+        location.0.insert(tag, x);
     }
     Ok(location)
+}
+
+/// The `TAG=VALUE[,TAG=VALUE...]` of an `--at` flag as `(tag, value)` pairs in their order,
+/// each value a finite number and each tag given once; what they mean is the caller's
+/// ([`parse_location`]: a position of a font; the designspace import: a discrete location).
+/// The error names the flag and says what is wrong.
+pub fn assignments(text: &str) -> Result<Vec<(String, f64)>, String> {
+    let flag = format!("--at {text}");
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for item in text.split(',') {
+        let Some((tag, value)) = item.split_once('=') else {
+            return Err(format!(
+                "{flag}: expected TAG=VALUE (several separated by commas), such as wght=650; \
+                 found `{item}`"
+            ));
+        };
+        let (tag, value) = (tag.trim(), value.trim());
+        let x: f64 = match value.parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            _ => {
+                return Err(format!(
+                    "{flag}: `{value}` is not a number (the {tag} value)"
+                ))
+            }
+        };
+        if out.iter().any(|(t, _)| t == tag) {
+            return Err(format!("{flag}: axis `{tag}` is given twice"));
+        }
+        out.push((tag.to_string(), x));
+    }
+    Ok(out)
 }
 
 /// A style name for the font at `location`: the named instance there, or the axis values,

@@ -16,7 +16,7 @@ use std::sync::Arc;
 use super::CommandError;
 use crate::import::{self, font::parse_glyph_list, ImportError, ImportOptions, Progress};
 use crate::source::emit::font_sources;
-use crate::terminal::{out, outln};
+use crate::terminal::{errln, out, outln};
 
 #[derive(Debug, clap::Args)]
 pub struct ImportArgs {
@@ -51,6 +51,14 @@ pub struct ImportArgs {
     /// SVG: units per em of the new font (default 1000).
     #[arg(long)]
     pub units_per_em: Option<u16>,
+    /// Designspace with discrete axes (`<axis … values="0 1"/>`, such as an italic axis):
+    /// the discrete location to import, `TAG=VALUE` in user values, several separated by
+    /// commas, e.g. `ital=1`. xglyph's axes are continuous, so an import takes one discrete
+    /// location (as fontmake builds one variable font per location): its sources, instances
+    /// and rules, with the continuous axes whole. A discrete axis not named is at its
+    /// default, and a note on stderr says which other values it has.
+    #[arg(long, value_name = "TAG=VALUE")]
+    pub at: Option<String>,
     /// Write into a non-empty output directory, replacing files of the same name.
     #[arg(long)]
     pub force: bool,
@@ -92,6 +100,7 @@ fn read_font(path: &Path) -> Result<Vec<u8>, ImportError> {
 
 pub fn run(args: ImportArgs) -> Result<ExitCode, CommandError> {
     check_output_dir(&args.output, args.force)?;
+    refuse_at(&args)?;
     let progress = std::io::stderr().is_terminal().then(terminal_progress);
     if let [one] = args.inputs.as_slice() {
         match kind(one) {
@@ -120,9 +129,23 @@ fn import_family(args: &ImportArgs, progress: Progress) -> Result<ExitCode, Comm
     let imported = import::designspace::import_designspace(&args.inputs[0], &opts)?;
     let files = import::designspace::family_sources(&imported.family);
     let written = write_font_dir(&args.output, &files)?;
+    if let Some(place) = &imported.discrete {
+        for notice in place.notices() {
+            errln!("note: {notice}");
+        }
+    }
     for (style, report) in &imported.reports {
         outln!("source {style}:");
         out!("{}", report.render());
+    }
+    if let Some(place) = &imported.discrete {
+        outln!(
+            "{}",
+            place.summary(imported.family.designspace.instances.len())
+        );
+        for note in &place.notes {
+            outln!("note: {note}");
+        }
     }
     outln!("wrote {written} files to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
@@ -324,8 +347,32 @@ fn ufo_options(args: &ImportArgs, progress: Progress) -> ImportOptions {
         tolerance: args.tolerance,
         family: args.family.clone(),
         progress,
+        at: args.at.clone(),
         ..ImportOptions::default()
     }
+}
+
+/// Refuses `--at` for an input that is not a designspace (named in the error).
+fn refuse_at(args: &ImportArgs) -> Result<(), ImportError> {
+    if args.at.is_none() {
+        return Ok(());
+    }
+    for path in &args.inputs {
+        let what = match kind(path)? {
+            Kind::Designspace => continue,
+            Kind::Font => "a font",
+            Kind::Ufo => "a UFO",
+            Kind::Svg => "SVG drawings",
+        };
+        return Err(ImportError::at(
+            path,
+            format!(
+                "--at applies to a designspace (it picks one location of its discrete axes), \
+                 not to {what}"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses the flags that do not apply to a designspace.

@@ -28,9 +28,12 @@
 //! naming it and the source. Axis maps become the axes' `map`; locations are read as user
 //! coordinates (`uservalue`, else `xvalue` through the inverse map); `<rules>` become
 //! `[[rule]]`s (conditions in user values; glyph names renamed as the UFO import renames
-//! them). Discrete axes, `<mappings>` (avar 2), and sources that xglyph's masters cannot
-//! hold (two at one place) are not supported: an error says which, before any UFO is
-//! read.
+//! them). A designspace 5 with discrete axes is imported at one discrete location (`--at
+//! ital=1`, else each at its default), as fontmake builds one variable font per location:
+//! [`super::discrete`] first cuts the document down to that location's sources, instances
+//! and rules and its continuous axes. `<mappings>` (avar 2), and sources that xglyph's
+//! masters cannot hold (two at one place) are not supported: an error says which, before
+//! any UFO is read.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -39,6 +42,7 @@ use norad::designspace::{DesignSpaceDocument, Dimension, RuleProcessing};
 
 use rayon::prelude::*;
 
+use super::discrete::{at_discrete_location, DiscreteLocation};
 use super::masters::{import_compatible_glyph, Checkpoint};
 use super::report::Report;
 use super::UfoLayer;
@@ -55,6 +59,9 @@ pub struct ImportedFamily {
     pub family: Family,
     /// Per source, its style name and import report, the default's first.
     pub reports: Vec<(String, Report)>,
+    /// The discrete location imported, when the designspace has discrete axes
+    /// ([`super::discrete`]).
+    pub discrete: Option<DiscreteLocation>,
 }
 
 /// Imports the designspace at `path` and every source UFO it names.
@@ -72,6 +79,7 @@ pub fn import_designspace(
         )
     })?;
     let fail = |message: String| ImportError::at(path, message);
+    let (doc, discrete) = at_discrete_location(doc, opts.at.as_deref()).map_err(fail)?;
     let axes = axes(&doc).map_err(fail)?;
     let mut designspace = Designspace {
         axes,
@@ -264,7 +272,11 @@ pub fn import_designspace(
             "a glyph that a source does not draw cannot be blended there: {e}"
         ))
     })?;
-    Ok(ImportedFamily { family, reports })
+    Ok(ImportedFamily {
+        family,
+        reports,
+        discrete,
+    })
 }
 
 /// Whether a glyph has no outline: no contours, no components.
@@ -521,7 +533,8 @@ fn refit_compatible(
     Ok(())
 }
 
-/// The continuous axes of `doc`, with their maps (`<map input="user" output="design">`).
+/// The axes of `doc` (continuous: [`at_discrete_location`] took out the discrete ones), with
+/// their maps (`<map input="user" output="design">`).
 fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
     if doc
         .axis_mappings
@@ -535,7 +548,7 @@ fn axes(doc: &DesignSpaceDocument) -> Result<Vec<Axis>, String> {
         .map(|a| {
             let (Some(min), Some(max)) = (a.minimum, a.maximum) else {
                 return Err(format!(
-                    "axis `{}` is discrete (values, no minimum and maximum), which is not supported",
+                    "axis `{}` has neither values (a discrete axis) nor a minimum and maximum",
                     a.name
                 ));
             };

@@ -29,6 +29,7 @@
 pub mod anchors;
 pub mod contour;
 pub mod designspace;
+pub mod discrete;
 pub mod fea;
 pub mod fit;
 pub mod font;
@@ -154,6 +155,9 @@ pub struct ImportOptions {
     pub first_codepoint: Option<char>,
     /// SVG: units per em of the new font (default 1000).
     pub units_per_em: Option<u16>,
+    /// Designspace: the discrete location to import, `--at`'s `TAG=VALUE[,…]` in user
+    /// values (`None`: every discrete axis at its default; [`discrete`]).
+    pub at: Option<String>,
 }
 
 /// A finished import: the font model to emit and the report to print.

@@ -11,6 +11,7 @@ mod cache;
 mod compatible;
 mod corners;
 mod designspace;
+mod discrete_import;
 mod features;
 mod fit;
 mod fit_count;
