@@ -87,7 +87,8 @@ pub fn import_designspace(
         rules: Vec::new(),
         rules_last: matches!(doc.rules.processing, RuleProcessing::Last),
     };
-    designspace.rules = rules(&doc, &designspace.axes).map_err(fail)?;
+    let (rules, rule_notes) = rules(&doc, &designspace.axes).map_err(fail)?;
+    designspace.rules = rules;
     let base = path.parent().unwrap_or(Path::new(""));
     let mut sources = Vec::new();
     for s in &doc.sources {
@@ -272,6 +273,9 @@ pub fn import_designspace(
             "a glyph that a source does not draw cannot be blended there: {e}"
         ))
     })?;
+    if let Some((_, report)) = reports.first_mut() {
+        report.notes.extend(rule_notes);
+    }
     Ok(ImportedFamily {
         family,
         reports,
@@ -412,8 +416,10 @@ fn distinct_styles(
 /// The designspace's `<rules>` as [`Rule`]s: each `<conditionset>` a box in user values
 /// (design values through the inverse axis map; an open end, or one beyond the axis, at
 /// the axis end), an empty one the whole space; rules without a name are named `rule 1`, ….
-fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<Vec<Rule>, String> {
+/// A condition on an axis the designspace lacks is left out, with a note (returned).
+fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<(Vec<Rule>, Vec<String>), String> {
     let mut out = Vec::new();
+    let mut notes = Vec::new();
     for (k, r) in doc.rules.rules.iter().enumerate() {
         let name = r
             .name
@@ -424,11 +430,15 @@ fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<Vec<Rule>, String> 
         for set in &r.condition_sets {
             let mut ranges = BTreeMap::new();
             for c in &set.conditions {
+                // A condition on an axis the designspace lacks is left out, as fontTools'
+                // `splitInterpolable` (which fontmake builds through) leaves it out.
                 let Some(axis) = axes.iter().find(|a| a.name == c.name || a.tag == c.name) else {
-                    return Err(format!(
-                        "rule `{name}` has a condition on `{}`, which is not an axis",
+                    notes.push(format!(
+                        "rule `{name}`: its condition on `{}`, which is not an axis, is left \
+                         out, as fontmake leaves it out",
                         c.name
                     ));
+                    continue;
                 };
                 let user = |design: Option<f64>, end: f64| {
                     design.map_or(end, |d| axis.user(d).clamp(axis.min, axis.max))
@@ -470,7 +480,7 @@ fn rules(doc: &DesignSpaceDocument, axes: &[Axis]) -> Result<Vec<Rule>, String> 
              overlays"
         ));
     }
-    Ok(out)
+    Ok((out, notes))
 }
 
 /// Fits again, with one structure for all sources that draw it

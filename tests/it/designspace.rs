@@ -420,6 +420,40 @@ fn cli_import_of_the_designspace_gives_back_the_family() {
     assert_eq!(family.masters[0].location, want.masters[0].location);
 }
 
+/// A rule condition on an axis the designspace does not declare is left out with a note,
+/// as fontTools' `splitInterpolable` (fontmake's way in) leaves it out; the other
+/// conditions of its set stay.
+#[test]
+fn a_rule_condition_on_an_undeclared_axis_is_left_out_with_a_note() {
+    let b = built();
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let text = std::fs::read_to_string(b.dir.join("XglyphSans.designspace")).expect("reads");
+    let rules = "</axes>\n  <rules>\n    <rule name=\"alt\">\n      <conditionset>\n        \
+                 <condition name=\"Weight\" minimum=\"600\" maximum=\"700\"/>\n        \
+                 <condition name=\"serif\" minimum=\"0\" maximum=\"0\"/>\n      \
+                 </conditionset>\n      <sub name=\"a\" with=\"b\"/>\n    </rule>\n  </rules>";
+    assert!(text.contains("</axes>"), "{text}");
+    let ds = b.dir.join("undeclared-axis.designspace");
+    std::fs::write(&ds, text.replacen("</axes>", rules, 1)).expect("writes");
+    let out = tmp.path().join("font");
+    let stdout = crate::common::cli::import_ok(&[ds.to_str().unwrap()], &out);
+    assert!(
+        stdout.contains(
+            "note: rule `alt`: its condition on `serif`, which is not an axis, is left out, as \
+             fontmake leaves it out\n"
+        ),
+        "{stdout}"
+    );
+    let toml = std::fs::read_to_string(out.join("font.toml")).expect("font.toml");
+    assert!(
+        toml.contains(
+            "[[rule]]\nname = \"alt\"\nconditions = [{ wght = [600, 700] }]\n\
+             substitutions = { a = \"b\" }\n"
+        ),
+        "{toml}"
+    );
+}
+
 #[test]
 fn designspace_import_errors_name_the_file_and_the_problem() {
     let b = built();
