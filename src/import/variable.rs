@@ -12,8 +12,8 @@
 //! `gvar` variation peaks (an intermediate master, as Noto Sans has at Bold), and each
 //! peak of a variation on several axes at once (a corner master, as Inter's `opsz` ×
 //! `wght` has). A master at a peak is sparse when only some glyphs vary there
-//! (`drawn_per_glyph`) and its kerning is the full masters' blend (`kerned_masters`):
-//! each glyph is fitted in the masters it varies at. The masters' outlines are measured
+//! (`drawn_per_glyph`); it keeps kerning of its own where that is not the full masters'
+//! blend (`kerned_masters`). Each glyph is fitted in the masters it varies at. The masters' outlines are measured
 //! against their originals, and the midpoint between the default and each other master
 //! against the blend of their Bézier outlines.
 //!
@@ -151,15 +151,9 @@ pub fn import_variable_font(
         per_glyph.push(versions);
     }
     // Per glyph, the masters it varies at (sparse masters where a glyph has no tuple of
-    // its own), unless the kerning there needs every glyph. (A sparse master may kern, but
-    // Roboto Flex's kerned corners, made sparse, blend two points of `uni00B6` together
-    // at a corner of the design space: full masters there keep the import building.)
-    let mut drawn = drawn_per_glyph(&font, &source.ids, &masters);
-    for m in kerned_masters(&designspace, &masters, &kerning.pairs) {
-        for d in &mut drawn {
-            d[m] = true;
-        }
-    }
+    // its own); the masters whose kerning is their own.
+    let drawn = drawn_per_glyph(&font, &source.ids, &masters);
+    let kerned_peaks = kerned_masters(&designspace, &masters, &kerning.pairs);
     let grid = grid_for(tolerance);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut fitted = per_glyph
@@ -262,7 +256,7 @@ pub fn import_variable_font(
     };
     let mut reports = vec![(default_name, report(rows.next().unwrap_or_default(), notes))];
     let mut others = Vec::new();
-    for m in masters.into_iter().skip(1) {
+    for (k, m) in masters.into_iter().enumerate().skip(1) {
         reports.push((
             m.name.clone(),
             report(rows.next().unwrap_or_default(), Vec::new()),
@@ -271,15 +265,16 @@ pub fn import_variable_font(
         let drawn = drawn.next().unwrap_or_default();
         let sparse = drawn.iter().any(|&d| !d);
         let kerning = kerning.next().unwrap_or_default();
+        let kerned = !sparse || kerned_peaks.contains(&k);
         others.push(Master {
             folder: folder_name(&m.name).into(),
             name: m.name,
             location: m.location,
             drawn,
             glyphs,
-            kerning: if sparse { Vec::new() } else { kerning },
+            kerning: if kerned { kerning } else { Vec::new() },
             sparse,
-            kerned: !sparse,
+            kerned,
         });
     }
     let mut family = Family {
@@ -390,8 +385,8 @@ fn drawn_per_glyph(font: &FontRef, ids: &[u16], masters: &[MasterAt]) -> Vec<Vec
 }
 
 /// The masters at `gvar` peaks whose kerning is not what the full masters (the default
-/// and the axis ends) blend to there, within a unit: such a master keeps every glyph, so
-/// that its kerning stays its own.
+/// and the axis ends) blend to there, within a unit: such a master keeps its kerning
+/// ([`Master::kerned`]), sparse or not.
 fn kerned_masters(
     designspace: &Designspace,
     masters: &[MasterAt],
