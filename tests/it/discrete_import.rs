@@ -21,7 +21,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::common::cli::{import, import_fails, import_ok, xglyph};
-use crate::common::tools::{available, program_runs, python_imports, python_json, run};
+use crate::common::tools::{available, program_runs, python_imports, python_json, run, vf_compare};
 
 /// Writes `discrete.designspace`, `alldiscrete.designspace` and their five UFOs into the
 /// folder `argv[1]`.
@@ -148,83 +148,6 @@ doc.addRule(RuleDescriptor(name="italic H",
     subs=[("H", "H.alt")]))
 doc.write(out / "alldiscrete.designspace")
 print("{}")
-"#;
-
-/// Instances the variable fonts `argv[1]` (xglyph's) and `argv[2]` (fontmake's) with
-/// fontTools' instancer at each place of `argv[3]` (`;`-separated, each `tag=value,…` in
-/// user values; an axis a font has and the place leaves out at its default); per place and
-/// glyph of `argv[4:]`: the two-sided distance between their outlines (samples of each to
-/// the other's polyline), each one's contour count and advance.
-const COMPARE: &str = r#"
-import sys, json
-import numpy as np
-from fontTools.ttLib import TTFont
-from fontTools.varLib.instancer import instantiateVariableFont
-from fontTools.pens.basePen import BasePen
-
-def samples(font, name, steps=16):
-    gs = font.getGlyphSet()
-    contours = []
-    class P(BasePen):
-        def _moveTo(self, p):
-            self.cur = self.start = p
-            contours.append([p])
-        def _lineTo(self, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps
-                contours[-1].append((a[0] + (p[0] - a[0]) * t, a[1] + (p[1] - a[1]) * t))
-            self.cur = p
-        def _qCurveToOne(self, c, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps; u = 1 - t
-                contours[-1].append(tuple(u * u * a[k] + 2 * u * t * c[k] + t * t * p[k] for k in range(2)))
-            self.cur = p
-        def _curveToOne(self, c1, c2, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps; u = 1 - t
-                contours[-1].append(tuple(u ** 3 * a[k] + 3 * u * u * t * c1[k] + 3 * u * t * t * c2[k] + t ** 3 * p[k] for k in range(2)))
-            self.cur = p
-        def _closePath(self):
-            if self.cur != self.start:
-                self._lineTo(self.start)
-    gs[name].draw(P(gs))
-    return contours, gs[name].width
-
-def one_sided(xs, ys):
-    X = np.array([p for c in xs for p in c])
-    best = np.full(len(X), np.inf)
-    for c in ys:
-        Y = np.array(c)
-        P, D = Y[:-1], Y[1:] - Y[:-1]
-        L = (D ** 2).sum(-1); L[L == 0] = 1e-12
-        t = (((X[:, None, :] - P[None]) * D[None]).sum(-1) / L[None]).clip(0, 1)
-        d = np.sqrt(((X[:, None, :] - (P[None] + t[..., None] * D[None])) ** 2).sum(-1))
-        best = np.minimum(best, d.min(1))
-    return float(best.max())
-
-def at(font, place):
-    axes = {a.axisTag: a.defaultValue for a in font["fvar"].axes}
-    loc = {tag: place.get(tag, default) for tag, default in axes.items()}
-    return instantiateVariableFont(font, loc)
-
-out = {}
-fonts = [TTFont(sys.argv[1]), TTFont(sys.argv[2])]
-for text in sys.argv[3].split(";"):
-    place = {k: float(v) for k, v in (item.split("=") for item in text.split(","))}
-    a, b = (at(f, place) for f in fonts)
-    here = out[text] = {}
-    for name in sys.argv[4:]:
-        ca, wa = samples(a, name)
-        cb, wb = samples(b, name)
-        here[name] = {
-            "distance": max(one_sided(ca, cb), one_sided(cb, ca)),
-            "contours": [len(ca), len(cb)],
-            "advance": [wa, wb],
-        }
-print(json.dumps(out))
 "#;
 
 /// Per variable font of `argv[1:]`: its GSUB feature variations, each as the condition box
@@ -474,7 +397,7 @@ fn each_discrete_location_builds_as_fontmakes_variable_font_of_it() {
         let ours = out.join(ours);
         let theirs = theirs.join(fontmake);
         let compared: BTreeMap<String, BTreeMap<String, Compared>> =
-            python_json(COMPARE, &[&ours, &theirs, &places, &"O", &"H", &"H.alt"]);
+            vf_compare(&ours, &theirs, places, &["O", "H", "H.alt"]);
         assert_eq!(compared.len(), places.split(';').count(), "{compared:?}");
         for (place, glyphs) in &compared {
             for (name, c) in glyphs {

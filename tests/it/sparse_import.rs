@@ -18,7 +18,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::common::cli::{import_fails, import_ok, xglyph};
-use crate::common::tools::{available, program_runs, python_imports, python_json, run};
+use crate::common::tools::{available, program_runs, python_imports, python_json, run, vf_compare};
 
 /// Writes `sparse.designspace` with its two UFOs into the folder `argv[1]`; with `argv[2]`
 /// = "extra", the layer also draws a glyph `X` that the default source lacks.
@@ -117,82 +117,6 @@ doc.write(out / "sparse.designspace")
 print("{}")
 "#;
 
-/// Instances the variable fonts `argv[1]` (xglyph's) and `argv[2]` (fontmake's) at each
-/// `wght` of `argv[3]` (comma-separated) with fontTools' instancer; per place and glyph
-/// of `argv[4:]`: the two-sided distance between their outlines (samples of each to the
-/// other's polyline), each one's contour count, advance and bounding box width.
-const COMPARE: &str = r#"
-import sys, json
-import numpy as np
-from fontTools.ttLib import TTFont
-from fontTools.varLib.instancer import instantiateVariableFont
-from fontTools.pens.basePen import BasePen
-from fontTools.pens.boundsPen import BoundsPen
-
-def samples(font, name, steps=16):
-    gs = font.getGlyphSet()
-    contours = []
-    class P(BasePen):
-        def _moveTo(self, p):
-            self.cur = self.start = p
-            contours.append([p])
-        def _lineTo(self, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps
-                contours[-1].append((a[0] + (p[0] - a[0]) * t, a[1] + (p[1] - a[1]) * t))
-            self.cur = p
-        def _qCurveToOne(self, c, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps; u = 1 - t
-                contours[-1].append(tuple(u * u * a[k] + 2 * u * t * c[k] + t * t * p[k] for k in range(2)))
-            self.cur = p
-        def _curveToOne(self, c1, c2, p):
-            a = self.cur
-            for i in range(1, steps + 1):
-                t = i / steps; u = 1 - t
-                contours[-1].append(tuple(u ** 3 * a[k] + 3 * u * u * t * c1[k] + 3 * u * t * t * c2[k] + t ** 3 * p[k] for k in range(2)))
-            self.cur = p
-        def _closePath(self):
-            if self.cur != self.start:
-                self._lineTo(self.start)
-    gs[name].draw(P(gs))
-    b = BoundsPen(gs)
-    gs[name].draw(b)
-    return contours, gs[name].width, b.bounds
-
-def one_sided(xs, ys):
-    worst = 0.0
-    X = np.array([p for c in xs for p in c])
-    best = np.full(len(X), np.inf)
-    for c in ys:
-        Y = np.array(c)
-        P, D = Y[:-1], Y[1:] - Y[:-1]
-        L = (D ** 2).sum(-1); L[L == 0] = 1e-12
-        t = (((X[:, None, :] - P[None]) * D[None]).sum(-1) / L[None]).clip(0, 1)
-        d = np.sqrt(((X[:, None, :] - (P[None] + t[..., None] * D[None])) ** 2).sum(-1))
-        best = np.minimum(best, d.min(1))
-    return float(best.max())
-
-out = {}
-fonts = [TTFont(sys.argv[1]), TTFont(sys.argv[2])]
-for wght in sys.argv[3].split(","):
-    loc = {"wght": float(wght)}
-    a, b = (instantiateVariableFont(f, loc) for f in fonts)
-    here = out[wght] = {}
-    for name in sys.argv[4:]:
-        ca, wa, ba = samples(a, name)
-        cb, wb, bb = samples(b, name)
-        here[name] = {
-            "distance": max(one_sided(ca, cb), one_sided(cb, ca)),
-            "contours": [len(ca), len(cb)],
-            "advance": [wa, wb],
-            "width": [ba[2] - ba[0], bb[2] - bb[0]],
-        }
-print(json.dumps(out))
-"#;
-
 fn s(p: &Path) -> &str {
     p.to_str().expect("UTF-8 path")
 }
@@ -280,14 +204,16 @@ fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
         .arg(&ds)
         .args(["-o", "variable", "--output-path"])
         .arg(&theirs));
-    let compared: BTreeMap<String, BTreeMap<String, Compared>> = python_json(
-        COMPARE,
-        &[&ours, &theirs, &"600,350,750", &"O", &"H", &"O.alt"],
+    let compared: BTreeMap<String, BTreeMap<String, Compared>> = vf_compare(
+        &ours,
+        &theirs,
+        "wght=600;wght=350;wght=750",
+        &["O", "H", "O.alt"],
     );
     // At the sparse source: O as the layer draws it (stroke 100: the width 2 · 310 = 620,
     // where the full masters' blend would give 2 · 330 = 660), H as the full masters
     // blend it (the layer's empty H is not drawn).
-    let support = &compared["600"];
+    let support = &compared["wght=600"];
     let (o, h) = (&support["O"], &support["H"]);
     assert_eq!(o.contours, [2, 2], "{support:?}");
     assert!(o.distance <= 2.0, "O at wght 600: {support:?}");
@@ -306,7 +232,7 @@ fn a_layer_source_imports_as_a_sparse_master_and_builds_as_fontmake_does() {
     assert_eq!(h.advance, [780.0, 780.0], "{support:?}");
     // Between the default and the sparse source, and between it and Bold.
     for wght in ["350", "750"] {
-        let between = &compared[wght];
+        let between = &compared[&format!("wght={wght}")];
         for (name, c) in between {
             assert!(c.distance <= 2.0, "{name} at wght {wght}: {between:?}");
             assert_eq!(c.advance[0], c.advance[1], "{name} at wght {wght}");

@@ -61,6 +61,32 @@ pub fn python_json<T: serde::de::DeserializeOwned>(script: &str, args: &[&dyn As
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
 }
 
+/// `tests/it/vf_compare.py`: the variable fonts `ours` and `theirs` instanced at each of
+/// `places` (`;`-separated, `tag=value,…`), compared glyph by glyph for `glyphs`; per place
+/// (as written) and glyph, the script's JSON (distance, contours, advance, width).
+pub fn vf_compare<T: serde::de::DeserializeOwned>(
+    ours: &std::path::Path,
+    theirs: &std::path::Path,
+    places: &str,
+    glyphs: &[&str],
+) -> T {
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/vf_compare.py");
+    let out = Command::new("python3")
+        .arg(&script)
+        .arg(ours)
+        .arg(theirs)
+        .arg(places)
+        .args(glyphs)
+        .output()
+        .expect("python3 runs");
+    assert!(
+        out.status.success(),
+        "vf_compare.py: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}
+
 /// Whether fontmake, fontc, fontTools and ufoLib2 are there (else the skip of
 /// [`available`]).
 pub fn designspace_compilers_available() -> bool {
