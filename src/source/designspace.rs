@@ -879,6 +879,14 @@ fn uncovered_end_warnings(
         .map(|m| m.0.location.clone())
         .collect();
     let uncovered = designspace.uncovered_ends(&all);
+    // A location on axis `axis` alone (the others at their defaults).
+    let on_axis = |l: &Location, axis: usize| {
+        designspace
+            .axes
+            .iter()
+            .enumerate()
+            .all(|(k, b)| k == axis || l.get(b) == b.default)
+    };
     for (axis, user) in designspace.uncovered_ends(&full) {
         let (a, spans) = &axes[axis];
         let (key, at) = if user == a.max {
@@ -890,7 +898,9 @@ fn uncovered_end_warnings(
         if !uncovered.contains(&(axis, user)) {
             let sparse = masters
                 .iter()
-                .find(|(m, _, _)| m.sparse && m.location.get(a) == user)
+                .find(|(m, _, _)| {
+                    m.sparse && m.location.get(a) == user && on_axis(&m.location, axis)
+                })
                 .map_or_else(String::new, |(m, _, _)| m.name.clone());
             ctx.warn(
                 at,
@@ -904,18 +914,11 @@ fn uncovered_end_warnings(
             continue;
         }
         // The outermost master on this axis alone, on that side of the default.
-        let on_axis = |l: &Location| {
-            designspace
-                .axes
-                .iter()
-                .enumerate()
-                .all(|(k, b)| k == axis || l.get(b) == b.default)
-        };
         let outermost = masters
             .iter()
             .filter(|(m, _, _)| {
                 let v = m.location.get(a);
-                on_axis(&m.location) && (v - a.default) * (user - a.default) > 0.0
+                on_axis(&m.location, axis) && (v - a.default) * (user - a.default) > 0.0
             })
             .max_by(|x, y| {
                 let d = |m: &MasterSpec| (m.location.get(a) - a.default).abs();

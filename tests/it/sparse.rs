@@ -354,6 +354,36 @@ fn sparse_master_errors_name_the_place_to_fix() {
     }
 }
 
+/// A sparse master alone at an axis end is allowed, with a warning at the end's `max`:
+/// the glyphs it does not draw blend back to the default there.
+#[test]
+fn a_sparse_master_alone_at_an_axis_end_is_a_warning() {
+    let (code, out) = check_edited("only sparse at the end", |f: &Path| {
+        replace(
+            &f.join("font.toml"),
+            "location = { wght = 550 }",
+            "location = { wght = 700 }",
+        );
+        replace(
+            &f.join("font.toml"),
+            "location = { wght = 700 }\n\n[[master]]",
+            "location = { wght = 600 }\n\n[[master]]",
+        );
+    });
+    assert_eq!(code, 0, "{out}");
+    let warnings: Vec<&str> = out.lines().filter(|l| l.contains(": warning: ")).collect();
+    assert_eq!(
+        warnings,
+        [
+            "font/font.toml:18:7: warning: axis `wght` ends at max = 700 where only sparse master \
+          `O 550` is: a glyph it does not draw blends back to the default there, past the \
+          outermost master that draws it"
+        ],
+        "{out}"
+    );
+    assert!(out.ends_with("0 errors, 1 warning\n"), "{out}");
+}
+
 /// A sparse master with a `kerning.toml` kerns with its own pairs: `H O` -25 at wght 550
 /// where the full masters blend to -20, and `n O` (a pair it lacks) 0 there instead of -8.
 /// Its export is a UFO of its own holding only `O` (a layer has no kerning), which fontmake
