@@ -321,8 +321,9 @@ pub fn outline_family_with(
     tolerance: f64,
     cache: Option<&FitCache>,
 ) -> Result<(OutlinedFamily, FamilySummary), FamilyError> {
-    let model = family.model().map_err(FamilyError::Regions)?;
     let mut models = family.glyph_models().map_err(FamilyError::Regions)?;
+    // The first set is every master, with the family's model ([`GlyphModels::sets`]).
+    let model = models.sets[0].1.clone();
     let ds = &family.designspace;
     let locations = check_locations(family);
     // Per set of masters, the weights of its own model at each position, and at each
