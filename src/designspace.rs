@@ -734,6 +734,24 @@ pub enum RegionError {
 mod tests {
     use super::*;
 
+    /// Axes `w` and `h`, each from `min` to `max` of its pair with the default 0.
+    fn plane(w: (f64, f64), h: (f64, f64)) -> Designspace {
+        Designspace {
+            axes: vec![
+                Axis::linear("w", "W", w.0, 0.0, w.1),
+                Axis::linear("h", "H", h.0, 0.0, h.1),
+            ],
+            instances: vec![],
+            rules: Vec::new(),
+            rules_last: false,
+        }
+    }
+
+    /// The location `{ w, h }` of [`plane`].
+    fn loc(w: f64, h: f64) -> Location {
+        Location([("w".into(), w), ("h".into(), h)].into_iter().collect())
+    }
+
     fn wght() -> Designspace {
         Designspace {
             axes: vec![Axis::linear("wght", "Weight", 400.0, 400.0, 700.0)],
@@ -857,17 +875,7 @@ mod tests {
     /// `getMasterScalars` and `getDeltas(round=round)`, for the same master order.
     #[test]
     fn corner_masters_blend_as_fonttools() {
-        let ds = Designspace {
-            axes: vec![
-                Axis::linear("w", "W", -100.0, 0.0, 100.0),
-                Axis::linear("h", "H", -100.0, 0.0, 100.0),
-            ],
-            instances: vec![],
-            rules: Vec::new(),
-            rules_last: false,
-        };
-        let loc =
-            |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());
+        let ds = plane((-100.0, 100.0), (-100.0, 100.0));
         let masters = [
             loc(100.0, 100.0),
             loc(-100.0, 0.0),
@@ -930,17 +938,7 @@ mod tests {
     /// `otRound` would give 109.
     #[test]
     fn deltas_round_half_to_even_as_varlib() {
-        let ds = Designspace {
-            axes: vec![
-                Axis::linear("w", "W", 0.0, 0.0, 100.0),
-                Axis::linear("h", "H", -100.0, 0.0, 0.0),
-            ],
-            instances: vec![],
-            rules: Vec::new(),
-            rules_last: false,
-        };
-        let loc =
-            |w: f64, h: f64| Location([("w".into(), w), ("h".into(), h)].into_iter().collect());
+        let ds = plane((0.0, 100.0), (-100.0, 0.0));
         let masters = [
             loc(100.0, 0.0),
             loc(0.0, -100.0),

@@ -35,7 +35,7 @@
 //! masters cannot hold (two at one place) are not supported: an error says which, before
 //! any UFO is read.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use norad::designspace::{DesignSpaceDocument, Dimension, RuleProcessing};
@@ -153,10 +153,11 @@ pub fn import_designspace(
         .iter()
         .zip(&sources)
         .map(|((_, _, one), s)| {
+            let names: HashSet<&str> = one.font.glyphs.iter().map(|g| g.name.as_str()).collect();
             s.sparse
                 || drawn_in_default
                     .keys()
-                    .any(|name| !one.font.glyphs.iter().any(|g| &g.name == name))
+                    .any(|name| !names.contains(name.as_str()))
         })
         .collect();
     let kerned: Vec<bool> = sources.iter().map(|s| !s.sparse).collect();

@@ -236,20 +236,20 @@ pub fn output_files_reusing(
         .collect();
     // A sparse master without kerning of its own is a layer of the default master's UFO;
     // every other master a UFO.
-    let sparse = |k: usize| k > 0 && model.masters[k - 1].sparse && !model.masters[k - 1].kerned;
+    let on_layer = |k: usize| k > 0 && model.masters[k - 1].sparse && !model.masters[k - 1].kerned;
     let dirs: Vec<String> = fonts.iter().map(ufo_dir_name).collect();
     let mut seen = HashSet::new();
     if let Some(dir) = dirs
         .iter()
         .enumerate()
-        .filter(|&(k, _)| !sparse(k))
+        .filter(|&(k, _)| !on_layer(k))
         .map(|(_, d)| d)
         .find(|d| !seen.insert(d.to_lowercase()))
     {
         return Err(UfoError::MasterName(dir.clone()));
     }
     let layers: Vec<super::ExtraLayer<'_>> = (1..fonts.len())
-        .filter(|&k| sparse(k))
+        .filter(|&k| on_layer(k))
         .map(|k| super::ExtraLayer {
             name: &model.masters[k - 1].name,
             font: &fonts[k],
@@ -258,18 +258,18 @@ pub fn output_files_reusing(
         .collect();
     let mut out = Vec::new();
     for (k, font) in fonts.iter().enumerate() {
-        if sparse(k) {
+        if on_layer(k) {
             continue;
         }
         let outlines = OutlineKeys::new(font, reuse);
         let extra = if k == 0 { &layers[..] } else { &[] };
         out.extend(super::output_files_reusing(font, reuse, &outlines, extra)?);
     }
-    // The sources: a sparse master reads its layer of the default master's UFO.
+    // The sources: a master on a layer reads its layer of the default master's UFO.
     let files: Vec<(String, Option<String>)> = dirs
         .iter()
         .enumerate()
-        .map(|(k, d)| match sparse(k) {
+        .map(|(k, d)| match on_layer(k) {
             true => (dirs[0].clone(), Some(model.masters[k - 1].name.clone())),
             false => (d.clone(), None),
         })
