@@ -20,10 +20,11 @@ use rayon::prelude::*;
 use crate::cache::FitCache;
 use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
 use crate::designspace::{Designspace, Location, RegionError, VariationModel};
+use crate::extrema::{apply_plan, split_plan_for};
 use crate::fit::fit_contour;
 use crate::model::{Contour, Family, Font, GlyphIndex, GlyphModels, KernPair};
 use crate::orient::nesting_depths;
-use crate::outline::{OutlinedFont, OutlinedGlyph, PlacedContour};
+use crate::outline::{min_piece, OutlinedFont, OutlinedGlyph, PlacedContour};
 use crate::xspline::{XSpline, XSplineError};
 
 /// A font with masters, every glyph fitted compatibly.
@@ -385,7 +386,7 @@ pub fn outline_family_with(
         worst: None,
     };
     for g in &glyphs {
-        summary.compatible_segments += g.default.segments;
+        summary.compatible_segments += g.fitted_segments;
         summary.static_segments += g.static_segments;
         if let Some((p, &e)) = g
             .errors
@@ -434,6 +435,8 @@ struct FittedGlyph {
     masters: Vec<MasterGlyph>,
     /// Largest error over the glyph's contours, per checked position.
     errors: Vec<f64>,
+    /// The compatible fitter's segments (before the splits at extrema), for the summary.
+    fitted_segments: usize,
     static_segments: usize,
 }
 
@@ -531,8 +534,16 @@ fn fit_glyph(
         })
         .max()
         .unwrap_or(0);
-    let segments = fits.iter().map(|f| f.segments).sum();
+    let fitted_segments = fits.iter().map(|f| f.segments).sum();
     let drawn: Vec<BezPath> = (0..drawing.len()).map(|k| join(moved(k))).collect();
+    // Points at the default's extrema, at the same place of each curve in every master:
+    // the blend is unchanged ([`crate::extrema`]).
+    let plan = split_plan_for(&drawn.iter().collect::<Vec<_>>(), min_piece(&fonts[0].info));
+    let drawn: Vec<BezPath> = drawn
+        .iter()
+        .enumerate()
+        .map(|(k, path)| apply_plan(path, &plan, k == 0))
+        .collect();
     let masters = (0..fonts.len() - 1)
         .map(|m| match set.masters.iter().position(|&s| s == m) {
             Some(k) => MasterGlyph {
@@ -569,14 +580,15 @@ fn fit_glyph(
                 offset: Vec2::new(*dx, *dy),
             })
             .collect(),
+        segments: segment_count(&drawn[0]),
         path: drawn[0].clone(),
         max_error: errors.iter().copied().fold(0.0, f64::max),
-        segments,
     };
     Ok(FittedGlyph {
         default,
         masters,
         errors,
+        fitted_segments,
         static_segments,
     })
 }

@@ -4,7 +4,7 @@
 //!
 //! ```text
 //! source (TOML text) -> model (typed Font, validated X-splines)
-//!     -> outline: xspline -> fit + orient, per glyph -> OutlinedFont (the one IR)
+//!     -> outline: xspline -> fit + orient + extrema, per glyph -> OutlinedFont (the one IR)
 //!     -> render (PNG) | svg (glyph set, SVG font) | otf (TTF/OTF, specimen)
 //! pipeline: the steps above as calls that return data (the CLI prints them)
 //! import: existing outlines -> X-spline sources
@@ -24,6 +24,7 @@ pub mod cli;
 pub mod commands;
 pub mod compatible;
 pub mod designspace;
+pub mod extrema;
 pub mod family;
 pub mod fit;
 pub mod flatten;

@@ -17,6 +17,9 @@
 //! rebuild refits only the contours that changed, and orients only the glyphs that changed)
 //! and count finished glyphs for a progress display.
 //!
+//! The fitted paths get on-curve points at their extrema ([`crate::extrema`]): exact
+//! splits, so the measured error is the fit's.
+//!
 //! Each glyph is outlined on its own by [`outline_glyph`], a pure function of the model, the
 //! glyph and the tolerance: glyphs can be fitted in any order or in parallel, cached, or
 //! refitted one at a time. Outlines at another design-space position (masters) are the
@@ -31,6 +34,7 @@ use kurbo::{Affine, BezPath, PathEl, Rect, Shape, Vec2};
 use rayon::prelude::*;
 
 use crate::cache::FitCache;
+use crate::extrema::{add_extrema, MIN_PIECE};
 use crate::fit::fit_contour;
 use crate::model::{Anchor, Component, FeatureFile, Font, FontInfo, Glyph, GlyphIndex, KernPair};
 use crate::orient::orient_contours;
@@ -247,6 +251,7 @@ fn outline_glyph_with<'a>(
         Some(cache) => cache.orient_placed(&contours, tolerance, fitted),
         None => orient_contours(fitted),
     };
+    let path = add_extrema(&path, min_piece(&font.info));
     let segments = path
         .elements()
         .iter()
@@ -270,6 +275,11 @@ fn outline_glyph_with<'a>(
         max_error,
         segments,
     }
+}
+
+/// The shortest piece a split at an extreme may leave ([`crate::extrema`]), font units.
+pub(crate) fn min_piece(info: &FontInfo) -> f64 {
+    MIN_PIECE * f64::from(info.units_per_em)
 }
 
 /// Fits a contour where it was drawn and moves the fitted path to where it is placed.

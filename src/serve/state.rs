@@ -19,9 +19,11 @@ use std::path::{Path, PathBuf};
 use kurbo::{Affine, BezPath, PathEl, Vec2};
 use serde_json::{json, Value};
 
+use crate::extrema::add_extrema;
 use crate::fit::fit_contour;
 use crate::model::{Contour, Font, Glyph};
 use crate::orient::orient_contours;
+use crate::outline::min_piece;
 use crate::outline::{OutlinedGlyph, PlacedContour};
 use crate::source::{
     load_glyph_text, load_sources, offsets_written, place_in_font, Diagnostic, Severity, SourceKind,
@@ -236,7 +238,7 @@ impl Studio {
         let mut worst_error: f64 = 0.0;
         let depth = self.font.glyphs.len();
         self.place(glyph, Vec2::ZERO, depth, &mut contours, &mut worst_error);
-        let path = orient_contours(contours);
+        let path = add_extrema(&orient_contours(contours), min_piece(&self.font.info));
         let segments = path
             .elements()
             .iter()

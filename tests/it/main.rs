@@ -12,6 +12,7 @@ mod compatible;
 mod corners;
 mod designspace;
 mod discrete_import;
+mod extrema;
 mod features;
 mod fit;
 mod fit_count;

@@ -1,0 +1,166 @@
+//! Points at the extrema (`src/extrema.rs`): every output path of the bundled typeface, in
+//! every master, has an on-curve point wherever a cubic turns back in x or y (beyond the
+//! documented limits), the splits add no error, and FontForge reads the built fonts
+//! without an open contour, a wrong direction or a bad name.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+
+use kurbo::{CubicBez, ParamCurve, PathEl};
+use xglyph::extrema::MIN_PIECE;
+use xglyph::family::outline_family;
+use xglyph::source::load_family;
+
+use crate::common::cli::xglyph;
+use crate::common::tools::available;
+
+/// The largest amount by which a cubic of `path` turns back in x or y inside its span,
+/// measured on 400 samples, away from its ends by more than `margin` (chord).
+fn deepest_unsplit_extreme(path: &kurbo::BezPath, margin: f64) -> (f64, String) {
+    let mut worst = (0.0, String::new());
+    let mut last = kurbo::Point::ZERO;
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) | PathEl::QuadTo(_, p) => last = p,
+            PathEl::CurveTo(p1, p2, p3) => {
+                let c = CubicBez::new(last, p1, p2, p3);
+                for axis in 0..2 {
+                    let v = |p: kurbo::Point| if axis == 0 { p.x } else { p.y };
+                    let (lo, hi) = (v(c.p0).min(v(c.p3)), v(c.p0).max(v(c.p3)));
+                    for k in 1..400 {
+                        let p = c.eval(f64::from(k) / 400.0);
+                        if p.distance(c.p0) < margin || p.distance(c.p3) < margin {
+                            continue;
+                        }
+                        let past = (v(p) - hi).max(lo - v(p));
+                        if past > worst.0 {
+                            worst = (past, format!("{c:?} axis {axis}"));
+                        }
+                    }
+                }
+                last = p3;
+            }
+            PathEl::ClosePath => {}
+        }
+    }
+    worst
+}
+
+#[test]
+fn every_master_of_the_bundled_typeface_has_points_at_its_extrema() {
+    let family = load_family(Path::new("glyphs")).expect("glyphs/ loads").0;
+    let upm = f64::from(family.default.info.units_per_em);
+    let (outlined, summary) = outline_family(&family, family.default.info.tolerance).expect("fits");
+    // A cubic may pass its end points' range only by less than the smallest extreme split
+    // (a fifth of MIN_PIECE em), or within MIN_PIECE em of an end, or where a split would
+    // leave such a piece in the other master; measured past the end points' range.
+    let mut default_worst = (0.0, String::new());
+    for g in &outlined.default.glyphs {
+        let w = deepest_unsplit_extreme(&g.path, MIN_PIECE * upm * 1.5);
+        if w.0 > default_worst.0 {
+            default_worst = (w.0, format!("{}: {}", g.name, w.1));
+        }
+    }
+    assert!(
+        default_worst.0 < MIN_PIECE * upm / 5.0 + 1e-9,
+        "{default_worst:?}"
+    );
+    // The splits are exact: the error is the fitter's, and every master keeps one
+    // structure with the default.
+    assert!(summary.worst.as_ref().is_some_and(|w| w.2 <= 0.5));
+    let added: usize = outlined.default.glyphs.iter().map(|g| g.segments).sum();
+    assert!(
+        added > summary.compatible_segments,
+        "{added} {}",
+        summary.compatible_segments
+    );
+    for m in &outlined.masters {
+        for (g, d) in m.glyphs.iter().zip(&outlined.default.glyphs) {
+            let kinds = |p: &kurbo::BezPath| {
+                p.elements()
+                    .iter()
+                    .map(std::mem::discriminant)
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(kinds(&g.path), kinds(&d.path), "{} in {}", d.name, m.name);
+        }
+    }
+}
+
+/// FontForge's validation of each file: glyph name → its problem flags
+/// (`validation_state` without bit 0, "validated").
+const VALIDATE: &str = r#"
+import fontforge, json, sys
+out = {}
+for path in sys.argv[1:]:
+    f = fontforge.open(path)
+    f.validate(True)
+    out[path] = {g.glyphname: g.validation_state & ~1 for g in f.glyphs()}
+    f.close()
+print(json.dumps(out))
+"#;
+
+#[test]
+fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
+    let ok = Command::new("fontforge")
+        .args(["-lang=py", "-c", "import fontforge"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !available(ok, "FontForge", "apt-get install fontforge") {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, _, err) = xglyph(&["build", "glyphs", "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let script = dir.path().join("validate.py");
+    std::fs::write(&script, VALIDATE).unwrap();
+    let fonts = [
+        "XglyphSans-Regular.ttf",
+        "XglyphSans-Regular.otf",
+        "XglyphSans-Bold.ttf",
+        "XglyphSans-Bold.otf",
+        "XglyphSans[wght].ttf",
+    ];
+    let output = Command::new("fontforge")
+        .args(["-lang=py", "-script"])
+        .arg(&script)
+        .args(fonts.iter().map(|f| out.join(f)))
+        .output()
+        .expect("fontforge runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: BTreeMap<String, BTreeMap<String, u64>> =
+        serde_json::from_slice(&output.stdout).expect("JSON from the script");
+    assert_eq!(report.len(), fonts.len());
+    // FontForge's flags: open contour 0x2, wrong direction 0x8, flipped references 0x10,
+    // bad glyph name 0x200, points too far apart 0x40000, duplicate name 0x200000 or
+    // code point 0x400000.
+    const STRUCTURAL: u64 = 0x2 | 0x8 | 0x10 | 0x200 | 0x40000 | 0x200000 | 0x400000;
+    const MISSING_EXTREMA: u64 = 0x20;
+    for (path, glyphs) in &report {
+        assert_eq!(glyphs.len(), 158, "{path}");
+        let bad: Vec<_> = glyphs
+            .iter()
+            .filter(|(_, &s)| s & STRUCTURAL != 0)
+            .collect();
+        assert!(bad.is_empty(), "{path}: {bad:?}");
+        let missing = glyphs
+            .values()
+            .filter(|&&s| s & MISSING_EXTREMA != 0)
+            .count();
+        println!("{path}: {missing} glyphs with a missing extreme by FontForge");
+    }
+    // The default master's TrueType outlines, from the compatible fit: before the splits
+    // FontForge found missing extrema in 83 of the 158 glyphs.
+    let regular = &report[&out.join("XglyphSans-Regular.ttf").display().to_string()];
+    let missing = regular
+        .values()
+        .filter(|&&s| s & MISSING_EXTREMA != 0)
+        .count();
+    assert!(missing <= 16, "{missing}");
+}
