@@ -18,9 +18,8 @@
 //!
 //! Limits: an extreme closer than [`MIN_PIECE`] em to a cubic's end is not split off (the
 //! piece would round to nothing on the grid; its overshoot past that end is smaller
-//! still), nor one where the curve turns back by less than a fifth of that (a wobble of the
-//! fit within its tolerance, not a feature of the design). In a family, a split that would
-//! leave such a piece in any master, or a piece running the other way, is not made.
+//! still). In a family, a split that would leave such a piece in any master, or a piece
+//! running the other way, is not made.
 //! Rounding to the grid can still give a curve that is monotone a faint extreme (a
 //! handle rounded a unit past its end point).
 
@@ -79,7 +78,7 @@ pub fn split_plan_for(paths: &[&BezPath], min_piece: f64) -> Vec<Split> {
         else {
             continue;
         };
-        let ts = keep_whole_pieces(&all, extrema(&all[0], min_piece / 5.0), min_piece);
+        let ts = keep_whole_pieces(&all, extrema(&all[0]), min_piece);
         if !ts.is_empty() {
             plan.push((i, ts));
         }
@@ -168,10 +167,8 @@ fn snap_join(cubic: &CubicBez, t: f64, pieces: &mut [CubicBez], k: usize) {
 }
 
 /// The parameters in (0, 1) where `c` turns back in x or in y (a simple root of the
-/// derivative's component: a tangent that only touches the axis is no extreme), ascending;
-/// not those that turn back by less than `min_depth` (a wobble of the fit within its
-/// tolerance, which rounding to the grid mostly removes).
-fn extrema(c: &CubicBez, min_depth: f64) -> Vec<f64> {
+/// derivative's component: a tangent that only touches the axis is no extreme), ascending.
+fn extrema(c: &CubicBez) -> Vec<f64> {
     let mut ts: Vec<f64> = Vec::new();
     for axis in [0, 1] {
         let coord = |p: Point| if axis == 0 { p.x } else { p.y };
@@ -190,12 +187,7 @@ fn extrema(c: &CubicBez, min_depth: f64) -> Vec<f64> {
             let slope = 2.0 * a * t + b;
             let scale = a.abs() + b.abs() + cc.abs();
             if t > 0.0 && t < 1.0 && slope.abs() > 1e-9 * scale {
-                // How far the curve turns back: from the extreme to the nearer end value.
-                let value = coord(c.eval(t));
-                let depth = (value - p0).abs().min((value - p3).abs());
-                if depth >= min_depth {
-                    ts.push(t);
-                }
+                ts.push(t);
             }
         }
     }

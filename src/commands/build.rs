@@ -280,8 +280,9 @@ fn variable_line(fs: &FamilySummary, family: &Family, tolerance: f64) -> String 
         None => String::new(),
     };
     format!(
-        "variable font: {} segments in every master, static fits of the most demanding \
-         master {} ({ratio:.3}x); checked at {} positions{worst}",
+        "variable font: {} segments in every master as fitted (before the splits at \
+         extrema), static fits of the most demanding master {} ({ratio:.3}x); checked at {} \
+         positions{worst}",
         fs.compatible_segments, fs.static_segments, fs.positions
     )
 }

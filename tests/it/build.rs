@@ -105,7 +105,7 @@ fn build_writes_every_output_and_a_summary() {
     // No temporary files left behind by the atomic writes.
     assert!(names.iter().all(|n| !n.contains(".tmp")));
     let expected = format!(
-        "built Mini Test Regular: 8 glyphs, 12 contours, 78 segments\n\
+        "built Mini Test Regular: 8 glyphs, 12 contours, 82 segments\n\
          worst error against the X-splines: 0.473 font units (glyph `period`), tolerance 0.5\n\
          wrote 29 files to {}: MiniTest-Regular.svg, sheet.png, proof.png, MiniTest-Regular.ttf, MiniTest-Regular.otf, MiniTest-Regular.woff2, specimen.html, MiniTest-Regular.ufo/ (14 files), svg/ (8 glyph SVGs)\n",
         out.display()

@@ -52,9 +52,9 @@ fn every_master_of_the_bundled_typeface_has_points_at_its_extrema() {
     let family = load_family(Path::new("glyphs")).expect("glyphs/ loads").0;
     let upm = f64::from(family.default.info.units_per_em);
     let (outlined, summary) = outline_family(&family, family.default.info.tolerance).expect("fits");
-    // A cubic may pass its end points' range only by less than the smallest extreme split
-    // (a fifth of MIN_PIECE em), or within MIN_PIECE em of an end, or where a split would
-    // leave such a piece in the other master; measured past the end points' range.
+    // A cubic may pass its end points' range only within MIN_PIECE em of an end, or where a
+    // split would leave a short or reversed piece in the other master (measured: under
+    // 0.05 units in the bundled family); measured past the end points' range.
     let mut default_worst = (0.0, String::new());
     for g in &outlined.default.glyphs {
         let w = deepest_unsplit_extreme(&g.path, MIN_PIECE * upm * 1.5);
@@ -62,10 +62,7 @@ fn every_master_of_the_bundled_typeface_has_points_at_its_extrema() {
             default_worst = (w.0, format!("{}: {}", g.name, w.1));
         }
     }
-    assert!(
-        default_worst.0 < MIN_PIECE * upm / 5.0 + 1e-9,
-        "{default_worst:?}"
-    );
+    assert!(default_worst.0 < 0.05, "{default_worst:?}");
     // The splits are exact: the error is the fitter's, and every master keeps one
     // structure with the default.
     assert!(summary.worst.as_ref().is_some_and(|w| w.2 <= 0.5));
@@ -155,12 +152,16 @@ fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
             .count();
         println!("{path}: {missing} glyphs with a missing extreme by FontForge");
     }
-    // The default master's TrueType outlines, from the compatible fit: before the splits
-    // FontForge found missing extrema in 83 of the 158 glyphs.
-    let regular = &report[&out.join("XglyphSans-Regular.ttf").display().to_string()];
-    let missing = regular
-        .values()
-        .filter(|&&s| s & MISSING_EXTREMA != 0)
-        .count();
-    assert!(missing <= 16, "{missing}");
+    // The default master's TrueType and CFF outlines, from the compatible fit, and the
+    // variable font: before the splits FontForge found missing extrema in 83 and 95 of the
+    // 158 glyphs of the TTF and OTF.
+    for font in [
+        "XglyphSans-Regular.ttf",
+        "XglyphSans-Regular.otf",
+        "XglyphSans[wght].ttf",
+    ] {
+        let glyphs = &report[&out.join(font).display().to_string()];
+        let flagged: Vec<_> = glyphs.iter().filter(|(_, &s)| s != 0).collect();
+        assert!(flagged.is_empty(), "{font}: {flagged:?}");
+    }
 }

@@ -175,7 +175,7 @@ fn pipeline_errors_are_data() {
     let summary = pipeline::Summary::new(&loaded.font);
     assert_eq!(
         (summary.glyphs, summary.contours, summary.segments),
-        (8, 12, 78)
+        (8, 12, 82)
     );
     assert_eq!(summary.tolerance, 0.5);
     let (name, error) = summary.worst.expect("a worst glyph");

@@ -55,7 +55,7 @@ fn build_escapes_the_family_name() {
     let stdout = String::from_utf8_lossy(&result.stdout);
     assert_eq!(
         stdout.lines().next(),
-        Some("built A\\u{1b}]0;pwned\\u{7}\\u{1b}[2J Regular: 8 glyphs, 12 contours, 78 segments")
+        Some("built A\\u{1b}]0;pwned\\u{7}\\u{1b}[2J Regular: 8 glyphs, 12 contours, 82 segments")
     );
 }
 
