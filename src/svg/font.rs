@@ -3,7 +3,8 @@
 //! Conventions real consumers need (see docs/design.md): integer `units-per-em`, `ascent`
 //! and a positive `descent` with `ascent + descent = units-per-em` (when the font's
 //! ascender - descender differs from the em, the descent is scaled to keep that sum);
-//! y-up path data with absolute `M L C Z`; `horiz-adv-x` on every glyph; code points as
+//! y-up path data with absolute `M L C Z`, outer contours clockwise (as TrueType wants
+//! them: svg2ttf keeps each contour's direction); `horiz-adv-x` on every glyph; code points as
 //! `&#xHEX;`; `.notdef` becomes the `<missing-glyph>` (when the font has none, the box of
 //! [`crate::outline::notdef_box`], as in the TTF and OTF);
 //! `d=""` for empty glyphs; kerning as `<hkern g1 g2 k>` with `k = -value` (positive =
@@ -15,7 +16,7 @@
 //! comma-separated lists in SVG, so a glyph name containing a comma will be misread by
 //! consumers (the XML stays valid).
 
-use kurbo::Affine;
+use kurbo::{Affine, BezPath};
 use rayon::prelude::*;
 
 use super::path_data::path_data;
@@ -69,10 +70,19 @@ fn glyph_element(
     out.push_str(&format!(" horiz-adv-x=\"{}\" d=\"{d}\"/>\n", num(adv)));
 }
 
+/// The path data of a glyph of the font: y up, outer contours clockwise. The IR's outer
+/// contours run counter-clockwise; an SVG font's consumers turn it into TrueType
+/// (svg2ttf keeps each contour's direction, and TrueType wants outer contours
+/// clockwise) or read it as FontForge does (clockwise outer contours, else "wrong
+/// direction" on every glyph). Fill is nonzero either way.
+fn clockwise_path_data(path: &BezPath) -> String {
+    path_data(&path.reverse_subpaths(), Affine::IDENTITY)
+}
+
 /// The `<glyph>` elements of `g` (not `.notdef`): one per code point XML can hold, in
 /// order, or one without `unicode`.
 pub fn glyph_elements(g: &OutlinedGlyph) -> String {
-    let d = path_data(&g.path, Affine::IDENTITY);
+    let d = clockwise_path_data(&g.path);
     let mut cps: Vec<char> = g
         .unicodes
         .iter()
@@ -137,7 +147,7 @@ pub fn svg_font_with(
         info.x_height.round(),
         info.cap_height.round(),
     ));
-    let d = path_data(&missing.path, Affine::IDENTITY);
+    let d = clockwise_path_data(&missing.path);
     glyph_element(&mut s, "missing-glyph", None, None, missing_adv, &d);
     let elements: Vec<String> = font
         .glyphs

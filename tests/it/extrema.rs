@@ -1,7 +1,8 @@
 //! Points at the extrema (`src/extrema.rs`): every output path of the bundled typeface, in
 //! every master, has an on-curve point wherever a cubic turns back in x or y (beyond the
 //! documented limits), the splits add no error, and FontForge reads the built fonts
-//! without an open contour, a wrong direction or a bad name.
+//! without an open contour, a wrong direction or a bad name; svg2ttf turns the SVG font into
+//! the same TrueType font.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -163,5 +164,71 @@ fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
         let glyphs = &report[&out.join(font).display().to_string()];
         let flagged: Vec<_> = glyphs.iter().filter(|(_, &s)| s != 0).collect();
         assert!(flagged.is_empty(), "{font}: {flagged:?}");
+    }
+}
+
+/// Compares two TTFs glyph by glyph (by code point): advances, signed area, bounds.
+const COMPARE: &str = r#"
+import json, sys
+from fontTools.ttLib import TTFont
+from fontTools.pens.areaPen import AreaPen
+from fontTools.pens.boundsPen import BoundsPen
+ours, theirs = TTFont(sys.argv[1]), TTFont(sys.argv[2])
+a, b = ours.getGlyphSet(), theirs.getGlyphSet()
+cb = theirs.getBestCmap()
+rows = []
+for u, n in sorted(ours.getBestCmap().items()):
+    m = cb.get(u)
+    if m is None:
+        rows.append([u, None, 0, 0, 0]); continue
+    pa, pb, ba, bb = AreaPen(a), AreaPen(b), BoundsPen(a), BoundsPen(b)
+    a[n].draw(pa); b[m].draw(pb); a[n].draw(ba); b[m].draw(bb)
+    box = 0.0 if ba.bounds is None else max(abs(x - y) for x, y in zip(ba.bounds, bb.bounds))
+    rows.append([u, a[n].width - b[m].width, pa.value, pb.value, box])
+print(json.dumps(rows))
+"#;
+
+#[test]
+fn svg2ttf_makes_the_svg_font_into_the_same_truetype_font() {
+    let ok = Command::new("svg2ttf")
+        .arg("--help")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !available(
+        ok && crate::common::tools::python_imports("fontTools"),
+        "svg2ttf/fontTools",
+        "npm install -g svg2ttf; pip install fonttools",
+    ) {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let (code, _, err) = xglyph(&["build", "glyphs", "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let converted = dir.path().join("svg2ttf.ttf");
+    crate::common::tools::run(
+        Command::new("svg2ttf")
+            .arg(out.join("XglyphSans-Regular.svg"))
+            .arg(&converted),
+    );
+    let rows: Vec<(u32, Option<f64>, f64, f64, f64)> = crate::common::tools::python_json(
+        COMPARE,
+        &[&out.join("XglyphSans-Regular.ttf"), &converted],
+    );
+    assert_eq!(rows.len(), 157, "every mapped character");
+    for (u, advance, ours, theirs, bounds) in rows {
+        assert_eq!(advance, Some(0.0), "U+{u:04X}: advance");
+        // The same direction (TrueType's: outer contours clockwise, a negative area in
+        // fontTools) and the same shape, up to svg2ttf's own conversion to quadratics
+        // (areas within 0.62 % measured, in `comma`).
+        assert!(
+            ours <= 0.0 && theirs <= 0.0,
+            "U+{u:04X}: areas {ours} {theirs}"
+        );
+        assert!(
+            (ours - theirs).abs() <= 2.0 + 0.01 * ours.abs(),
+            "U+{u:04X}: areas {ours} {theirs}"
+        );
+        assert!(bounds <= 1.5, "U+{u:04X}: bounds differ by {bounds}");
     }
 }

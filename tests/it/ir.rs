@@ -63,10 +63,10 @@ fn svg_missing_glyph_and_ttf_notdef_are_one_box() {
 
     let (advance, d) = missing_glyph(&svg_font(&outlined));
     assert_eq!(advance, "500");
-    // Outer box counter-clockwise, counter clockwise (y up).
+    // Outer box clockwise, counter counter-clockwise (y up): TrueType's directions.
     assert_eq!(
         d,
-        "M50 0L450 0L450 700L50 700ZM100 50L100 650L400 650L400 50Z"
+        "M50 700L450 700L450 0L50 0ZM400 50L400 650L100 650L100 50Z"
     );
 
     let bytes = ttf(&outlined).expect("TTF builds");
