@@ -23,8 +23,7 @@ use crate::extrema::add_extrema;
 use crate::fit::fit_contour;
 use crate::model::{Contour, Font, Glyph};
 use crate::orient::orient_contours;
-use crate::outline::min_piece;
-use crate::outline::{OutlinedGlyph, PlacedContour};
+use crate::outline::{min_piece, OutlinedGlyph, PlacedContour};
 use crate::source::{
     load_glyph_text, load_sources, offsets_written, place_in_font, Diagnostic, Severity, SourceKind,
 };
