@@ -10,7 +10,7 @@
 //! grid keeps them there.
 //!
 //! A family splits every master at the default master's extrema, at the same parameter
-//! ([`split_plan`], [`apply_plan`]): splitting is linear in the control points, so the
+//! ([`split_plan_for`], [`apply_plan`]): splitting is linear in the control points, so the
 //! blend of the split masters is exactly the split blend, and every instance keeps the
 //! outline the compatible fitter checked. The default master (and so the static fonts
 //! built from it) has its points exactly at its extrema; another master has them at the
@@ -19,9 +19,8 @@
 //! Limits: an extreme closer than [`MIN_PIECE`] em to a cubic's end is not split off (the
 //! piece would round to nothing on the grid; its overshoot past that end is smaller
 //! still). In a family, a split that would leave such a piece in any master, or a piece
-//! running the other way, is not made.
-//! Rounding to the grid can still give a curve that is monotone a faint extreme (a
-//! handle rounded a unit past its end point).
+//! running the other way, is not made. Rounding to the grid can still give a monotone
+//! curve a faint extreme (a handle rounded a unit past its end point).
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, PathEl, Point};
 
