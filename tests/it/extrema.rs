@@ -14,7 +14,7 @@ use xglyph::family::outline_family;
 use xglyph::source::load_family;
 
 use crate::common::cli::xglyph;
-use crate::common::tools::available;
+use crate::common::tools::{available, program_runs, python_imports, python_json, run};
 
 /// The largest amount by which a cubic of `path` turns back in x or y inside its span,
 /// measured on 400 samples, away from its ends by more than `margin` (chord).
@@ -101,10 +101,7 @@ print(json.dumps(out))
 
 #[test]
 fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
-    let ok = Command::new("fontforge")
-        .args(["-lang=py", "-c", "import fontforge"])
-        .output()
-        .is_ok_and(|o| o.status.success());
+    let ok = program_runs("fontforge", &["-lang=py", "-c", "import fontforge"]);
     if !available(ok, "FontForge", "apt-get install fontforge") {
         return;
     }
@@ -190,12 +187,8 @@ print(json.dumps(rows))
 
 #[test]
 fn svg2ttf_makes_the_svg_font_into_the_same_truetype_font() {
-    let ok = Command::new("svg2ttf")
-        .arg("--help")
-        .output()
-        .is_ok_and(|o| o.status.success());
     if !available(
-        ok && crate::common::tools::python_imports("fontTools"),
+        program_runs("svg2ttf", &["--help"]) && python_imports("fontTools"),
         "svg2ttf/fontTools",
         "npm install -g svg2ttf; pip install fonttools",
     ) {
@@ -206,15 +199,11 @@ fn svg2ttf_makes_the_svg_font_into_the_same_truetype_font() {
     let (code, _, err) = xglyph(&["build", "glyphs", "-o", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let converted = dir.path().join("svg2ttf.ttf");
-    crate::common::tools::run(
-        Command::new("svg2ttf")
-            .arg(out.join("XglyphSans-Regular.svg"))
-            .arg(&converted),
-    );
-    let rows: Vec<(u32, Option<f64>, f64, f64, f64)> = crate::common::tools::python_json(
-        COMPARE,
-        &[&out.join("XglyphSans-Regular.ttf"), &converted],
-    );
+    run(Command::new("svg2ttf")
+        .arg(out.join("XglyphSans-Regular.svg"))
+        .arg(&converted));
+    let rows: Vec<(u32, Option<f64>, f64, f64, f64)> =
+        python_json(COMPARE, &[&out.join("XglyphSans-Regular.ttf"), &converted]);
     assert_eq!(rows.len(), 157, "every mapped character");
     for (u, advance, ours, theirs, bounds) in rows {
         assert_eq!(advance, Some(0.0), "U+{u:04X}: advance");
