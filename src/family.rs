@@ -18,7 +18,7 @@ use kurbo::{Affine, BezPath, PathEl, Shape, Vec2};
 use rayon::prelude::*;
 
 use crate::cache::FitCache;
-use crate::compatible::{fit_compatible, CompatibleError, CompatibleFit};
+use crate::compatible::{blend, fit_compatible, CompatibleError, CompatibleFit};
 use crate::designspace::{Designspace, Location, RegionError, VariationModel};
 use crate::extrema::{apply_plan, split_plan_for};
 use crate::fit::fit_contour;
@@ -254,26 +254,7 @@ fn at_location(e: FamilyError, ds: &Designspace, locations: &[Location]) -> Fami
             error: error @ CompatibleError::Blend { position, .. },
             ..
         } => {
-            // The axes away from their defaults.
-            let at = locations.get(position).map(|l| {
-                let off: Vec<String> = ds
-                    .axes
-                    .iter()
-                    .filter(|a| l.get(a) != a.default)
-                    .map(|a| {
-                        format!(
-                            "{} {}",
-                            a.tag,
-                            crate::source::emit::computed_number(l.get(a))
-                        )
-                    })
-                    .collect();
-                if off.is_empty() {
-                    "the default location".to_string()
-                } else {
-                    off.join(", ")
-                }
-            });
+            let at = locations.get(position).map(|l| describe(ds, l));
             FamilyError::Contour {
                 glyph,
                 contour,
@@ -283,6 +264,102 @@ fn at_location(e: FamilyError, ds: &Designspace, locations: &[Location]) -> Fami
         }
         other => other,
     }
+}
+
+/// `l` as its axes away from their defaults with their user values, e.g. `wght 650`.
+pub fn describe(ds: &Designspace, l: &Location) -> String {
+    let off: Vec<String> = ds
+        .axes
+        .iter()
+        .filter(|a| l.get(a) != a.default)
+        .map(|a| {
+            format!(
+                "{} {}",
+                a.tag,
+                crate::source::emit::computed_number(l.get(a))
+            )
+        })
+        .collect();
+    if off.is_empty() {
+        "the default location".to_string()
+    } else {
+        off.join(", ")
+    }
+}
+
+/// A point of a glyph's own contour that lands on the next one in a blend the build checks
+/// ([`check_locations`]): the blended contour is no X-spline there, and
+/// [`outline_family`] fails with [`FamilyError::Contour`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeetingPoints {
+    /// The glyph's index in the default master.
+    pub glyph: usize,
+    /// The contour's index among the glyph's own contours.
+    pub contour: usize,
+    /// The point that meets the next one.
+    pub index: usize,
+    /// The next point (cyclically).
+    pub next: usize,
+    /// The first checked position where they meet.
+    pub at: Location,
+}
+
+/// Every contour of `family` whose points meet in a blend at [`check_locations`], the
+/// first such pair of each, in glyph order: the check [`outline_family`] makes before it
+/// fits, without the fitting. Components are checked in their own glyphs.
+pub fn meeting_points(family: &Family) -> Result<Vec<MeetingPoints>, RegionError> {
+    let models = family.glyph_models()?;
+    let ds = &family.designspace;
+    let locations = check_locations(family);
+    let positions: Vec<Vec<Vec<f64>>> = models
+        .sets
+        .iter()
+        .map(|(_, model)| locations.iter().map(|l| ds.weights(model, l)).collect())
+        .collect();
+    Ok((0..family.default.glyphs.len())
+        .into_par_iter()
+        .flat_map_iter(|gi| {
+            let k = models.of_glyph[gi];
+            let drawing: Vec<&crate::model::Glyph> = std::iter::once(&family.default.glyphs[gi])
+                .chain(
+                    models.sets[k]
+                        .0
+                        .iter()
+                        .map(|&m| &family.masters[m].glyphs[gi]),
+                )
+                .collect();
+            let mut found = Vec::new();
+            for c in 0..drawing[0].contours.len() {
+                let Some(splines) = drawing
+                    .iter()
+                    .map(|g| g.contours.get(c).map(Contour::spline))
+                    .collect::<Option<Vec<&XSpline>>>()
+                else {
+                    continue;
+                };
+                let n = splines[0].points().len();
+                if splines.iter().any(|s| s.points().len() != n) {
+                    continue;
+                }
+                let first = positions[k].iter().enumerate().find_map(|(p, weights)| {
+                    match blend(&splines, weights) {
+                        Err(XSplineError::CoincidentPoints { index, next }) => {
+                            Some(MeetingPoints {
+                                glyph: gi,
+                                contour: c,
+                                index,
+                                next,
+                                at: locations[p].clone(),
+                            })
+                        }
+                        _ => None,
+                    }
+                });
+                found.extend(first);
+            }
+            found
+        })
+        .collect())
 }
 
 /// How a family's compatible outlines compare with static fits, and how close they come

@@ -302,7 +302,7 @@ fn check_compatible(masters: &[&XSpline]) -> Result<(), CompatibleError> {
 }
 
 /// The X-spline at blend weights `weights`: x, y and s interpolated.
-fn blend(masters: &[&XSpline], weights: &[f64]) -> Result<XSpline, XSplineError> {
+pub(crate) fn blend(masters: &[&XSpline], weights: &[f64]) -> Result<XSpline, XSplineError> {
     let count = masters[0].segment_count();
     let points = (0..count)
         .map(|k| {

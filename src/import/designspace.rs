@@ -274,8 +274,10 @@ pub fn import_designspace(
             "a glyph that a source does not draw cannot be blended there: {e}"
         ))
     })?;
+    let parted = super::masters::part_meeting_points(&mut family).map_err(fail)?;
     if let Some((_, report)) = reports.first_mut() {
         report.notes.extend(rule_notes);
+        report.notes.extend(parted);
     }
     Ok(ImportedFamily {
         family,

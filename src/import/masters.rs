@@ -25,7 +25,8 @@ use super::contour::{self, SourceContour};
 use super::fit;
 use super::report::GlyphReport;
 use super::{first_target, round_to, FittedGlyph, SourceGlyph, IMPORT_SHARE, RETRY_SHARES};
-use crate::model::{Contour, Glyph};
+use crate::family::{describe, meeting_points};
+use crate::model::{Contour, Family, Glyph};
 use crate::xspline::{ControlPoint, XSpline};
 
 /// A position between masters where the import is measured too: the masters' blend
@@ -279,6 +280,71 @@ fn without_meeting_points(masters: &[Vec<ControlPoint>], near: f64) -> Vec<Vec<C
         }
     }
     out
+}
+
+/// Most rounds of [`part_meeting_points`] (each removes one point per contour).
+const PARTING_ROUNDS: usize = 64;
+
+/// Removes, in every master, each point that lands on its neighbour at a position the
+/// build checks ([`meeting_points`]), and says so in one note per point. The pairwise
+/// check of [`without_meeting_points`] sees a fold between two masters; this one sees the
+/// blends of several axes at once, where the deltas of several masters add up (a corner of
+/// four axes, some weights negative). The later point goes (the earlier one when only the
+/// later is sharp), as there. Limits: the glyph's reported error was measured before the
+/// removal, as its note says; `Err` names a contour that a removal would leave invalid.
+pub fn part_meeting_points(family: &mut Family) -> Result<Vec<String>, String> {
+    let mut notes = Vec::new();
+    for _ in 0..PARTING_ROUNDS {
+        let found = meeting_points(family).map_err(|e| format!("{e:?}"))?;
+        if found.is_empty() {
+            return Ok(notes);
+        }
+        for m in found {
+            let name = family.default.glyphs[m.glyph].name.clone();
+            let points = family.default.glyphs[m.glyph].contours[m.contour].points();
+            let drop = if points[m.next].is_sharp() && !points[m.index].is_sharp() {
+                m.index
+            } else {
+                m.next
+            };
+            let glyphs = std::iter::once(&mut family.default.glyphs[m.glyph]).chain(
+                family
+                    .masters
+                    .iter_mut()
+                    .filter_map(|master| master.glyphs.get_mut(m.glyph)),
+            );
+            for glyph in glyphs {
+                let Some(contour) = glyph.contours.get_mut(m.contour) else {
+                    continue;
+                };
+                let mut points = contour.points().to_vec();
+                if drop < points.len() {
+                    points.remove(drop);
+                }
+                *contour = Contour::new(points).map_err(|e| {
+                    format!(
+                        "glyph `{name}`, contour {}: points {} and {} meet at {}, and without \
+                         point {drop}: {e}",
+                        m.contour,
+                        m.index,
+                        m.next,
+                        describe(&family.designspace, &m.at)
+                    )
+                })?;
+            }
+            notes.push(format!(
+                "glyph `{name}`, contour {}: point {drop} removed in every master, as points {} \
+                 and {} met at {} (its error was measured before)",
+                m.contour,
+                m.index,
+                m.next,
+                describe(&family.designspace, &m.at)
+            ));
+        }
+    }
+    Err(format!(
+        "points still meet between the masters after {PARTING_ROUNDS} removals per contour"
+    ))
 }
 
 /// The X-spline at a position between masters: positions and shapes blended by `weights`.

@@ -287,6 +287,10 @@ pub fn import_variable_font(
             "a glyph without variations at a peak cannot be blended there: {e}"
         ))
     })?;
+    let parted = super::masters::part_meeting_points(&mut family).map_err(fail)?;
+    if let Some((_, report)) = reports.first_mut() {
+        report.notes.extend(parted);
+    }
     Ok(ImportedFamily {
         family,
         reports,

@@ -378,3 +378,67 @@ fn one_ufo_at_two_places_comes_in_as_two_masters_named_by_place() {
     };
     assert_eq!(n(2), n(0));
 }
+
+/// Two points that meet only where the deltas of two axes add up (wght 700, wdth 75, a
+/// corner of the grid the build checks, with no master there): between any two masters
+/// the edge keeps its direction (30, 10, 20 and 25 units long), so the import's pairwise
+/// fold check cannot see it; `part_meeting_points` sees it as the build does.
+#[test]
+fn points_that_meet_where_two_axes_add_up_are_parted_in_every_master() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let dir = tmp.path().join("font");
+    let toml = "family = \"Meet\"\nstyle = \"Regular\"\nunits_per_em = 1000\nascender = 800\n\
+        descender = -200\nx_height = 500\ncap_height = 700\ntolerance = 0.5\n\n\
+        [[axis]]\ntag = \"wght\"\nname = \"Weight\"\nmin = 400\ndefault = 400\nmax = 700\n\n\
+        [[axis]]\ntag = \"wdth\"\nname = \"Width\"\nmin = 75\ndefault = 100\nmax = 100\n\n\
+        [[master]]\nname = \"Bold\"\nfolder = \"bold\"\nlocation = { wght = 700 }\n\n\
+        [[master]]\nname = \"Condensed\"\nfolder = \"condensed\"\nlocation = { wdth = 75 }\n\n\
+        [[master]]\nname = \"Middle\"\nfolder = \"middle\"\nlocation = { wght = 550, wdth = 87.5 }\n";
+    // The edge from point 0 to point 1 is `w` long: 30 + (10 - 30) + (20 - 30) = 0 at
+    // wght 700, wdth 75.
+    let glyph = |w: u32| {
+        format!(
+            "name = \"a\"\nunicode = 0x0061\nadvance = 100\n\n[[contour]]\n\
+             points = [[0, 0, 0], [{w}, 0, 0], [60, 100, 0], [0, 100, 0]]\n"
+        )
+    };
+    for (folder, w) in [("", 30), ("bold", 10), ("condensed", 20), ("middle", 25)] {
+        let d = dir.join(folder);
+        fs::create_dir_all(&d).expect("folder");
+        fs::write(d.join("a.toml"), glyph(w)).expect("glyph");
+    }
+    fs::write(dir.join("font.toml"), toml).expect("font.toml");
+
+    let (code, _, stderr) = xglyph(&["build", s(&dir), "-o", s(&tmp.path().join("out"))]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains(
+            "glyph `a`, contour 0, blended at wght 700, wdth 75: points 0 and 1 meet there"
+        ),
+        "{stderr}"
+    );
+
+    let (mut family, _) = xglyph::source::load_family(&dir).expect("the family loads");
+    let notes = xglyph::import::masters::part_meeting_points(&mut family).expect("parted");
+    assert_eq!(
+        notes,
+        [
+            "glyph `a`, contour 0: point 1 removed in every master, as points 0 and 1 met at \
+          wght 700, wdth 75 (its error was measured before)"
+        ]
+    );
+    let triangle = |g: &xglyph::model::Glyph| -> Vec<(f64, f64)> {
+        g.contours[0]
+            .points()
+            .iter()
+            .map(|p| (p.pos.x, p.pos.y))
+            .collect()
+    };
+    let expected = vec![(0.0, 0.0), (60.0, 100.0), (0.0, 100.0)];
+    assert_eq!(triangle(&family.default.glyphs[0]), expected);
+    for m in &family.masters {
+        assert_eq!(triangle(&m.glyphs[0]), expected, "{}", m.name);
+    }
+    assert_eq!(xglyph::family::meeting_points(&family), Ok(Vec::new()));
+    xglyph::family::outline_family(&family, 0.5).expect("the parted family builds");
+}
