@@ -375,6 +375,10 @@ pub struct FamilySummary {
     pub positions: usize,
     /// The worst glyph, its position and its error (font units), if any glyph has contours.
     pub worst: Option<(String, Location, f64)>,
+    /// The glyphs over the tolerance at some checked position, with their worst error, in
+    /// glyph order: where `s` differs between masters or a cusp forms between them, one
+    /// structure may not follow the blended X-spline (see [`crate::compatible`]).
+    pub over: Vec<(String, f64)>,
 }
 
 /// Fits every glyph of `family` with one segment structure for all masters
@@ -461,6 +465,7 @@ pub fn outline_family_with(
         static_segments: 0,
         positions: locations.len(),
         worst: None,
+        over: Vec::new(),
     };
     for g in &glyphs {
         summary.compatible_segments += g.fitted_segments;
@@ -473,6 +478,9 @@ pub fn outline_family_with(
         {
             if summary.worst.as_ref().is_none_or(|w| e > w.2) {
                 summary.worst = Some((g.default.name.clone(), locations[p].clone(), e));
+            }
+            if e > tolerance {
+                summary.over.push((g.default.name.clone(), e));
             }
         }
     }
