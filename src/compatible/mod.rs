@@ -930,9 +930,15 @@ impl<'a> Fitter<'a> {
 
     /// Last resort for degenerate geometry: halve the span until it fits or is tiny.
     ///
-    /// Below [`SHORTEST_BLEND_SPAN`] only the masters bind: a blend that still fails is one
-    /// whose curve strays from the blend of the masters' curves, which no shorter span
-    /// mends (verification reports it).
+    /// Where `s` differs between masters, below [`SHORTEST_BLEND_SPAN`] only the masters
+    /// bind: a blend that still fails is one whose curve strays from the blend of the
+    /// masters' curves, which no shorter span mends (verification reports it). With the same
+    /// `s` in every master the blend is exact, and every position binds down to the last
+    /// halving, so that each position's measured error is within the goal (the full Roboto
+    /// Flex, 84 masters: with the blends let go, 7 glyphs were measured over the tolerance
+    /// at some of 2,307 positions, up to 1.29 units; with them, none, and 3 fewer segments.
+    /// The dense checker measured 0.298 where the tilde's 1.154 was reported: the measure
+    /// over-estimates at some blends).
     /// `ends` applies to `[a, a + h]`; a shorter span matches only the start.
     fn shortest(
         &self,
@@ -949,7 +955,11 @@ impl<'a> Fitter<'a> {
         loop {
             match self.fitted(grids, a, h, stretch, checks, ends) {
                 Ok(span) => return span,
-                Err(_) if h < SHORTEST_BLEND_SPAN && checks.len() > masters.len() => {
+                Err(_)
+                    if h < SHORTEST_BLEND_SPAN
+                        && checks.len() > masters.len()
+                        && !self.same_shape =>
+                {
                     checks = &masters;
                 }
                 Err(_) if h < 1e-9 => {
@@ -1013,7 +1023,8 @@ impl<'a> Fitter<'a> {
     /// in turn. The refit is kept if it meets their goals or at least halves the error:
     /// where it does not, the blend strays from the masters' curves by more than the goal
     /// and no cut mends it, so the span stays and `max_error` reports it. At most
-    /// [`MAX_REFITS`] rounds; spans shorter than twice [`SHORTEST_BLEND_SPAN`] stay.
+    /// [`MAX_REFITS`] rounds; where `s` differs between masters, spans shorter than twice
+    /// [`SHORTEST_BLEND_SPAN`] stay (see [`Fitter::shortest`]).
     ///
     /// `before` and `after`: the neighbours' cubics the refit matches at its ends.
     fn verify_span(
@@ -1027,7 +1038,8 @@ impl<'a> Fitter<'a> {
         let count = self.probes.len();
         let unmeasured: Vec<usize> = (0..count).filter(|&k| span.errors[k].is_nan()).collect();
         let err = self.measure(&mut span, unmeasured);
-        if err <= self.goal || round == MAX_REFITS || span.b - span.a < 2.0 * SHORTEST_BLEND_SPAN {
+        let short = span.b - span.a < 2.0 * SHORTEST_BLEND_SPAN && !self.same_shape;
+        if err <= self.goal || round == MAX_REFITS || short {
             out.push(span);
             return;
         }
