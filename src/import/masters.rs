@@ -290,7 +290,8 @@ const PARTING_ROUNDS: usize = 64;
 /// check of [`without_meeting_points`] sees a fold between two masters; this one sees the
 /// blends of several axes at once, where the deltas of several masters add up (a corner of
 /// four axes, some weights negative). The later point goes (the earlier one when only the
-/// later is sharp), as there. Limits: the glyph's reported error was measured before the
+/// later is sharp), as there; the other one when that would leave two points of a master on
+/// one place. Limits: the glyph's reported error was measured before the
 /// removal, as its note says; `Err` names a contour that a removal would leave invalid.
 pub fn part_meeting_points(family: &mut Family) -> Result<Vec<String>, String> {
     let mut notes = Vec::new();
@@ -302,10 +303,32 @@ pub fn part_meeting_points(family: &mut Family) -> Result<Vec<String>, String> {
         for m in found {
             let name = family.default.glyphs[m.glyph].name.clone();
             let points = family.default.glyphs[m.glyph].contours[m.contour].points();
-            let drop = if points[m.next].is_sharp() && !points[m.index].is_sharp() {
+            let first = if points[m.next].is_sharp() && !points[m.index].is_sharp() {
                 m.index
             } else {
                 m.next
+            };
+            // The other point goes when the first would leave a master invalid.
+            let mut tried = Vec::new();
+            let mut parted = None;
+            for drop in [first, m.index + m.next - first] {
+                match without_point(family, m.glyph, m.contour, drop) {
+                    Ok(contours) => {
+                        parted = Some((drop, contours));
+                        break;
+                    }
+                    Err(e) => tried.push(format!("without point {drop}: {e}")),
+                }
+            }
+            let Some((drop, contours)) = parted else {
+                return Err(format!(
+                    "glyph `{name}`, contour {}: points {} and {} meet at {}; {}",
+                    m.contour,
+                    m.index,
+                    m.next,
+                    describe(&family.designspace, &m.at),
+                    tried.join("; ")
+                ));
             };
             let glyphs = std::iter::once(&mut family.default.glyphs[m.glyph]).chain(
                 family
@@ -313,24 +336,10 @@ pub fn part_meeting_points(family: &mut Family) -> Result<Vec<String>, String> {
                     .iter_mut()
                     .filter_map(|master| master.glyphs.get_mut(m.glyph)),
             );
-            for glyph in glyphs {
-                let Some(contour) = glyph.contours.get_mut(m.contour) else {
-                    continue;
-                };
-                let mut points = contour.points().to_vec();
-                if drop < points.len() {
-                    points.remove(drop);
-                }
-                *contour = Contour::new(points).map_err(|e| {
-                    format!(
-                        "glyph `{name}`, contour {}: points {} and {} meet at {}, and without \
-                         point {drop}: {e}",
-                        m.contour,
-                        m.index,
-                        m.next,
-                        describe(&family.designspace, &m.at)
-                    )
-                })?;
+            // The same glyphs, in the same order, as `without_point` took.
+            let slots = glyphs.filter_map(|g| g.contours.get_mut(m.contour));
+            for (slot, contour) in slots.zip(contours) {
+                *slot = contour;
             }
             notes.push(format!(
                 "glyph `{name}`, contour {}: point {drop} removed in every master, as points {} \
@@ -345,6 +354,27 @@ pub fn part_meeting_points(family: &mut Family) -> Result<Vec<String>, String> {
     Err(format!(
         "points still meet between the masters after {PARTING_ROUNDS} removals per contour"
     ))
+}
+
+/// Contour `contour` of glyph `glyph` without point `drop`, in the default and then in
+/// every master, or why one of them would be no X-spline.
+fn without_point(
+    family: &Family,
+    glyph: usize,
+    contour: usize,
+    drop: usize,
+) -> Result<Vec<Contour>, crate::xspline::XSplineError> {
+    std::iter::once(&family.default.glyphs[glyph])
+        .chain(family.masters.iter().filter_map(|m| m.glyphs.get(glyph)))
+        .filter_map(|g| g.contours.get(contour))
+        .map(|c| {
+            let mut points = c.points().to_vec();
+            if drop < points.len() {
+                points.remove(drop);
+            }
+            Contour::new(points)
+        })
+        .collect()
 }
 
 /// The X-spline at a position between masters: positions and shapes blended by `weights`.
