@@ -304,6 +304,19 @@ pub struct MeetingPoints {
     pub at: Location,
 }
 
+/// Per set of masters of `models`, the weights of its own model at each of `locations`.
+fn set_weights(
+    ds: &Designspace,
+    models: &GlyphModels,
+    locations: &[Location],
+) -> Vec<Vec<Vec<f64>>> {
+    models
+        .sets
+        .iter()
+        .map(|(_, model)| locations.iter().map(|l| ds.weights(model, l)).collect())
+        .collect()
+}
+
 /// Every contour of `family` whose points meet in a blend at [`check_locations`], the
 /// first such pair of each, in glyph order: the check [`outline_family`] makes before it
 /// fits, without the fitting. Components are checked in their own glyphs.
@@ -311,11 +324,7 @@ pub fn meeting_points(family: &Family) -> Result<Vec<MeetingPoints>, RegionError
     let models = family.glyph_models()?;
     let ds = &family.designspace;
     let locations = check_locations(family);
-    let positions: Vec<Vec<Vec<f64>>> = models
-        .sets
-        .iter()
-        .map(|(_, model)| locations.iter().map(|l| ds.weights(model, l)).collect())
-        .collect();
+    let positions = set_weights(ds, &models, &locations);
     Ok((0..family.default.glyphs.len())
         .into_par_iter()
         .flat_map_iter(|gi| {
@@ -410,22 +419,10 @@ pub fn outline_family_with(
     let locations = check_locations(family);
     // Per set of masters, the weights of its own model at each position, and at each
     // master's location.
-    let positions: Vec<Vec<Vec<f64>>> = models
-        .sets
-        .iter()
-        .map(|(_, model)| locations.iter().map(|l| ds.weights(model, l)).collect())
-        .collect();
-    let at_masters: Vec<Vec<Vec<f64>>> = models
-        .sets
-        .iter()
-        .map(|(_, model)| {
-            family
-                .masters
-                .iter()
-                .map(|m| ds.weights(model, &m.location))
-                .collect()
-        })
-        .collect();
+    let positions = set_weights(ds, &models, &locations);
+    let master_locations: Vec<Location> =
+        family.masters.iter().map(|m| m.location.clone()).collect();
+    let at_masters = set_weights(ds, &models, &master_locations);
     // One `Font` per master (default first) so components resolve inside each master.
     let fonts: Vec<Font> = std::iter::once(family.default.clone())
         .chain(family.masters.iter().map(|m| Font {

@@ -287,7 +287,7 @@ const PARTING_ROUNDS: usize = 64;
 
 /// Removes, in every master, each point that lands on its neighbour at a position the
 /// build checks ([`meeting_points`]), and says so in one note per point. The pairwise
-/// check of [`without_meeting_points`] sees a fold between two masters; this one sees the
+/// check of `without_meeting_points` sees a fold between two masters; this one sees the
 /// blends of several axes at once, where the deltas of several masters add up (a corner of
 /// four axes, some weights negative). The later point goes (the earlier one when only the
 /// later is sharp), as there; the other one when that would leave two points of a master on
