@@ -1027,7 +1027,19 @@ fn polish(
     // Handles never vanish (a zero handle would take the end's tangent from the other
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
-    let (mut alpha, mut beta) = (alpha.max(floor), beta.max(floor));
+    // Nor reach past the other end along the chord: such a handle folds the control
+    // polygon back, and the cubic dips behind its own end (a hook once on the grid).
+    let chord = p3 - p0;
+    let ceiling = |d: Vec2| {
+        let along = d.dot(chord);
+        if along > 0.0 {
+            (chord.hypot2() / along).max(floor)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let (cap0, cap1) = (ceiling(d0), ceiling(d1));
+    let (mut alpha, mut beta) = (alpha.clamp(floor, cap0), beta.clamp(floor, cap1));
     w.clear();
     w.resize(n, 1.0 / n as f64);
     // The ends have no weight (in the Lawson rounds theirs would be their distance).
@@ -1101,8 +1113,8 @@ fn polish(
         let Some((ba, bb, _, da, db)) = best else {
             break;
         };
-        alpha = (ba + damping * da).max(floor);
-        beta = (bb + damping * db).max(floor);
+        alpha = (ba + damping * da).clamp(floor, cap0);
+        beta = (bb + damping * db).clamp(floor, cap1);
     }
     match best {
         Some(b) => (cubic_of(b.0, b.1), b.2, current),

@@ -181,6 +181,19 @@ fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError>
 /// point). Other repeated points are kept: dropping an off-curve point next to a
 /// different off-curve one would move the implied on-curve point between them.
 fn drop_degenerate(points: &mut Vec<CurvePoint>) {
+    // A removal near the end can make the first point redundant against the new last one:
+    // go round again until nothing changes.
+    loop {
+        let before = points.len();
+        drop_degenerate_once(points);
+        if points.len() == before {
+            return;
+        }
+    }
+}
+
+/// One pass of [`drop_degenerate`] around the contour.
+fn drop_degenerate_once(points: &mut Vec<CurvePoint>) {
     let same = |a: &CurvePoint, b: &CurvePoint| (a.x, a.y) == (b.x, b.y);
     let mut i = 0;
     while points.len() > 1 && i < points.len() {
@@ -336,6 +349,21 @@ mod tests {
         assert_eq!(
             run,
             [pt(162, 270, true), pt(162, 0, true), pt(280, 270, false)]
+        );
+        // A sliver at the contour's end (the Bold `braceleft`, 0.14 units before its
+        // start point): its off-curve point goes, and then the on-curve point before it
+        // equals the first point, across the wrap.
+        let mut wrap = vec![
+            pt(378, 760, true),
+            pt(378, 648, true),
+            pt(328, 759, false),
+            pt(378, 760, true),
+            pt(378, 760, false),
+        ];
+        drop_degenerate(&mut wrap);
+        assert_eq!(
+            wrap,
+            [pt(378, 648, true), pt(328, 759, false), pt(378, 760, true)]
         );
     }
 }

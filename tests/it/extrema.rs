@@ -114,6 +114,10 @@ fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
     let fonts = [
         "XglyphSans-Regular.ttf",
         "XglyphSans-Regular.otf",
+        "XglyphSans-Medium.ttf",
+        "XglyphSans-Medium.otf",
+        "XglyphSans-SemiBold.ttf",
+        "XglyphSans-SemiBold.otf",
         "XglyphSans-Bold.ttf",
         "XglyphSans-Bold.otf",
         "XglyphSans[wght].ttf",
@@ -135,8 +139,12 @@ fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
     // FontForge's flags: open contour 0x2, wrong direction 0x8, flipped references 0x10,
     // bad glyph name 0x200, points too far apart 0x40000, duplicate name 0x200000 or
     // code point 0x400000.
-    const STRUCTURAL: u64 = 0x2 | 0x8 | 0x10 | 0x200 | 0x40000 | 0x200000 | 0x400000;
+    // A self-intersection (0x4) is structural too: every one found was a hook of a few
+    // units at a sharp point (a handle folded back past the other end of its cubic, or a
+    // false extreme split off and rounded), now prevented by the fitter and the grid.
+    const STRUCTURAL: u64 = 0x2 | 0x4 | 0x8 | 0x10 | 0x200 | 0x40000 | 0x200000 | 0x400000;
     const MISSING_EXTREMA: u64 = 0x20;
+    let mut missing_in_instances = Vec::new();
     for (path, glyphs) in &report {
         assert_eq!(glyphs.len(), 158, "{path}");
         let bad: Vec<_> = glyphs
@@ -144,12 +152,20 @@ fn fontforge_reads_the_built_fonts_with_no_structural_problem() {
             .filter(|(_, &s)| s & STRUCTURAL != 0)
             .collect();
         assert!(bad.is_empty(), "{path}: {bad:?}");
-        let missing = glyphs
-            .values()
-            .filter(|&&s| s & MISSING_EXTREMA != 0)
-            .count();
-        println!("{path}: {missing} glyphs with a missing extreme by FontForge");
+        let missing: Vec<_> = glyphs
+            .iter()
+            .filter(|(_, &s)| s & MISSING_EXTREMA != 0)
+            .map(|(g, _)| g.clone())
+            .collect();
+        println!("{path}: missing extremes by FontForge in {missing:?}");
+        missing_in_instances.extend(missing);
     }
+    // The static instances come from static fits of each instance. Left: extremes a
+    // fraction of a unit past a smooth join where the curve turns within a unit (the middle
+    // of SemiBold `B`, the SemiBold cedilla): too close to the join to split off, with a
+    // handle rounded 2-3 units past it (measured: `B`, `Ccedilla`, `ccedilla`; before the
+    // handle ceiling and the grid's pull, 7 glyphs self-intersected and 3 missed extremes).
+    assert!(missing_in_instances.len() <= 3, "{missing_in_instances:?}");
     // The default master's TrueType and CFF outlines, from the compatible fit, and the
     // variable font: before the splits FontForge found missing extrema in 83 and 95 of the
     // 158 glyphs of the TTF and OTF.

@@ -77,6 +77,49 @@ fn corner_with_interpolating_neighbour_has_no_hook() {
     assert!((dir - xs.segment(0).start_direction()).hypot() < 1e-12);
 }
 
+/// The Bold `e`'s counter leaves its sharp point (434, 300) upwards and turns left within
+/// a few units. Every control point has y >= 300 and x <= 434, and the curve (approximating
+/// there) stays inside their hull. The minimax cubic from the corner once had a 24-unit
+/// handle at its far end reaching 5.5 units below the corner: the cubic dipped under
+/// y = 300 and passed x = 434, and its split at that false extreme, rounded to the grid,
+/// crossed the bar's edge (FontForge: self-intersecting). No handle may reach past the
+/// other end of its cubic along the chord.
+#[test]
+fn no_handle_reaches_past_the_other_end_of_its_cubic() {
+    let counter = spline(&[
+        (183.0, 300.0, 0.0),
+        (434.0, 300.0, 0.0),
+        (434.0, 312.0, 0.5),
+        (432.0, 425.0, 1.0),
+        (309.0, 432.0, -1.0),
+        (186.0, 422.0, 1.0),
+        (183.0, 312.0, 0.5),
+    ]);
+    let fit = fit_contour(&counter, 0.5);
+    assert!(hausdorff(&counter, &fit.path, 200) <= 0.5);
+    for seg in fit.path.segments() {
+        let PathSeg::Cubic(c) = seg else { continue };
+        let chord = c.p3 - c.p0;
+        let reach = (c.p1 - c.p0).dot(chord).max((c.p3 - c.p2).dot(chord));
+        assert!(reach <= chord.hypot2() * (1.0 + 1e-9), "{c:?}");
+    }
+    // The cubic leaving the corner keeps inside the control points' hull there.
+    let (mut lowest, mut rightmost) = (f64::INFINITY, f64::NEG_INFINITY);
+    for seg in fit.path.segments() {
+        for k in 0..=1000 {
+            let p = seg.eval(f64::from(k) / 1000.0);
+            if p.y < 330.0 && p.x > 400.0 {
+                lowest = lowest.min(p.y);
+                rightmost = rightmost.max(p.x);
+            }
+        }
+    }
+    assert!(
+        lowest >= 300.0 - 1e-9 && rightmost <= 434.0 + 1e-9,
+        "{lowest} {rightmost}"
+    );
+}
+
 /// A span search that stops just short of a stretch's end must not leave a sliver: the
 /// tilde (found in the bundled typeface) ended in a cubic 1e-4 units long, written as
 /// `C204 814 204 814 204 814` in every output. Every segment of every bundled glyph is
@@ -342,6 +385,14 @@ proptest! {
             }
             let sin = ta.cross(tb) / (ta.hypot() * tb.hypot());
             prop_assert!(sin.abs() < 1e-6 && ta.dot(tb) > 0.0, "join at {:?}: {:?} vs {:?}", a.p3, ta, tb);
+        }
+        // No handle reaches past the other end of its cubic along the chord (a fold).
+        for seg in &segs {
+            if let PathSeg::Cubic(c) = *seg {
+                let chord = c.p3 - c.p0;
+                let reach = (c.p1 - c.p0).dot(chord).max((c.p3 - c.p2).dot(chord));
+                prop_assert!(reach <= chord.hypot2() * (1.0 + 1e-9), "a handle folds back in {:?}", c);
+            }
         }
         let err = hausdorff(&xs, &fit.path, 200);
         prop_assert!(err <= tol, "measured {} > tol {}", err, tol);
