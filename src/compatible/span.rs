@@ -268,6 +268,10 @@ struct Unknowns {
     values: Vec<f64>,
     /// Lower bound of each unknown.
     floors: Vec<f64>,
+    /// Upper bound of each unknown: no master's handle reaches past the other end of its
+    /// cubic along the chord (as in [`crate::fit`]'s polish: a folded control polygon dips
+    /// behind its end, a hook once on the grid).
+    ceilings: Vec<f64>,
     /// Per master, (unknown, scale) of its start and its end handle.
     slots: Vec<[(usize, f64); 2]>,
 }
@@ -277,30 +281,44 @@ impl Unknowns {
     fn set(&mut self, parts: &[Part]) {
         self.values.clear();
         self.floors.clear();
+        self.ceilings.clear();
         self.slots.clear();
         // The shared factor of each side, once created.
         let mut shared: [Option<usize>; 2] = [None, None];
         for part in parts {
             let (p0, p3) = part.samples.ends();
             let floor = MIN_HANDLE * p0.distance(p3);
+            let chord = p3 - p0;
+            let ceiling = |direction: Vec2| {
+                let along = direction.dot(chord);
+                if along > 0.0 {
+                    chord.hypot2() / along
+                } else {
+                    f64::INFINITY
+                }
+            };
             let mut slot = [(0, 1.0); 2];
             for (side, handle) in [part.start, part.end].iter().enumerate() {
+                let cap = ceiling(handle.direction);
                 slot[side] = match handle.shared {
                     None => {
-                        self.values.push(handle.length.max(floor));
+                        self.values.push(handle.length);
                         self.floors.push(floor);
+                        self.ceilings.push(cap);
                         (self.values.len() - 1, 1.0)
                     }
                     Some(unit) => {
                         let k = *shared[side].get_or_insert_with(|| {
                             self.values.push(0.0);
                             self.floors.push(0.0);
+                            self.ceilings.push(f64::INFINITY);
                             self.values.len() - 1
                         });
                         if unit > 0.0 {
                             // Every master's start length is the factor times its unit.
                             self.values[k] = handle.length / unit;
                             self.floors[k] = self.floors[k].max(floor / unit);
+                            self.ceilings[k] = self.ceilings[k].min(cap / unit);
                         }
                         (k, unit)
                     }
@@ -308,9 +326,14 @@ impl Unknowns {
             }
             self.slots.push(slot);
         }
-        for (v, f) in self.values.iter_mut().zip(&self.floors) {
-            *v = v.max(*f);
+        for k in 0..self.values.len() {
+            self.values[k] = self.bounded(k, self.values[k]);
         }
+    }
+
+    /// `value` within unknown `k`'s bounds (its floor wins where the masters' bounds cross).
+    fn bounded(&self, k: usize, value: f64) -> f64 {
+        value.min(self.ceilings[k]).max(self.floors[k])
     }
 
     fn cubic(&self, part: &Part, j: usize, values: &[f64]) -> CubicBez {
@@ -473,7 +496,7 @@ impl TrialBuffers {
                 damping *= 0.25;
             }
             for k in 0..n {
-                values[k] = (best[k] - damping * step[k]).max(unknowns.floors[k]);
+                values[k] = unknowns.bounded(k, best[k] - damping * step[k]);
             }
         }
         let cubics = parts

@@ -1,8 +1,10 @@
 //! The integer grid: rounding outlines and metrics for the binary tables.
 //!
 //! Every control point is rounded on its own (half away from zero), so a rounded Bézier is
-//! within √2/2 font units of the exact one everywhere. Segments that collapse to a point
-//! after rounding are dropped; a contour that collapses entirely is dropped.
+//! within √2/2 font units of the exact one everywhere, except where a handle is pulled
+//! back onto its cubic's end range to keep a monotone cubic monotone ([`keep_monotone`]:
+//! at most 3/4 of a unit more on one axis). Segments that collapse to a point after
+//! rounding are dropped; a contour that collapses entirely is dropped.
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point};
 
