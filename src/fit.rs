@@ -12,7 +12,9 @@
 //! curve's end points and exact end tangent directions (G1 joins; at a sharp point the true
 //! limit direction, which avoids hooks). It starts as the span's Hermite cubic and its two
 //! handle lengths are taken towards the minimax fit by Gauss-Newton on orthogonal
-//! distances with Lawson re-weighting.
+//! distances with Lawson re-weighting, each between a floor (no vanishing handle) and a
+//! ceiling (none reaching past the other end along the chord: a folded control polygon
+//! dips behind the end, a hook once on the grid).
 //!
 //! The error of a candidate is bounded both ways at once: each curve sample is projected
 //! onto the cubic, and between samples the curve's Hermite piece is paired with the cubic
