@@ -1029,17 +1029,7 @@ fn polish(
     // Handles never vanish (a zero handle would take the end's tangent from the other
     // handle instead of the curve's: a hook at a sharp point), nor reverse (a loop).
     let floor = MIN_HANDLE * p0.distance(p3);
-    // Nor reach past the other end along the chord: such a handle folds the control
-    // polygon back, and the cubic dips behind its own end (a hook once on the grid).
-    let chord = p3 - p0;
-    let ceiling = |d: Vec2| {
-        let along = d.dot(chord);
-        if along > 0.0 {
-            (chord.hypot2() / along).max(floor)
-        } else {
-            f64::INFINITY
-        }
-    };
+    let ceiling = |d: Vec2| handle_ceiling(d, p3 - p0).max(floor);
     let (cap0, cap1) = (ceiling(d0), ceiling(d1));
     let (mut alpha, mut beta) = (alpha.clamp(floor, cap0), beta.clamp(floor, cap1));
     w.clear();
@@ -1121,6 +1111,19 @@ fn polish(
     match best {
         Some(b) => (cubic_of(b.0, b.1), b.2, current),
         None => (cubic_of(alpha, beta), f64::INFINITY, false),
+    }
+}
+
+/// The longest handle in unit `direction` (out of a cubic's start, or into its end) that
+/// does not reach past the other end along `chord`: a longer one folds the control polygon
+/// back, and the cubic dips behind its own end (a hook once on the grid). Unbounded when
+/// the handle does not point along the chord.
+pub(crate) fn handle_ceiling(direction: Vec2, chord: Vec2) -> f64 {
+    let along = direction.dot(chord);
+    if along > 0.0 {
+        chord.hypot2() / along
+    } else {
+        f64::INFINITY
     }
 }
 

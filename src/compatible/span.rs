@@ -21,10 +21,8 @@
 
 use kurbo::{CubicBez, Point, Vec2};
 
-#[cfg(doc)]
-use crate::fit;
-
 use super::Run;
+use crate::fit;
 use crate::xspline::XSpline;
 
 /// Grid points per X-spline segment at the coarsest level.
@@ -269,8 +267,7 @@ struct Unknowns {
     /// Lower bound of each unknown.
     floors: Vec<f64>,
     /// Upper bound of each unknown: no master's handle reaches past the other end of its
-    /// cubic along the chord (as in [`crate::fit`]'s polish: a folded control polygon dips
-    /// behind its end, a hook once on the grid).
+    /// cubic along the chord ([`fit::handle_ceiling`]).
     ceilings: Vec<f64>,
     /// Per master, (unknown, scale) of its start and its end handle.
     slots: Vec<[(usize, f64); 2]>,
@@ -288,18 +285,9 @@ impl Unknowns {
         for part in parts {
             let (p0, p3) = part.samples.ends();
             let floor = MIN_HANDLE * p0.distance(p3);
-            let chord = p3 - p0;
-            let ceiling = |direction: Vec2| {
-                let along = direction.dot(chord);
-                if along > 0.0 {
-                    chord.hypot2() / along
-                } else {
-                    f64::INFINITY
-                }
-            };
             let mut slot = [(0, 1.0); 2];
             for (side, handle) in [part.start, part.end].iter().enumerate() {
-                let cap = ceiling(handle.direction);
+                let cap = fit::handle_ceiling(handle.direction, p3 - p0);
                 slot[side] = match handle.shared {
                     None => {
                         self.values.push(handle.length);
