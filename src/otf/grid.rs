@@ -3,10 +3,10 @@
 //! Every control point is rounded on its own (half away from zero), so a rounded Bézier is
 //! within √2/2 font units of the exact one everywhere, except where a handle is pulled
 //! back onto its cubic's end range to keep a monotone cubic monotone ([`keep_monotone`]:
-//! at most 3/4 of a unit more on one axis). Segments that collapse to a point after
+//! within one unit). Segments that collapse to a point after
 //! rounding are dropped; a contour that collapses entirely is dropped.
 
-use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point};
+use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point, Vec2};
 
 use super::OtfError;
 
@@ -117,29 +117,42 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
     Ok(out)
 }
 
-/// Farthest a rounded handle is pulled back onto its cubic's end range ([`keep_monotone`]).
-const PULL: f64 = 1.0;
+/// Farthest a rounded handle is pulled back onto its cubic's end range ([`keep_monotone`]),
+/// font units.
+const PULL: f64 = 2.0;
+/// Most a pull of more than one unit may turn a handle (radians, as the ratio of the move
+/// to the handle's length): a short handle at a smooth join keeps its direction, or the
+/// join would kink. One unit, rounding's own scale, is always allowed.
+const PULL_TURN: f64 = 0.05;
+/// Farthest a cubic with a pulled handle may be from the exact one, font units (rounding
+/// alone keeps it within √2/2).
+pub const PULLED: f64 = 1.0;
 /// An exact cubic that passes its end range by less than this (font units) on an axis is
 /// taken as monotone there: the extreme is below the grid.
 const FAINT: f64 = 0.5;
 
 /// Keeps a cubic that is (within [`FAINT`]) monotone on an axis monotone on the grid.
 ///
-/// Rounding each point on its own can leave a handle a unit past the rounded end range
-/// although the exact curve stays inside it (or passes it by a hair): the rounded cubic
-/// then turns back just before its end, an extreme without a point that font checkers
-/// flag (FontForge's "Missing points at extrema"). Such a handle, at most [`PULL`] outside,
-/// is put on the range's edge; with both handles inside the range the cubic is monotone
-/// there. The handle moves at most a unit more than rounding moves it, so the curve moves
-/// at most 3/4 of a unit more on that axis, and its end tangent turns by as much.
+/// Rounding each point on its own can leave a handle a unit or two past the rounded end
+/// range although the exact curve passes it by a hair at most: the rounded cubic then turns
+/// back just before its end, an extreme without a point that font checkers flag
+/// (FontForge's "Missing points at extrema"). Such a handle is put on the range's edge when
+/// that moves it at most a unit, or at most [`PULL`] turning it at most [`PULL_TURN`], and
+/// keeps the cubic within [`PULLED`] of the exact one (a bound, not a sample); with both
+/// handles inside the range the cubic is monotone there.
 fn keep_monotone(exact: &CubicBez, p0: Point, (a, b): (&mut Point, &mut Point), p3: Point) {
     for axis in [0, 1] {
         let coord = |p: Point| if axis == 0 { p.x } else { p.y };
         let (lo, hi) = (coord(p0).min(coord(p3)), coord(p0).max(coord(p3)));
-        let outside = |h: f64| h < lo - PULL || h > hi + PULL;
         let (ha, hb) = (coord(*a), coord(*b));
-        let inside = |h: f64| (lo..=hi).contains(&h);
-        if (inside(ha) && inside(hb)) || outside(ha) || outside(hb) {
+        let (ca, cb) = (ha.clamp(lo, hi), hb.clamp(lo, hi));
+        if ca == ha && cb == hb {
+            continue;
+        }
+        let small = |moved: f64, handle: Vec2| {
+            moved <= 1.0 || (moved <= PULL && moved <= PULL_TURN * handle.hypot())
+        };
+        if !small((ca - ha).abs(), *a - p0) || !small((cb - hb).abs(), *b - p3) {
             continue;
         }
         let (elo, ehi) = (
@@ -157,15 +170,38 @@ fn keep_monotone(exact: &CubicBez, p0: Point, (a, b): (&mut Point, &mut Point), 
         if excursion >= FAINT {
             continue;
         }
-        for h in [&mut *a, &mut *b] {
-            let v = coord(*h).clamp(lo, hi);
-            if axis == 0 {
-                h.x = v;
-            } else {
-                h.y = v;
-            }
+        let (mut pa, mut pb) = (*a, *b);
+        if axis == 0 {
+            (pa.x, pb.x) = (ca, cb);
+        } else {
+            (pa.y, pb.y) = (ca, cb);
+        }
+        if distance_bound(exact, &CubicBez::new(p0, pa, pb, p3)) <= PULLED {
+            (*a, *b) = (pa, pb);
         }
     }
+}
+
+/// An upper bound of the distance between two cubics at equal parameters: their difference
+/// is a cubic, which lies in the hull of its control points, piece by piece.
+fn distance_bound(c: &CubicBez, d: &CubicBez) -> f64 {
+    const PIECES: u32 = 8;
+    let diff = CubicBez::new(
+        (d.p0 - c.p0).to_point(),
+        (d.p1 - c.p1).to_point(),
+        (d.p2 - c.p2).to_point(),
+        (d.p3 - c.p3).to_point(),
+    );
+    (0..PIECES)
+        .map(|k| {
+            let piece = diff
+                .subsegment(f64::from(k) / f64::from(PIECES)..f64::from(k + 1) / f64::from(PIECES));
+            [piece.p0, piece.p1, piece.p2, piece.p3]
+                .iter()
+                .map(|p| p.to_vec2().hypot())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]
@@ -206,6 +242,38 @@ mod tests {
             round_point(Point::new(301.52, 129.32), "J").unwrap().x,
             302.0
         );
+    }
+
+    /// Two units are pulled on a long handle (DejaVu Sans Bold's `h` shoulder meeting its
+    /// stem, 2048 units per em), not on a short one, which would turn by 11 degrees.
+    #[test]
+    fn a_two_unit_pull_only_turns_a_long_handle_a_little() {
+        let excursion = |c: &CubicBez| {
+            c.extrema()
+                .iter()
+                .map(|&t| (c.eval(t).x - c.p0.x.max(c.p3.x)).max(c.p0.x.min(c.p3.x) - c.eval(t).x))
+                .fold(0.0, f64::max)
+        };
+        let shoulder = CubicBez::new(
+            (831.2, 866.1),
+            (939.6, 827.2),
+            (938.3, 733.4),
+            (938.0, 520.2),
+        );
+        assert!(excursion(&shoulder) < 0.5, "{}", excursion(&shoulder));
+        let short = CubicBez::new((100.0, 0.0), (98.4, 10.0), (150.0, 40.0), (200.0, 40.0));
+        assert!(excursion(&short) < 0.5, "{}", excursion(&short));
+        let svg = |c: CubicBez| {
+            let mut path = BezPath::new();
+            path.move_to(c.p0);
+            path.curve_to(c.p1, c.p2, c.p3);
+            path.close_path();
+            round_path(&path, "h").unwrap().to_svg()
+        };
+        // 940 would be 2 units past the stem's 938, on a 116-unit handle: pulled.
+        assert_eq!(svg(shoulder), "M831,866 C938,827 938,733 938,520 Z");
+        // 98 is 2 units before 100 on a 10-unit handle: kept (the extreme stays unsplit).
+        assert_eq!(svg(short), "M100,0 C98,10 150,40 200,40 Z");
     }
 
     /// A real extreme (half a unit or more past the end range) keeps its rounded handles,

@@ -10,7 +10,7 @@ use kurbo::{BezPath, Shape};
 use ttf_parser::{Face, GlyphId};
 use xglyph::import::font::glyph_outline;
 use xglyph::model::{Contour, Font, Glyph, KernPair};
-use xglyph::otf::{glyph_order, otf, specimen_html, specimen_text, ttf};
+use xglyph::otf::{glyph_order, otf, specimen_html, specimen_text, ttf, PULLED};
 use xglyph::outline::{outline_font, OutlinedFont};
 use xglyph::source::load_font;
 use xglyph::xspline::ControlPoint;
@@ -514,7 +514,7 @@ fn bundled_typeface_reads_back_within_bounds() {
     let mut worst = [0.0f64; 2];
     for (i, (bytes, bound)) in [
         (ttf(&outlines).unwrap(), font.info.tolerance + GRID),
-        (otf(&outlines).unwrap(), GRID),
+        (otf(&outlines).unwrap(), PULLED),
     ]
     .into_iter()
     .enumerate()

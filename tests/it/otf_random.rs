@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use ttf_parser::{Face, GlyphId};
 use xglyph::import::font::glyph_outline;
 use xglyph::model::{Contour, Font, FontInfo, Glyph};
-use xglyph::otf::{otf, ttf};
+use xglyph::otf::{otf, ttf, PULLED};
 use xglyph::outline::outline_font;
 use xglyph::xspline::ControlPoint;
 
@@ -56,7 +56,7 @@ proptest! {
         let exact = &outlines.glyphs[0].path;
         for (bytes, bound) in [
             (ttf(&outlines).unwrap(), tolerance + GRID),
-            (otf(&outlines).unwrap(), GRID),
+            (otf(&outlines).unwrap(), PULLED),
         ] {
             let face = Face::parse(&bytes, 0).unwrap();
             prop_assert_eq!(face.glyph_index('x'), Some(GlyphId(1)));
