@@ -128,12 +128,14 @@ fn bind(host: IpAddr, port: Option<u16>) -> Result<tiny_http::Server, ServeError
 }
 
 /// The event to broadcast after a reload: `{"changed": [...]}` when glyphs changed,
-/// `{"errors": [...]}` when the sources are broken, nothing when nothing changed.
+/// `{"errors": [...]}` when the sources are broken, nothing when nothing changed (nor
+/// when the errors are the ones already announced).
 pub(crate) fn reload_message(outcome: &Reload) -> Option<String> {
     match outcome {
         Reload::Changed { names, fixed } if names.is_empty() && !fixed => None,
         Reload::Changed { names, .. } => Some(json!({ "changed": names }).to_string()),
         Reload::Errors(errors) if errors.is_empty() => None,
+        Reload::SameErrors => None,
         Reload::Errors(errors) => {
             let errors: Vec<_> = errors.iter().map(state::diagnostic_json).collect();
             Some(json!({ "errors": errors }).to_string())

@@ -71,6 +71,9 @@ pub enum Reload {
     },
     /// The sources have errors; the last good font is still served.
     Errors(Vec<Diagnostic>),
+    /// The sources have the very errors they had at the last reload (an editor's save
+    /// can reach the watcher as two events): nothing new to announce.
+    SameErrors,
 }
 
 /// The font being served.
@@ -113,7 +116,11 @@ impl Studio {
         let loaded = match load_sources(&self.dir) {
             Ok(loaded) => loaded,
             Err(diags) => {
-                self.errors = errors_only(diags);
+                let errors = errors_only(diags);
+                if errors == self.errors {
+                    return Reload::SameErrors;
+                }
+                self.errors = errors;
                 return Reload::Errors(self.errors.clone());
             }
         };

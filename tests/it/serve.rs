@@ -21,27 +21,32 @@ pub struct Studio {
     _tmp: tempfile::TempDir,
 }
 
+/// Copies the bundled typeface into `dir`.
+fn copy_bundled(dir: &Path) {
+    let bundled = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
+    for entry in fs::read_dir(bundled).unwrap() {
+        let path = entry.unwrap().path();
+        let to = dir.join(path.file_name().unwrap());
+        if path.is_dir() {
+            // A master's folder (glyphs/bold/): its files, one level deep.
+            fs::create_dir(&to).unwrap();
+            for file in fs::read_dir(&path).unwrap() {
+                let file = file.unwrap().path();
+                fs::copy(&file, to.join(file.file_name().unwrap())).unwrap();
+            }
+        } else {
+            fs::copy(&path, to).unwrap();
+        }
+    }
+}
+
 impl Studio {
     /// Copies the bundled typeface, lets `prepare` change the copy, starts the server.
     pub fn start(prepare: impl FnOnce(&Path)) -> Studio {
         let tmp = tempfile::tempdir().unwrap();
         let dir = tmp.path().join("glyphs");
         fs::create_dir(&dir).unwrap();
-        let bundled = Path::new(env!("CARGO_MANIFEST_DIR")).join("glyphs");
-        for entry in fs::read_dir(bundled).unwrap() {
-            let path = entry.unwrap().path();
-            let to = dir.join(path.file_name().unwrap());
-            if path.is_dir() {
-                // A master's folder (glyphs/bold/): its files, one level deep.
-                fs::create_dir(&to).unwrap();
-                for file in fs::read_dir(&path).unwrap() {
-                    let file = file.unwrap().path();
-                    fs::copy(&file, to.join(file.file_name().unwrap())).unwrap();
-                }
-            } else {
-                fs::copy(&path, to).unwrap();
-            }
-        }
+        copy_bundled(&dir);
         prepare(&dir);
         let mut child = Command::new(env!("CARGO_BIN_EXE_xglyph"))
             .args(["serve", "--port", "0"])
@@ -520,7 +525,7 @@ fn disk_edits_stream_events_and_conflict() {
 
     // A save from a text editor: the changed glyph and the composites that place it.
     let saved = original.replace("[275, -12, -1]", "[275, -20, -1]");
-    fs::write(&path, &saved).unwrap();
+    save(&path, &saved);
     let event = next_event(&events, 5);
     assert_eq!(
         event,
@@ -551,7 +556,7 @@ fn disk_edits_stream_events_and_conflict() {
     let broken = fs::read_to_string(&path)
         .unwrap()
         .replace("advance = 560", "advance = \"wide\"");
-    fs::write(&path, &broken).unwrap();
+    save(&path, &broken);
     let event = next_event(&events, 5);
     let check = Command::new(env!("CARGO_BIN_EXE_xglyph"))
         .args(["check", "--format", "json"])
@@ -584,9 +589,66 @@ fn disk_edits_stream_events_and_conflict() {
     assert!(next_event(&late, 5)["errors"].is_array());
 
     // Fixing the file clears the errors (a `changed` event, even with nothing changed).
-    fs::write(&path, broken.replace("advance = \"wide\"", "advance = 560")).unwrap();
+    save(
+        &path,
+        &broken.replace("advance = \"wide\"", "advance = 560"),
+    );
     assert_eq!(next_event(&events, 5), json!({"changed": []}));
     assert_eq!(next_event(&late, 5), json!({"changed": []}));
+}
+
+/// Saves `text` as an editor that writes a new file and renames it does: the watcher
+/// never sees the file half written (a truncated file is, rightly, an error event).
+fn save(path: &Path, text: &str) {
+    let hidden = path.with_file_name(".saving.toml");
+    fs::write(&hidden, text).unwrap();
+    fs::rename(&hidden, path).unwrap();
+}
+
+/// One save can reach the watcher as two events (truncate, then write); a reload that
+/// finds the errors already announced announces nothing, and a different error, or the
+/// fix, is announced. (CI once saw the same errors twice in the event stream.)
+#[test]
+fn a_reload_with_the_same_errors_announces_nothing() {
+    use xglyph::serve::Reload;
+    let tmp = tempfile::tempdir().unwrap();
+    copy_bundled(tmp.path());
+    let mut studio = xglyph::serve::Studio::open(tmp.path()).unwrap();
+    let path = tmp.path().join("o.toml");
+    let good = fs::read_to_string(&path).unwrap();
+    let line = good.lines().position(|l| l.starts_with("advance")).unwrap() + 1;
+
+    fs::write(
+        &path,
+        good.replacen("advance = ", "advance = \"wide\" #", 1),
+    )
+    .unwrap();
+    let Reload::Errors(first) = studio.reload() else {
+        panic!("a broken file must be an error");
+    };
+    assert_eq!(first.len(), 1);
+    assert_eq!((first[0].line, first[0].col), (line, 11));
+    assert_eq!(first[0].message, "`advance` must be a number, found string");
+    assert_eq!(studio.reload(), Reload::SameErrors);
+
+    fs::write(&path, good.replacen("advance = ", "advance = true #", 1)).unwrap();
+    let Reload::Errors(second) = studio.reload() else {
+        panic!("a broken file must be an error");
+    };
+    assert_eq!(
+        second[0].message,
+        "`advance` must be a number, found boolean"
+    );
+    assert_eq!(studio.reload(), Reload::SameErrors);
+
+    fs::write(&path, &good).unwrap();
+    assert_eq!(
+        studio.reload(),
+        Reload::Changed {
+            names: Vec::new(),
+            fixed: true
+        }
+    );
 }
 
 #[cfg(unix)]
