@@ -4,7 +4,7 @@
 //! typeface's composites placed exactly where their anchors say. The error messages are
 //! the `tests/malformed/anchor_*` and `mark_*` cases.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use xglyph::model::{propagate_anchors, Anchor, Family, Glyph};
@@ -13,9 +13,10 @@ use xglyph::source::{
 };
 
 use crate::common::fonts::{small_font_folder, SMALL_FONT as FONT};
+use crate::common::temp::TempFolder;
 
 /// A fresh font folder with the small `font.toml` and `files`.
-fn font_dir(tag: &str, files: &[(&str, &str)]) -> PathBuf {
+fn font_dir(tag: &str, files: &[(&str, &str)]) -> TempFolder {
     small_font_folder(&format!("anchors-{tag}"), files)
 }
 
@@ -82,7 +83,7 @@ fn accents() -> Vec<(&'static str, String)> {
     ]
 }
 
-fn accents_dir(tag: &str) -> PathBuf {
+fn accents_dir(tag: &str) -> TempFolder {
     let files = accents();
     let refs: Vec<(&str, &str)> = files.iter().map(|(n, t)| (*n, t.as_str())).collect();
     font_dir(tag, &refs)

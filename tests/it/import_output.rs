@@ -6,17 +6,15 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::common::cli::{import, import_ok, xglyph, xglyph_env};
+use crate::common::temp::TempFolder;
 
 const DEJAVU: &str = "tests/fixtures/import/DejaVuSans.ttf";
 const RING: &str = "tests/fixtures/import/ring.svg";
 /// Debian fonts-wqy-zenhei: a collection of three fonts (Zen Hei, Zen Hei Mono, Sharp).
 const WQY: &str = "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc";
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("xglyph-import-out-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp_dir(name: &str) -> TempFolder {
+    TempFolder::new(&format!("import-out-{name}"))
 }
 
 /// File names in `dir`, sorted.

@@ -5,7 +5,7 @@
 //! `source_malformed.rs`).
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -13,11 +13,12 @@ use xglyph::commands::check;
 use xglyph::source::load_font;
 
 use crate::common::fonts::small_font_folder;
+use crate::common::temp::TempFolder;
 const TRIANGLE: &str =
     "advance = 500\n[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [0, 100, 0]]\n";
 
 /// A fresh font folder with the small `font.toml` and `files`.
-fn font_dir(tag: &str, files: &[(&str, String)]) -> PathBuf {
+fn font_dir(tag: &str, files: &[(&str, String)]) -> TempFolder {
     small_font_folder(&format!("limits-{tag}"), files)
 }
 

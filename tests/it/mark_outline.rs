@@ -16,6 +16,7 @@ use xglyph::source::emit::{glyph_toml, master_glyph_toml};
 use xglyph::source::{load_family, load_font, load_glyph_text};
 
 use crate::common::fonts::{small_font_folder, SMALL_FONT as FONT};
+use crate::common::temp::TempFolder;
 
 const TRIANGLE: &str = "[[contour]]\npoints = [[0, 0, 0], [100, 0, 0], [100, 100, 0]]\n";
 
@@ -64,7 +65,7 @@ fn files() -> Vec<(&'static str, String)> {
 }
 
 /// A fresh font folder with the small `font.toml` and `files`.
-fn font_dir(tag: &str, files: &[(&str, String)]) -> PathBuf {
+fn font_dir(tag: &str, files: &[(&str, String)]) -> TempFolder {
     small_font_folder(&format!("mark-{tag}"), files)
 }
 

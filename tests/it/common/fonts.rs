@@ -1,6 +1,6 @@
 //! Test fonts made in code.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use kurbo::BezPath;
 use skrifa::instance::{LocationRef, Size};
@@ -9,6 +9,8 @@ use skrifa::raw::TableProvider;
 use skrifa::{FontRef, GlyphId, MetadataProvider};
 
 use xglyph::model::{Contour, Font, Glyph};
+
+use super::temp::TempFolder;
 use xglyph::source::load_font;
 use xglyph::xspline::ControlPoint;
 
@@ -16,12 +18,10 @@ use xglyph::xspline::ControlPoint;
 pub const SMALL_FONT: &str = "family = \"T\"\nunits_per_em = 1000\nascender = 800\n\
                               descender = -200\nx_height = 500\ncap_height = 700\n";
 
-/// A fresh folder `xglyph-<tag>-<pid>` in the temp dir holding [`SMALL_FONT`] as
-/// `font.toml` and `files` (name, text).
-pub fn small_font_folder<S: AsRef<str>>(tag: &str, files: &[(&str, S)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("xglyph-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("mkdir");
+/// A fresh folder `xglyph-<tag>-…` in the temp dir holding [`SMALL_FONT`] as
+/// `font.toml` and `files` (name, text); removed when dropped.
+pub fn small_font_folder<S: AsRef<str>>(tag: &str, files: &[(&str, S)]) -> TempFolder {
+    let dir = TempFolder::new(tag);
     std::fs::write(dir.join("font.toml"), SMALL_FONT).expect("write font.toml");
     for (name, text) in files {
         std::fs::write(dir.join(name), text.as_ref()).expect("write");

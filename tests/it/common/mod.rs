@@ -6,5 +6,6 @@ pub mod curves;
 pub mod fonts;
 pub mod masters;
 pub mod paths;
+pub mod temp;
 pub mod tools;
 pub mod tree;
