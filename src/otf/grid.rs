@@ -2,13 +2,14 @@
 //!
 //! Every control point is rounded on its own (half away from zero), so a rounded Bézier is
 //! within √2/2 font units of the exact one everywhere, except where a handle is pulled
-//! back onto its cubic's end range to keep a monotone cubic monotone ([`keep_monotone`]:
-//! within one unit). Segments that collapse to a point after
-//! rounding are dropped; a contour that collapses entirely is dropped.
+//! back onto its cubic's end range to keep a monotone cubic monotone ([`keep_monotone`]),
+//! or a point is moved to keep a notch's sides in order ([`spike`]): within one unit
+//! ([`PULLED`]). Segments that collapse to a point after rounding are dropped; a contour
+//! that collapses entirely is dropped.
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point, Vec2};
 
-use super::OtfError;
+use super::{spike, OtfError};
 
 /// A value as a signed 16-bit table field, or an error naming it.
 pub fn to_i16(value: f64, what: impl FnOnce() -> String) -> Result<i16, OtfError> {
@@ -54,8 +55,10 @@ pub fn round_point(p: Point, glyph: &str) -> Result<Point, OtfError> {
 /// is dropped (closing is implicit in both `glyf` and CFF).
 pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
     let mut out = BezPath::new();
+    // The contour on the grid, and each of its elements as it was before rounding.
     let mut contour: Vec<PathEl> = Vec::new();
-    let flush = |contour: &mut Vec<PathEl>, out: &mut BezPath| {
+    let mut exact_contour: Vec<PathEl> = Vec::new();
+    let flush = |contour: &mut Vec<PathEl>, exact: &mut Vec<PathEl>, out: &mut BezPath| {
         let start = match contour.first() {
             Some(PathEl::MoveTo(p)) => *p,
             _ => return,
@@ -63,29 +66,34 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
         if let Some(PathEl::LineTo(p)) = contour.last() {
             if *p == start {
                 contour.pop();
+                exact.pop();
             }
         }
         if contour.len() > 1 {
+            keep_contour_spikes(contour, exact);
             for el in contour.iter() {
                 out.push(*el);
             }
             out.close_path();
         }
         contour.clear();
+        exact.clear();
     };
     let mut current = Point::ZERO;
     let mut exact_current = Point::ZERO;
     for el in path.elements() {
         match *el {
             PathEl::MoveTo(p) => {
-                flush(&mut contour, &mut out);
+                flush(&mut contour, &mut exact_contour, &mut out);
                 current = round_point(p, glyph)?;
                 contour.push(PathEl::MoveTo(current));
+                exact_contour.push(*el);
             }
             PathEl::LineTo(p) => {
                 let p = round_point(p, glyph)?;
                 if p != current {
                     contour.push(PathEl::LineTo(p));
+                    exact_contour.push(*el);
                     current = p;
                 }
             }
@@ -93,6 +101,7 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
                 let (a, p) = (round_point(a, glyph)?, round_point(p, glyph)?);
                 if !(a == current && p == current) {
                     contour.push(PathEl::QuadTo(a, p));
+                    exact_contour.push(*el);
                     current = p;
                 }
             }
@@ -104,17 +113,82 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
                 keep_monotone(&exact, current, (&mut a, &mut b), p);
                 if !(a == current && b == current && p == current) {
                     contour.push(PathEl::CurveTo(a, b, p));
+                    exact_contour.push(*el);
                     current = p;
                 }
             }
-            PathEl::ClosePath => flush(&mut contour, &mut out),
+            PathEl::ClosePath => flush(&mut contour, &mut exact_contour, &mut out),
         }
         if let Some(end) = el.end_point() {
             exact_current = end;
         }
     }
-    flush(&mut contour, &mut out);
+    flush(&mut contour, &mut exact_contour, &mut out);
     Ok(out)
+}
+
+/// [`spike::keep_spikes`] on one rounded contour (`MoveTo`, then segments, no closing
+/// line), with `exact` its elements before rounding; a cubic with a moved point must stay
+/// within [`PULLED`] of its exact cubic ([`distance_bound`]), as a pulled one does.
+fn keep_contour_spikes(contour: &mut [PathEl], exact: &[PathEl]) {
+    // The control points in order, each with the index of its element.
+    let mut exact_points = Vec::new();
+    let mut rounded = Vec::new();
+    let mut on_curve = Vec::new();
+    let mut element = Vec::new();
+    // Where each element's points start in the lists.
+    let mut first = Vec::with_capacity(contour.len());
+    for (k, (el, ex)) in contour.iter().zip(exact).enumerate() {
+        first.push(rounded.len());
+        let (points, exact) = (element_points(el), element_points(ex));
+        let last = points.len() - 1;
+        for (m, (p, e)) in points.into_iter().zip(exact).enumerate() {
+            rounded.push(p);
+            exact_points.push(e);
+            on_curve.push(m == last);
+            element.push(k);
+        }
+    }
+    let cubic = |points: &[Point], k: usize| -> Option<CubicBez> {
+        let start = points[first[k].checked_sub(1).unwrap_or(points.len() - 1)];
+        let i = first[k];
+        matches!(contour[k], PathEl::CurveTo(..))
+            .then(|| CubicBez::new(start, points[i], points[i + 1], points[i + 2]))
+    };
+    // The elements a moved point belongs to: its own, and the next when it ends one.
+    let moved = spike::keep_spikes(&exact_points, &mut rounded, &on_curve, |now, j| {
+        let k = element[j];
+        let next = (on_curve[j] && k + 1 < contour.len()).then_some(k + 1);
+        [Some(k), next].into_iter().flatten().all(|k| {
+            match (cubic(&exact_points, k), cubic(now, k)) {
+                (Some(e), Some(r)) => distance_bound(&e, &r) <= PULLED,
+                _ => true,
+            }
+        })
+    });
+    if moved == 0 {
+        return;
+    }
+    for (k, el) in contour.iter_mut().enumerate() {
+        let p = &rounded[first[k]..];
+        *el = match *el {
+            PathEl::MoveTo(_) => PathEl::MoveTo(p[0]),
+            PathEl::LineTo(_) => PathEl::LineTo(p[0]),
+            PathEl::QuadTo(..) => PathEl::QuadTo(p[0], p[1]),
+            PathEl::CurveTo(..) => PathEl::CurveTo(p[0], p[1], p[2]),
+            PathEl::ClosePath => PathEl::ClosePath,
+        };
+    }
+}
+
+/// The control points of a path element, its end point last.
+fn element_points(el: &PathEl) -> Vec<Point> {
+    match *el {
+        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
+        PathEl::QuadTo(a, p) => vec![a, p],
+        PathEl::CurveTo(a, b, p) => vec![a, b, p],
+        PathEl::ClosePath => Vec::new(),
+    }
 }
 
 /// Farthest a rounded handle is pulled back onto its cubic's end range ([`keep_monotone`]),
@@ -124,8 +198,8 @@ const PULL: f64 = 2.0;
 /// to the handle's length): a short handle at a smooth join keeps its direction, or the
 /// join would kink. One unit, rounding's own scale, is always allowed.
 const PULL_TURN: f64 = 0.05;
-/// Farthest a cubic with a pulled handle may be from the exact one, font units (rounding
-/// alone keeps it within √2/2).
+/// Farthest a cubic with a pulled or moved point may be from the exact one, font units
+/// (rounding alone keeps it within √2/2).
 pub const PULLED: f64 = 1.0;
 /// An exact cubic that passes its end range by less than this (font units) on an axis is
 /// taken as monotone there: the extreme is below the grid.

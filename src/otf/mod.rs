@@ -12,7 +12,10 @@
 //!
 //! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
 //! convex combination of its control points, so grid rounding moves any outline point by at
-//! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only).
+//! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only). Two rules may
+//! move a point up to a unit, and keep the outline within [`PULLED`] (one unit): a handle
+//! pulled back onto a monotone cubic's end range (CFF, `grid.rs`), and a point moved to
+//! keep a narrow notch's sides in order (both, `spike.rs`).
 //!
 //! The WOFF2 (`woff2.rs`) is the TTF compressed for the web.
 //!
@@ -44,6 +47,7 @@ mod post;
 mod prep;
 mod quadratic;
 mod specimen;
+mod spike;
 mod tables;
 mod truetype;
 mod variable;

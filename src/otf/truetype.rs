@@ -5,8 +5,10 @@ use read_fonts::tables::glyf::CurvePoint;
 use write_fonts::tables::glyf::{Bbox, Contour, GlyfLocaBuilder, SimpleGlyph};
 use write_fonts::tables::loca::Loca;
 
-use super::quadratic::truetype_contours;
-use super::{grid, OtGlyph, OtfError};
+use super::quadratic::{truetype_contours, SplinePoint};
+use kurbo::Point;
+
+use super::{grid, spike, OtGlyph, OtfError};
 use crate::reuse::{Key, KeyBuilder, Reuse};
 
 /// One glyph ready for `glyf`: its bytes as the table holds them (none for an empty glyph),
@@ -151,12 +153,10 @@ fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError>
     let mut contours = Vec::new();
     for contour in truetype_contours(&g.path(), accuracy) {
         let mut points: Vec<CurvePoint> = Vec::with_capacity(contour.len());
-        for p in contour {
-            let q = grid::round_point(p.point, &g.model_name)?;
-            let point = CurvePoint::new(q.x as i16, q.y as i16, p.on_curve);
+        for point in round_contour(&contour, &g.model_name)? {
             // A point that rounds onto its on-curve predecessor adds nothing.
             if let Some(prev) = points.last() {
-                if prev.on_curve && point.on_curve && (prev.x, prev.y) == (q.x as i16, q.y as i16) {
+                if prev.on_curve && point.on_curve && (prev.x, prev.y) == (point.x, point.y) {
                     continue;
                 }
             }
@@ -171,6 +171,28 @@ fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError>
         }
     }
     Ok(contours)
+}
+
+/// A TrueType contour's points on the grid: each rounded on its own, then every spike kept
+/// in order ([`spike::keep_spikes`]). A point moved there stays within one unit of its
+/// exact place, and every point of a quadratic spline is a convex combination of its
+/// points, so the contour stays within one unit: no further bound to check.
+pub(super) fn round_contour(
+    contour: &[SplinePoint],
+    glyph: &str,
+) -> Result<Vec<CurvePoint>, OtfError> {
+    let exact: Vec<Point> = contour.iter().map(|p| p.point).collect();
+    let on_curve: Vec<bool> = contour.iter().map(|p| p.on_curve).collect();
+    let mut rounded = exact
+        .iter()
+        .map(|&p| grid::round_point(p, glyph))
+        .collect::<Result<Vec<Point>, OtfError>>()?;
+    spike::keep_spikes(&exact, &mut rounded, &on_curve, |_, _| true);
+    Ok(rounded
+        .into_iter()
+        .zip(on_curve)
+        .map(|(q, on)| CurvePoint::new(q.x as i16, q.y as i16, on))
+        .collect())
 }
 
 /// Removes, around the closed contour, points that make zero-length segments on the grid

@@ -46,6 +46,7 @@ mod source_fmt;
 mod source_malformed;
 mod sparse;
 mod sparse_import;
+mod spikes;
 mod studio_browser;
 mod svg;
 mod terminal;

@@ -12,8 +12,6 @@ use xglyph::otf::{otf, ttf, PULLED};
 use xglyph::outline::outline_font;
 use xglyph::xspline::ControlPoint;
 
-const GRID: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
 fn font_with(glyph: Glyph, tolerance: f64) -> Font {
     Font {
         info: FontInfo {
@@ -55,7 +53,8 @@ proptest! {
         let outlines = outline_font(&font, tolerance);
         let exact = &outlines.glyphs[0].path;
         for (bytes, bound) in [
-            (ttf(&outlines).unwrap(), tolerance + GRID),
+            // Grid rounding: √2/2, or a unit where a point moves at a notch (`PULLED`).
+            (ttf(&outlines).unwrap(), tolerance + PULLED),
             (otf(&outlines).unwrap(), PULLED),
         ] {
             let face = Face::parse(&bytes, 0).unwrap();

@@ -42,7 +42,7 @@ use write_fonts::BuilderError;
 use super::features::{layout_tables, LayoutModels, LayoutSource, RuleRegion};
 use super::kern::kern_pairs;
 use super::tables::{font_builder, Outlines, VariableShared};
-use super::truetype::TtGlyph;
+use super::truetype::{self, TtGlyph};
 use super::{grid, GlyphSet, OtfError};
 use crate::designspace::{Designspace, VariationModel};
 use crate::family::OutlinedFamily;
@@ -314,14 +314,7 @@ fn glyph_variations(
     for contours in &masters {
         let mut out = Vec::with_capacity(contours.len());
         for contour in contours {
-            let points = contour
-                .iter()
-                .map(|p| {
-                    let q = grid::round_point(p.point, name)?;
-                    Ok(CurvePoint::new(q.x as i16, q.y as i16, p.on_curve))
-                })
-                .collect::<Result<Vec<_>, OtfError>>()?;
-            out.push(points);
+            out.push(truetype::round_contour(contour, name)?);
         }
         rounded.push(out);
     }
