@@ -7,13 +7,16 @@
 //! past the other side: the rounded contour then crosses itself just beside the corner,
 //! which font checkers flag (FontForge's "self-intersecting"). The point that sets that
 //! side's direction (the handle, or the end of a segment shorter than a unit), or else the
-//! corner itself, is moved to another grid point within one unit of its exact place, the
-//! nearest that puts the sides back in order without breaking a corner nearby.
+//! corner itself, is moved to another grid point within one unit of its exact place: the
+//! nearest that puts the sides back in order, breaks no corner nearby, folds no segment
+//! back, and leaves the two sides' control polygons apart.
 //!
-//! Limits: the order is that of the sides' first control points, so two sides that leave
-//! in nearly the same direction (an imported sliver a tenth of a unit wide) can keep it at
-//! the corner and still cross a few units on; a corner whose sides leave it in exactly the
-//! same direction has no order to keep.
+//! Limits: the rounded order is that of the sides' first control points, so two sides that
+//! leave in nearly the same direction (an imported sliver a tenth of a unit wide) can keep
+//! it at the corner and still cross a few units on; a corner whose sides leave it in
+//! exactly the same direction has no order to keep; a side's exact direction is taken a
+//! unit out, so a hook below the grid (a handle a fraction of a unit long turning back) is
+//! rounded away as before, not kept.
 
 use kurbo::{Point, Vec2};
 
@@ -23,9 +26,10 @@ use kurbo::{Point, Vec2};
 pub const MOVE: f64 = super::PULLED;
 
 /// Keeps every spike of a closed contour in order: `exact` and `rounded` are its points
-/// before and after rounding (in order), `on_curve` tells on-curve points from handles. `allowed(rounded, j)` says whether point `j` may take the value it
-/// has in `rounded` (for a further bound the caller keeps); a move is tried only within
-/// [`MOVE`] of the exact point. Returns how many points moved.
+/// before and after rounding (in order), `on_curve` tells on-curve points from handles.
+/// `allowed(rounded, j)` says whether point `j` may take the value it has in `rounded` (for
+/// a further bound the caller keeps); a move is tried only within [`MOVE`] of the exact
+/// point. Returns how many points moved.
 pub fn keep_spikes(
     exact: &[Point],
     rounded: &mut [Point],
