@@ -132,20 +132,20 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
 /// within [`PULLED`] of its exact cubic ([`distance_bound`]), as a pulled one does.
 fn keep_contour_spikes(contour: &mut [PathEl], exact: &[PathEl]) {
     // The control points in order, each with the index of its element.
-    let mut exact_points = Vec::new();
-    let mut rounded = Vec::new();
-    let mut on_curve = Vec::new();
-    let mut element = Vec::new();
+    let points = 3 * contour.len();
+    let mut exact_points = Vec::with_capacity(points);
+    let mut rounded = Vec::with_capacity(points);
+    let mut on_curve = Vec::with_capacity(points);
+    let mut element = Vec::with_capacity(points);
     // Where each element's points start in the lists.
     let mut first = Vec::with_capacity(contour.len());
     for (k, (el, ex)) in contour.iter().zip(exact).enumerate() {
         first.push(rounded.len());
-        let (points, exact) = (element_points(el), element_points(ex));
-        let last = points.len() - 1;
-        for (m, (p, e)) in points.into_iter().zip(exact).enumerate() {
+        let ((points, count), (exact, _)) = (element_points(el), element_points(ex));
+        for (m, (p, e)) in points.into_iter().zip(exact).take(count).enumerate() {
             rounded.push(p);
             exact_points.push(e);
-            on_curve.push(m == last);
+            on_curve.push(m + 1 == count);
             element.push(k);
         }
     }
@@ -181,13 +181,14 @@ fn keep_contour_spikes(contour: &mut [PathEl], exact: &[PathEl]) {
     }
 }
 
-/// The control points of a path element, its end point last.
-fn element_points(el: &PathEl) -> Vec<Point> {
+/// The control points of a path element, its end point last: the first `count` of the
+/// array (no allocation: this runs on every contour of every CFF glyph).
+fn element_points(el: &PathEl) -> ([Point; 3], usize) {
     match *el {
-        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
-        PathEl::QuadTo(a, p) => vec![a, p],
-        PathEl::CurveTo(a, b, p) => vec![a, b, p],
-        PathEl::ClosePath => Vec::new(),
+        PathEl::MoveTo(p) | PathEl::LineTo(p) => ([p, p, p], 1),
+        PathEl::QuadTo(a, p) => ([a, p, p], 2),
+        PathEl::CurveTo(a, b, p) => ([a, b, p], 3),
+        PathEl::ClosePath => ([Point::ZERO; 3], 0),
     }
 }
 
