@@ -1,15 +1,14 @@
 //! The integer grid: rounding outlines and metrics for the binary tables.
 //!
 //! Every control point is rounded on its own (half away from zero), so a rounded Bézier is
-//! within √2/2 font units of the exact one everywhere, except where a handle is pulled
-//! back onto its cubic's end range to keep a monotone cubic monotone ([`keep_monotone`]),
-//! or a point is moved to keep a notch's sides in order ([`spike`]): within one unit
-//! ([`PULLED`]). Segments that collapse to a point after rounding are dropped; a contour
-//! that collapses entirely is dropped.
+//! within √2/2 font units of the exact one everywhere, except where a handle is moved to
+//! keep a monotone cubic monotone ([`monotone`]) or a point is moved to keep a notch's
+//! sides in order ([`spike`]): within one unit ([`PULLED`]). Segments that collapse to a
+//! point after rounding are dropped; a contour that collapses entirely is dropped.
 
-use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point, Vec2};
+use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, Point};
 
-use super::{spike, OtfError};
+use super::{monotone, spike, OtfError};
 
 /// A value as a signed 16-bit table field, or an error naming it.
 pub fn to_i16(value: f64, what: impl FnOnce() -> String) -> Result<i16, OtfError> {
@@ -110,7 +109,7 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
                 let mut a = round_point(a, glyph)?;
                 let mut b = round_point(b, glyph)?;
                 let p = round_point(p, glyph)?;
-                keep_monotone(&exact, current, (&mut a, &mut b), p);
+                monotone::keep_cubic(&exact, current, (&mut a, &mut b), p);
                 if !(a == current && b == current && p == current) {
                     contour.push(PathEl::CurveTo(a, b, p));
                     exact_contour.push(*el);
@@ -192,74 +191,13 @@ fn element_points(el: &PathEl) -> ([Point; 3], usize) {
     }
 }
 
-/// Farthest a rounded handle is pulled back onto its cubic's end range ([`keep_monotone`]),
-/// font units.
-const PULL: f64 = 2.0;
-/// Most a pull of more than one unit may turn a handle (radians, as the ratio of the move
-/// to the handle's length): a short handle at a smooth join keeps its direction, or the
-/// join would kink. One unit, rounding's own scale, is always allowed.
-const PULL_TURN: f64 = 0.05;
 /// Farthest a cubic with a pulled or moved point may be from the exact one, font units
 /// (rounding alone keeps it within √2/2).
 pub const PULLED: f64 = 1.0;
-/// An exact cubic that passes its end range by less than this (font units) on an axis is
-/// taken as monotone there: the extreme is below the grid.
-const FAINT: f64 = 0.5;
-
-/// Keeps a cubic that is (within [`FAINT`]) monotone on an axis monotone on the grid.
-///
-/// Rounding each point on its own can leave a handle a unit or two past the rounded end
-/// range although the exact curve passes it by a hair at most: the rounded cubic then turns
-/// back just before its end, an extreme without a point that font checkers flag
-/// (FontForge's "Missing points at extrema"). Such a handle is put on the range's edge when
-/// that moves it at most a unit, or at most [`PULL`] turning it at most [`PULL_TURN`], and
-/// keeps the cubic within [`PULLED`] of the exact one (a bound, not a sample); with both
-/// handles inside the range the cubic is monotone there.
-fn keep_monotone(exact: &CubicBez, p0: Point, (a, b): (&mut Point, &mut Point), p3: Point) {
-    for axis in [0, 1] {
-        let coord = |p: Point| if axis == 0 { p.x } else { p.y };
-        let (lo, hi) = (coord(p0).min(coord(p3)), coord(p0).max(coord(p3)));
-        let (ha, hb) = (coord(*a), coord(*b));
-        let (ca, cb) = (ha.clamp(lo, hi), hb.clamp(lo, hi));
-        if ca == ha && cb == hb {
-            continue;
-        }
-        let small = |moved: f64, handle: Vec2| {
-            moved <= 1.0 || (moved <= PULL && moved <= PULL_TURN * handle.hypot())
-        };
-        if !small((ca - ha).abs(), *a - p0) || !small((cb - hb).abs(), *b - p3) {
-            continue;
-        }
-        let (elo, ehi) = (
-            coord(exact.p0).min(coord(exact.p3)),
-            coord(exact.p0).max(coord(exact.p3)),
-        );
-        let excursion = exact
-            .extrema()
-            .into_iter()
-            .map(|t| {
-                let v = coord(exact.eval(t));
-                (v - ehi).max(elo - v)
-            })
-            .fold(0.0, f64::max);
-        if excursion >= FAINT {
-            continue;
-        }
-        let (mut pa, mut pb) = (*a, *b);
-        if axis == 0 {
-            (pa.x, pb.x) = (ca, cb);
-        } else {
-            (pa.y, pb.y) = (ca, cb);
-        }
-        if distance_bound(exact, &CubicBez::new(p0, pa, pb, p3)) <= PULLED {
-            (*a, *b) = (pa, pb);
-        }
-    }
-}
 
 /// An upper bound of the distance between two cubics at equal parameters: their difference
 /// is a cubic, which lies in the hull of its control points, piece by piece.
-fn distance_bound(c: &CubicBez, d: &CubicBez) -> f64 {
+pub(super) fn distance_bound(c: &CubicBez, d: &CubicBez) -> f64 {
     const PIECES: u32 = 8;
     let diff = CubicBez::new(
         (d.p0 - c.p0).to_point(),
@@ -282,6 +220,7 @@ fn distance_bound(c: &CubicBez, d: &CubicBez) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use kurbo::ParamCurveExtrema;
 
     #[test]
     fn rounding_drops_collapsed_segments_and_closing_line() {

@@ -13,9 +13,10 @@
 //! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
 //! convex combination of its control points, so grid rounding moves any outline point by at
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only). Two rules may
-//! move a point up to a unit, and keep the outline within [`PULLED`] (one unit): a handle
-//! pulled back onto a monotone cubic's end range (CFF, `grid.rs`), and a point moved to
-//! keep a narrow notch's sides in order (both, `spike.rs`).
+//! move a point up to a unit, and keep the outline within [`PULLED`] (one unit): an
+//! off-curve point moved to keep a monotone curve monotone, so that rounding makes no
+//! extreme without a point (both, `monotone.rs`), and a point moved to keep a narrow
+//! notch's sides in order (both, `spike.rs`).
 //!
 //! The WOFF2 (`woff2.rs`) is the TTF compressed for the web.
 //!
@@ -41,6 +42,7 @@ mod head;
 mod hmtx;
 mod kern;
 mod maxp;
+mod monotone;
 mod naming;
 mod os2;
 mod post;

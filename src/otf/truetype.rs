@@ -8,7 +8,7 @@ use write_fonts::tables::loca::Loca;
 use super::quadratic::{truetype_contours, SplinePoint};
 use kurbo::Point;
 
-use super::{grid, spike, OtGlyph, OtfError};
+use super::{grid, monotone, spike, OtGlyph, OtfError};
 use crate::reuse::{Key, KeyBuilder, Reuse};
 
 /// One glyph ready for `glyf`: its bytes as the table holds them (none for an empty glyph),
@@ -173,9 +173,10 @@ fn on_grid(g: &OtGlyph, accuracy: f64) -> Result<Vec<Vec<CurvePoint>>, OtfError>
     Ok(contours)
 }
 
-/// A TrueType contour's points on the grid: each rounded on its own, then every spike kept
-/// in order ([`spike::keep_spikes`]). A point moved there stays within one unit of its
-/// exact place, and every point of a quadratic spline is a convex combination of its
+/// A TrueType contour's points on the grid: each rounded on its own, then no quadratic
+/// left turning back where the exact one runs one way ([`monotone::keep_quadratics`]) and
+/// every spike kept in order ([`spike::keep_spikes`]). A point moved there stays within one
+/// unit of its exact place, and every point of a quadratic spline is a convex combination of its
 /// points, so the contour stays within one unit: no further bound to check.
 pub(super) fn round_contour(
     contour: &[SplinePoint],
@@ -187,6 +188,7 @@ pub(super) fn round_contour(
         .iter()
         .map(|&p| grid::round_point(p, glyph))
         .collect::<Result<Vec<Point>, OtfError>>()?;
+    monotone::keep_quadratics(&exact, &mut rounded, &on_curve);
     spike::keep_spikes(&exact, &mut rounded, &on_curve, |_, _| true);
     Ok(rounded
         .into_iter()

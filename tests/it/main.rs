@@ -17,6 +17,7 @@ mod features;
 mod fit;
 mod fit_count;
 mod flatten;
+mod grid_extrema;
 mod import_bound;
 mod import_font;
 mod import_malformed;
