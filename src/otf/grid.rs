@@ -2,11 +2,12 @@
 //!
 //! Every control point is rounded on its own (half away from zero), so a rounded Bézier is
 //! within √2/2 font units of the exact one everywhere, except where a handle is moved to
-//! keep a monotone cubic monotone ([`monotone`]) or a point is moved to keep a notch's
-//! sides in order ([`spike`]): within one unit ([`PULLED`]). Segments that collapse to a
+//! keep a monotone cubic monotone ([`monotone`]) or off its own end point
+//! ([`keep_handles`]), or a point is moved to keep a notch's sides in order ([`spike`]):
+//! within one unit ([`PULLED`]). Segments that collapse to a
 //! point after rounding are dropped; a contour that collapses entirely is dropped.
 
-use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, Point};
+use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, Point, Vec2};
 
 use super::{monotone, spike, OtfError};
 
@@ -69,6 +70,8 @@ pub fn round_path(path: &BezPath, glyph: &str) -> Result<BezPath, OtfError> {
             }
         }
         if contour.len() > 1 {
+            keep_handles(contour, exact);
+            monotone::keep_joins(contour, exact);
             keep_contour_spikes(contour, exact);
             for el in contour.iter() {
                 out.push(*el);
@@ -191,6 +194,140 @@ fn element_points(el: &PathEl) -> ([Point; 3], usize) {
     }
 }
 
+/// Keeps the handles of a rounded contour off their own end points: a handle that rounds
+/// onto its end is moved to the neighbouring grid point nearest its exact direction (of
+/// the eight), when that keeps at least half the corner's exact opening there (the angle
+/// between the handle and the contour's other side) and the cubic within [`PULLED`] of the
+/// exact one, turning back on no axis where it did not. A cubic shorter than
+/// [`MIN_CHORD`], or with both handles on their ends (a line on the grid), is left, and so
+/// is a handle whose end meets a segment shorter than that: a unit's move among
+/// unit-long pieces can loop. `contour` is on the grid and `exact` holds its
+/// elements before rounding; both start with the `MoveTo` and have no closing line.
+///
+/// The fit never makes a handle shorter than `fit::MIN_HANDLE`, so a zero one is
+/// rounding's alone, and checkers misread it: FontForge's validation reports such a
+/// contour as self-intersecting where the next segment goes on in the curve's direction,
+/// or turns back along it (FreeSans `s` and STIX `g`, imported and built). The opening
+/// rule keeps the handle from swinging across the other side of a narrow notch.
+fn keep_handles(contour: &mut [PathEl], exact: &[PathEl]) {
+    let n = contour.len();
+    let Some(PathEl::MoveTo(start)) = exact.first().copied() else {
+        return;
+    };
+    let end = |k: usize| exact[k].end_point().unwrap_or(start);
+    let closed_by_curve = end(n - 1) == start;
+    // The exact directions at an element's ends; the implicit closing line is element n.
+    let from = |k: usize| if k == 1 { start } else { end(k - 1) };
+    let leaving = |k: usize| match exact.get(k) {
+        Some(&PathEl::CurveTo(a, b, p)) => [a, b, p]
+            .into_iter()
+            .map(|q| q - from(k))
+            .find(|v| v.hypot() > 0.0),
+        Some(el) => el.end_point().map(|p| p - from(k)),
+        None => Some(start - end(n - 1)),
+    };
+    let arriving = |k: usize| match exact.get(k) {
+        Some(&PathEl::CurveTo(a, b, p)) => [b, a, from(k)]
+            .into_iter()
+            .map(|q| p - q)
+            .find(|v| v.hypot() > 0.0),
+        Some(el) => el.end_point().map(|p| p - from(k)),
+        None => Some(start - end(n - 1)),
+    };
+    let before = |k: usize| {
+        if k > 1 {
+            k - 1
+        } else if closed_by_curve {
+            n - 1
+        } else {
+            n
+        }
+    };
+    let after = |k: usize| {
+        if k + 1 < n {
+            k + 1
+        } else if closed_by_curve {
+            1
+        } else {
+            n
+        }
+    };
+    // Whether `moved` keeps half the opening between `handle` and the `other` side.
+    let opening = |u: Vec2, v: Vec2| u.cross(v).atan2(u.dot(v));
+    let keeps_opening = |handle: Vec2, moved: Vec2, other: Option<Vec2>| {
+        other.is_some_and(|other| {
+            let (was, now) = (opening(handle, other), opening(moved, other));
+            // Past a right angle the sign of a near-straight opening means nothing.
+            (was * now > 0.0 || was.abs() > std::f64::consts::FRAC_PI_2)
+                && now.abs() >= was.abs() / 2.0
+        })
+    };
+    let step = |direction: Vec2| {
+        let eighth = std::f64::consts::FRAC_PI_4;
+        let angle = (direction.atan2() / eighth).round() * eighth;
+        Vec2::new(angle.cos().round(), angle.sin().round())
+    };
+    let in_range = |p: Point| {
+        let range = f64::from(i16::MIN)..=f64::from(i16::MAX);
+        range.contains(&p.x) && range.contains(&p.y)
+    };
+    for k in 1..n {
+        let (PathEl::CurveTo(ea, eb, ep), PathEl::CurveTo(a, b, p)) = (exact[k], contour[k]) else {
+            continue;
+        };
+        let Some(p0) = contour[k - 1].end_point() else {
+            continue;
+        };
+        // Both handles on their ends make a line; a short cubic could twist with unit ones.
+        if (a == p0 && b == p) || (p - p0).hypot() < MIN_CHORD {
+            continue;
+        }
+        let exact_cubic = CubicBez::new(from(k), ea, eb, ep);
+        // The rounded chord of the segment on the other side of a handle's end.
+        let chord = |j: usize| {
+            let (s, e) = match contour.get(j) {
+                Some(el) => (contour[j - 1].end_point(), el.end_point()),
+                None => (contour[n - 1].end_point(), contour[0].end_point()),
+            };
+            s.zip(e).map_or(0.0, |(s, e)| (e - s).hypot())
+        };
+        // A move must not make the cubic turn back where it did not.
+        let turned = monotone::turns_back(&CubicBez::new(p0, a, b, p));
+        let fine = |c: CubicBez| {
+            let now = monotone::turns_back(&c);
+            distance_bound(&exact_cubic, &c) <= PULLED && (0..2).all(|i| turned[i] || !now[i])
+        };
+        let (mut a, mut b) = (a, b);
+        if a == p0 && ea != from(k) {
+            let (handle, other) = (ea - from(k), arriving(before(k)).map(|v| -v));
+            let moved = p0 + step(handle);
+            if in_range(moved)
+                && chord(before(k)) >= MIN_CHORD
+                && keeps_opening(handle, moved - p0, other)
+                && fine(CubicBez::new(p0, moved, b, p))
+            {
+                a = moved;
+            }
+        }
+        if b == p && eb != ep {
+            let (handle, other) = (eb - ep, leaving(after(k)));
+            let moved = p + step(handle);
+            if in_range(moved)
+                && chord(after(k)) >= MIN_CHORD
+                && keeps_opening(handle, moved - p, other)
+                && fine(CubicBez::new(p0, a, moved, p))
+            {
+                b = moved;
+            }
+        }
+        contour[k] = PathEl::CurveTo(a, b, p);
+    }
+}
+
+/// Shortest cubic (chord, font units) whose handles [`keep_handles`] moves off its ends,
+/// and shortest segment beside the end.
+const MIN_CHORD: f64 = 4.0;
+
 /// Farthest a cubic with a pulled or moved point may be from the exact one, font units
 /// (rounding alone keeps it within √2/2).
 pub const PULLED: f64 = 1.0;
@@ -304,6 +441,28 @@ mod tests {
         path.close_path();
         let rounded = round_path(&path, "bowl").unwrap();
         assert_eq!(rounded.to_svg(), "M100,0 C101,30 101,70 100,100 L0,100 Z");
+    }
+
+    /// FreeSans `s`: a line meets a cubic whose first handle is 0.41 units long; rounded on
+    /// its own, the handle lands on the corner, and FontForge then reports the contour as
+    /// self-intersecting (the line goes on in the curve's direction).
+    #[test]
+    fn a_handle_rounded_onto_its_end_is_kept_a_unit_off_it() {
+        let mut path = BezPath::new();
+        path.move_to((213.0, 228.0));
+        path.line_to((291.0, 209.0));
+        path.curve_to((291.394, 208.896), (327.978, 199.933), (343.263, 189.631));
+        path.line_to((300.0, 100.0));
+        path.close_path();
+        assert_eq!(
+            round_point(Point::new(291.394, 208.896), "s").unwrap(),
+            Point::new(291.0, 209.0)
+        );
+        let rounded = round_path(&path, "s").unwrap();
+        assert_eq!(
+            rounded.to_svg(),
+            "M213,228 L291,209 C292,209 328,200 343,190 L300,100 Z"
+        );
     }
 
     #[test]

@@ -15,8 +15,9 @@
 //! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only). Two rules may
 //! move a point up to a unit, and keep the outline within [`PULLED`] (one unit): an
 //! off-curve point moved to keep a monotone curve monotone, so that rounding makes no
-//! extreme without a point (both, `monotone.rs`), and a point moved to keep a narrow
-//! notch's sides in order (both, `spike.rs`).
+//! extreme without a point (both, `monotone.rs`), a cubic's handle kept a unit off its end
+//! point (CFF, `grid.rs`), and a point moved to keep a narrow notch's sides in order (both,
+//! `spike.rs`).
 //!
 //! The WOFF2 (`woff2.rs`) is the TTF compressed for the web.
 //!

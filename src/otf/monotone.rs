@@ -23,7 +23,7 @@
 //! `extrema::MIN_PIECE`) keeps its rounded points. Limits: a move that would turn a short
 //! handle by more than [`PULL_TURN`], or leave the bound, is not made, and the extreme stays.
 
-use kurbo::{CubicBez, ParamCurve, ParamCurveExtrema, Point, QuadBez, Vec2};
+use kurbo::{CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point, QuadBez, Vec2};
 
 use super::grid::{distance_bound, PULLED};
 
@@ -111,6 +111,18 @@ fn cubic_turns_back(c: [f64; 4]) -> bool {
     inside((-b - root) / (2.0 * a)) || inside((-b + root) / (2.0 * a))
 }
 
+/// Whether a cubic turns back inside its span in x and in y ([`cubic_turns_back`]).
+pub(super) fn turns_back(c: &CubicBez) -> [bool; 2] {
+    [0, 1].map(|axis| {
+        cubic_turns_back([
+            coord(c.p0, axis),
+            coord(c.p1, axis),
+            coord(c.p2, axis),
+            coord(c.p3, axis),
+        ])
+    })
+}
+
 /// How far the exact cubic passes its end range on `axis` (0 when it is monotone there).
 fn cubic_excursion(exact: &CubicBez, axis: usize) -> f64 {
     let (e0, e3) = (coord(exact.p0, axis), coord(exact.p3, axis));
@@ -169,6 +181,94 @@ pub(super) fn keep_cubic(exact: &CubicBez, p0: Point, (a, b): (&mut Point, &mut 
             if distance_bound(exact, &CubicBez::new(p0, na, nb, p3)) <= PULLED {
                 (*a, *b) = (na, nb);
                 break;
+            }
+        }
+    }
+}
+
+/// Most the exact handles at a join may bend from a straight line for the join to count as
+/// smooth (radians, as a sine).
+const SMOOTH: f64 = 0.02;
+
+/// The cubic of element `k` of a contour (`MoveTo`, then segments), if it is one.
+fn cubic_of(contour: &[PathEl], k: usize) -> Option<CubicBez> {
+    let start = contour.get(k.checked_sub(1)?)?.end_point()?;
+    match contour[k] {
+        PathEl::CurveTo(a, b, p) => Some(CubicBez::new(start, a, b, p)),
+        _ => None,
+    }
+}
+
+/// Levels a smooth join of two cubics where the rounded outline turns back beside it on an
+/// axis and the exact one passes the join by less than [`FAINT`]: both handles are put on
+/// the join's coordinate there, so the join becomes the extreme, with a level (or plumb)
+/// tangent on both sides.
+///
+/// This is the extreme the extrema pass leaves unsplit because it lies within
+/// `extrema::MIN_PIECE` of the join: the exact curve turns a fraction of a unit before it,
+/// and on the grid that becomes a turn with the handle a unit or two past the join (EB
+/// Garamond `X`, `k`, `oe`, imported and built). A handle too short to clamp on its own
+/// ([`keep_cubic`]) can be levelled here, since its partner turns with it. Both cubics must
+/// stay within [`PULLED`] of the exact ones, no handle may land on the join, and neither
+/// cubic may turn back on the axis afterwards. `contour` is on the grid and `exact` holds
+/// its elements before rounding; both start with the `MoveTo` and have no closing line.
+pub(super) fn keep_joins(contour: &mut [PathEl], exact: &[PathEl]) {
+    let n = contour.len();
+    let Some(PathEl::MoveTo(start)) = contour.first().copied() else {
+        return;
+    };
+    for k in 1..n {
+        // The segment after element k: the next, or round the contour's start.
+        let next = if k + 1 < n {
+            k + 1
+        } else if contour[k].end_point() == Some(start) && n > 2 {
+            1
+        } else {
+            continue;
+        };
+        let (Some(c1), Some(c2)) = (cubic_of(contour, k), cubic_of(contour, next)) else {
+            continue;
+        };
+        let (Some(e1), Some(e2)) = (cubic_of(exact, k), cubic_of(exact, next)) else {
+            continue;
+        };
+        let (u, v) = (e1.p2 - e1.p3, e2.p1 - e2.p0);
+        let smooth = u.dot(v) < 0.0 && u.cross(v).abs() <= SMOOTH * u.hypot() * v.hypot();
+        if !smooth {
+            continue;
+        }
+        for axis in [0, 1] {
+            let on_axis = |c: &CubicBez| {
+                [
+                    coord(c.p0, axis),
+                    coord(c.p1, axis),
+                    coord(c.p2, axis),
+                    coord(c.p3, axis),
+                ]
+            };
+            let (c1, c2) = (
+                cubic_of(contour, k).unwrap_or(c1),
+                cubic_of(contour, next).unwrap_or(c2),
+            );
+            if !(cubic_turns_back(on_axis(&c1)) || cubic_turns_back(on_axis(&c2)))
+                || cubic_excursion(&e1, axis) >= FAINT
+                || cubic_excursion(&e2, axis) >= FAINT
+            {
+                continue;
+            }
+            let join = coord(c1.p3, axis);
+            let (mut l1, mut l2) = (c1, c2);
+            l1.p2 = moved(c1.p2, axis, join - coord(c1.p2, axis));
+            l2.p1 = moved(c2.p1, axis, join - coord(c2.p1, axis));
+            let fine = l1.p2 != l1.p3
+                && l2.p1 != l2.p0
+                && !cubic_turns_back(on_axis(&l1))
+                && !cubic_turns_back(on_axis(&l2))
+                && distance_bound(&e1, &l1) <= PULLED
+                && distance_bound(&e2, &l2) <= PULLED;
+            if fine {
+                contour[k] = PathEl::CurveTo(l1.p1, l1.p2, l1.p3);
+                contour[next] = PathEl::CurveTo(l2.p1, l2.p2, l2.p3);
             }
         }
     }
@@ -328,6 +428,52 @@ mod tests {
         assert!(!cubic_turns_back(ys(&kept)), "{kept:?}");
         assert_eq!(kept.p1, Point::new(702.0, 1055.0));
         assert!(distance_bound(&het, &kept) <= PULLED);
+    }
+
+    /// EB Garamond `k`: a smooth join whose exact tangent leans 5 degrees off the vertical,
+    /// with the curve's x extreme 0.3 units after it. On the grid the second cubic's handle
+    /// is 2 units right of the join, too short a handle (16 units) to clamp on its own; the
+    /// join is levelled instead, both handles onto its x.
+    #[test]
+    fn a_smooth_join_beside_a_faint_extreme_is_levelled() {
+        let exact = [
+            PathEl::MoveTo(Point::new(191.908, -3.31)),
+            PathEl::CurveTo(
+                Point::new(204.199, -3.31),
+                Point::new(212.522, -1.114),
+                Point::new(213.19, 6.225),
+            ),
+            PathEl::CurveTo(
+                Point::new(214.648, 22.261),
+                Point::new(173.085, 23.932),
+                Point::new(161.978, 39.592),
+            ),
+            PathEl::LineTo(Point::new(100.0, 0.0)),
+        ];
+        let r = |p: Point| Point::new(p.x.round(), p.y.round());
+        let mut contour: Vec<PathEl> = exact
+            .iter()
+            .map(|el| match *el {
+                PathEl::MoveTo(p) => PathEl::MoveTo(r(p)),
+                PathEl::LineTo(p) => PathEl::LineTo(r(p)),
+                PathEl::CurveTo(a, b, p) => PathEl::CurveTo(r(a), r(b), r(p)),
+                other => other,
+            })
+            .collect();
+        let xs = |c: CubicBez| [c.p0.x, c.p1.x, c.p2.x, c.p3.x];
+        let before = cubic_of(&contour, 2).unwrap();
+        assert!(cubic_turns_back(xs(before)));
+        keep_joins(&mut contour, &exact);
+        let (first, second) = (
+            cubic_of(&contour, 1).unwrap(),
+            cubic_of(&contour, 2).unwrap(),
+        );
+        assert_eq!(first.p2, Point::new(213.0, -1.0));
+        assert_eq!(second.p1, Point::new(213.0, 22.0));
+        assert!(!cubic_turns_back(xs(first)) && !cubic_turns_back(xs(second)));
+        for (k, c) in [(1, first), (2, second)] {
+            assert!(distance_bound(&cubic_of(&exact, k).unwrap(), &c) <= PULLED);
+        }
     }
 
     /// A quadratic whose off-curve point rounds a unit past the start's x (Liberation Sans
