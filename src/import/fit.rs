@@ -10,7 +10,8 @@
 //!   of the original, each assigned a curve parameter, make the best positions a linear
 //!   least-squares problem (small dense normal equations).
 //! - The curve leaves a sharp point toward its neighbour, so the neighbours of a stretch's
-//!   sharp ends are held on the original's tangent rays (one unknown each): the X-spline
+//!   sharp ends are held on the original's tangent rays (one unknown each, at least
+//!   [`MIN_RAY`] of the way to the next point, never behind the corner): the X-spline
 //!   leaves every corner in the original's direction. Where that costs a point, the
 //!   neighbours at corners (not at smooth joins) are set free ([`FREE_CORNERS`]).
 //! - Alternate: solve positions, re-assign parameters by projecting each sample onto the
@@ -1210,11 +1211,27 @@ fn solve_positions(
         match *dof {
             Dof::Fixed => {}
             Dof::Free(c) => chain.pts[i] = Point::new(sol[c], sol[c + 1]),
-            Dof::Ray { column, base, dir } => chain.pts[i] = base + sol[column] * dir,
+            Dof::Ray { column, base, dir } => {
+                // Ahead of the corner, never behind it: behind, the X-spline would leave
+                // the corner backwards and hook round (a hook within the tolerance, but a
+                // self-intersection beside the corner once built, as in Liberation Mono
+                // Bold `sigma1`).
+                let beyond = if i == 1 {
+                    n.min(3) - 1
+                } else {
+                    n.saturating_sub(3)
+                };
+                let least = MIN_RAY * (chain.pts[beyond] - base).hypot();
+                chain.pts[i] = base + sol[column].max(least) * dir;
+            }
         }
     }
     true
 }
+
+/// Least distance of a point held on a corner's tangent ray from the corner, as a fraction
+/// of the distance to the next point along the stretch.
+const MIN_RAY: f64 = 0.01;
 
 /// How a control point enters the least-squares problem.
 #[derive(Clone, Copy, Debug)]

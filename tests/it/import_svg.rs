@@ -265,3 +265,55 @@ fn svg_clip_paths_keep_only_what_shows() {
         )]
     );
 }
+
+/// Liberation Mono Bold `sigma1` (2048 units per em, its TrueType outline as an SVG at one
+/// unit per unit): a line meets the tail's curve at a sharp corner. Held on the original's
+/// tangent ray there, the corner's neighbour once came out 8 units behind the corner, so the
+/// X-spline left the corner backwards and hooked round (within the tolerance, but the
+/// built font crossed itself beside the corner, as FontForge reported). It must lie ahead.
+#[test]
+fn a_corner_is_left_forwards_never_in_a_hook() {
+    // y down: the font's y is 1638.4 - y here (the canvas is the em, ascender 0.8 em).
+    let svg = "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 1229 2048'>\
+        <path d='M420,1163.4 Q420,1266.4 481,1324.4 Q542,1382.4 708,1421.4 \
+        Q895,1465.4 966.5,1503.4 Q1038,1541.4 1074.5,1599.4 Q1111,1657.4 1111,1748.4 \
+        Q1111,1806.4 1079,1887.9 Q1047,1969.4 998,2039.4 L820,1965.4 Q880,1869.4 880,1811.4 \
+        Q880,1772.4 853.5,1745.4 Q827,1718.4 773,1698.4 Q719,1678.4 552,1646.4 \
+        Q406,1619.4 322.5,1562 Q239,1504.4 199,1415.4 Q159,1326.4 159,1200.4 \
+        Q159,1022.4 231,860.4 Q303,698.4 423.5,617.4 Q544,536.4 701,536.4 \
+        Q935,536.4 1092,707.4 L946,863.4 Q822,733.4 689,733.4 Q613,733.4 552.5,786.4 \
+        Q492,839.4 456,942.4 Q420,1045.4 420,1163.4 Z'/></svg>";
+    let files = vec![(PathBuf::from("sigma1.svg"), svg.as_bytes().to_vec())];
+    let opts = ImportOptions {
+        units_per_em: Some(2048),
+        ..ImportOptions::default()
+    };
+    let imp = import_svgs(&files, &opts).unwrap();
+    let glyph = &imp.font.glyphs[0];
+    let points = glyph.contours[0].points();
+    // The corner where the line from (998, -401) meets the tail, which leaves it toward
+    // (880, -231) in the font's y-up units.
+    let corner = kurbo::Point::new(820.0, -327.0);
+    let tangent = kurbo::Vec2::new(60.0, 96.0);
+    let n = points.len();
+    let at = points
+        .iter()
+        .position(|p| (p.pos - corner).hypot() < 1e-6)
+        .expect("the corner is a control point");
+    assert_eq!(points[at].s, 0.0);
+    // Its neighbour on the tail's side: the one not on the line toward (998, -401).
+    let line = kurbo::Point::new(998.0, -401.0) - corner;
+    let sides = [points[(at + 1) % n], points[(at + n - 1) % n]];
+    let tail = sides
+        .iter()
+        .map(|p| p.pos - corner)
+        .find(|v| v.cross(line).abs() > 1e-6 * v.hypot() * line.hypot())
+        .expect("a neighbour off the line");
+    assert!(
+        tail.dot(tangent) > 0.0,
+        "the X-spline leaves the corner toward {tail:?}, behind the tail's tangent {tangent:?}"
+    );
+    for row in &imp.report.rows {
+        assert!(row.max_error <= 2.048, "{}: {}", row.name, row.max_error);
+    }
+}
