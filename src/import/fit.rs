@@ -11,7 +11,7 @@
 //!   least-squares problem (small dense normal equations).
 //! - The curve leaves a sharp point toward its neighbour, so the neighbours of a stretch's
 //!   sharp ends are held on the original's tangent rays (one unknown each, at least
-//!   [`MIN_RAY`] of the way to the next point, never behind the corner): the X-spline
+//!   1 % of the way to the next point, never behind the corner): the X-spline
 //!   leaves every corner in the original's direction. Where that costs a point, the
 //!   neighbours at corners (not at smooth joins) are set free ([`FREE_CORNERS`]).
 //! - Alternate: solve positions, re-assign parameters by projecting each sample onto the
