@@ -123,10 +123,10 @@ pub(super) fn turns_back(c: &CubicBez) -> [bool; 2] {
     })
 }
 
-/// How far the exact cubic passes its end range on `axis` (0 when it is monotone there).
-fn cubic_excursion(exact: &CubicBez, axis: usize) -> f64 {
-    let (e0, e3) = (coord(exact.p0, axis), coord(exact.p3, axis));
-    let (lo, hi) = (e0.min(e3), e0.max(e3));
+/// How far an exact curve passes its end range on `axis` (0 when it is monotone there).
+fn excursion(exact: &(impl ParamCurve + ParamCurveExtrema), axis: usize) -> f64 {
+    let (e0, e1) = (coord(exact.start(), axis), coord(exact.end(), axis));
+    let (lo, hi) = (e0.min(e1), e0.max(e1));
     exact
         .extrema()
         .into_iter()
@@ -159,7 +159,7 @@ pub(super) fn keep_cubic(exact: &CubicBez, p0: Point, (a, b): (&mut Point, &mut 
                 coord(p3, axis),
             ]
         };
-        if !cubic_turns_back(on_axis(*a, *b)) || cubic_excursion(exact, axis) >= FAINT {
+        if !cubic_turns_back(on_axis(*a, *b)) || excursion(exact, axis) >= FAINT {
             continue;
         }
         let (lo, hi) = (
@@ -251,8 +251,8 @@ pub(super) fn keep_joins(contour: &mut [PathEl], exact: &[PathEl]) {
                 cubic_of(contour, next).unwrap_or(c2),
             );
             if !(cubic_turns_back(on_axis(&c1)) || cubic_turns_back(on_axis(&c2)))
-                || cubic_excursion(&e1, axis) >= FAINT
-                || cubic_excursion(&e2, axis) >= FAINT
+                || excursion(&e1, axis) >= FAINT
+                || excursion(&e2, axis) >= FAINT
             {
                 continue;
             }
@@ -296,22 +296,6 @@ fn quadratic_turns_back(q: &QuadBez, axis: usize) -> bool {
     c1 < c0.min(c2) || c1 > c0.max(c2)
 }
 
-/// How far the exact quadratic passes its end range on `axis`.
-fn quadratic_excursion(exact: &QuadBez, axis: usize) -> f64 {
-    let (lo, hi) = (
-        coord(exact.p0, axis).min(coord(exact.p2, axis)),
-        coord(exact.p0, axis).max(coord(exact.p2, axis)),
-    );
-    exact
-        .extrema()
-        .into_iter()
-        .map(|t| {
-            let v = coord(exact.eval(t), axis);
-            (v - hi).max(lo - v)
-        })
-        .fold(0.0, f64::max)
-}
-
 /// Keeps the rounded quadratics of a closed TrueType contour (`rounded`, on the grid, with
 /// `exact` its points before rounding) from turning back where the exact ones do not
 /// (within [`FAINT`]).
@@ -334,9 +318,7 @@ pub(super) fn keep_quadratics(exact: &[Point], rounded: &mut [Point], on_curve: 
                     quadratic(exact, on_curve, j),
                 );
                 (0..2)
-                    .filter(|&axis| {
-                        quadratic_turns_back(&q, axis) && quadratic_excursion(&e, axis) < FAINT
-                    })
+                    .filter(|&axis| quadratic_turns_back(&q, axis) && excursion(&e, axis) < FAINT)
                     .count()
             })
             .sum()
@@ -349,7 +331,7 @@ pub(super) fn keep_quadratics(exact: &[Point], rounded: &mut [Point], on_curve: 
         for axis in [0, 1] {
             let q = quadratic(rounded, on_curve, i);
             if !quadratic_turns_back(&q, axis)
-                || quadratic_excursion(&quadratic(exact, on_curve, i), axis) >= FAINT
+                || excursion(&quadratic(exact, on_curve, i), axis) >= FAINT
             {
                 continue;
             }
