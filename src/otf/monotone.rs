@@ -124,7 +124,7 @@ pub(super) fn turns_back(c: &CubicBez) -> [bool; 2] {
 }
 
 /// How far an exact curve passes its end range on `axis` (0 when it is monotone there).
-fn excursion(exact: &(impl ParamCurve + ParamCurveExtrema), axis: usize) -> f64 {
+fn excursion(exact: &impl ParamCurveExtrema, axis: usize) -> f64 {
     let (e0, e1) = (coord(exact.start(), axis), coord(exact.end(), axis));
     let (lo, hi) = (e0.min(e1), e0.max(e1));
     exact
