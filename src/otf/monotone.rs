@@ -23,7 +23,7 @@
 //! `extrema::MIN_PIECE`) keeps its rounded points. Limits: a move that would turn a short
 //! handle by more than [`PULL_TURN`], or leave the bound, is not made, and the extreme stays.
 
-use kurbo::{CubicBez, ParamCurve, ParamCurveExtrema, PathEl, Point, QuadBez, Vec2};
+use kurbo::{CubicBez, ParamCurveExtrema, PathEl, Point, QuadBez, Vec2};
 
 use super::grid::{distance_bound, PULLED};
 
