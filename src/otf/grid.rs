@@ -4,8 +4,8 @@
 //! within √2/2 font units of the exact one everywhere, except where a handle is moved to
 //! keep a monotone cubic monotone ([`monotone`]) or off its own end point
 //! ([`keep_handles`]), or a point is moved to keep a notch's sides in order ([`spike`]):
-//! within one unit ([`PULLED`]). Segments that collapse to a
-//! point after rounding are dropped; a contour that collapses entirely is dropped.
+//! within one unit ([`PULLED`]). Segments that collapse to a point after rounding are
+//! dropped; a contour that collapses entirely is dropped.
 
 use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, Point, Vec2};
 

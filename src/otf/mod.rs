@@ -12,7 +12,7 @@
 //!
 //! Rounding a control point moves it at most √2/2 font units, and a Bézier curve is a
 //! convex combination of its control points, so grid rounding moves any outline point by at
-//! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only). Two rules may
+//! most √2/2 ≈ 0.71 units on top of the quadratic conversion (TTF only). Three rules may
 //! move a point up to a unit, and keep the outline within [`PULLED`] (one unit): an
 //! off-curve point moved to keep a monotone curve monotone, so that rounding makes no
 //! extreme without a point (both, `monotone.rs`), a cubic's handle kept a unit off its end
