@@ -8,7 +8,11 @@ use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::raw::TableProvider;
 use skrifa::{FontRef, GlyphId, MetadataProvider};
 
-use xglyph::model::{Contour, Font, Glyph};
+use ttf_parser::Face;
+use xglyph::import::font::glyph_outline;
+use xglyph::model::{Contour, Font, FontInfo, Glyph};
+use xglyph::otf::{otf, ttf, PULLED};
+use xglyph::outline::{outline_font, OutlinedFont};
 
 use super::temp::TempFolder;
 use xglyph::source::load_font;
@@ -106,4 +110,45 @@ impl OutlinePen for Pen {
     fn close(&mut self) {
         self.0.close_path();
     }
+}
+
+/// `glyphs` as a font of `em` units per em (tolerance 1/1000 em), outlined, and each
+/// glyph read back from its TTF and its OTF (`("TTF", path)`, `("OTF", path)`), in the
+/// outlined font's order. Asserts the grid's bound on every read-back outline: within
+/// `PULLED` of the exact one, plus the tolerance for the TTF's quadratics.
+pub fn read_back_from_the_grid(
+    family: &str,
+    em: u16,
+    glyphs: Vec<Glyph>,
+) -> (Font, OutlinedFont, Vec<[(&'static str, BezPath); 2]>) {
+    let font = Font {
+        info: FontInfo::with_em(family, em),
+        glyphs,
+        kerning: Vec::new(),
+        features: None,
+    };
+    let outlines = outline_font(&font, font.info.tolerance);
+    let (ttf_bytes, otf_bytes) = (ttf(&outlines).unwrap(), otf(&outlines).unwrap());
+    let faces = [
+        (
+            "TTF",
+            Face::parse(&ttf_bytes, 0).unwrap(),
+            font.info.tolerance + PULLED,
+        ),
+        ("OTF", Face::parse(&otf_bytes, 0).unwrap(), PULLED),
+    ];
+    let read = outlines
+        .glyphs
+        .iter()
+        .map(|glyph| {
+            faces.each_ref().map(|(what, face, bound)| {
+                let gid = face.glyph_index_by_name(&glyph.name).expect("the glyph");
+                let path = glyph_outline(face, gid).unwrap_or_default();
+                let d = super::paths::two_sided(&path, &glyph.path, 48);
+                assert!(d <= *bound, "{what} {} {d}", glyph.name);
+                (*what, path)
+            })
+        })
+        .collect();
+    (font, outlines, read)
 }
