@@ -18,9 +18,12 @@
 //!
 //! Limits: an extreme closer than [`MIN_PIECE`] em to a cubic's end is not split off (the
 //! piece would round to nothing on the grid; its overshoot past that end is smaller
-//! still). In a family, a split that would leave such a piece in any master, or a piece
-//! running the other way, is not made. Rounding to the grid can still give a monotone
-//! curve a faint extreme (a handle rounded a unit past its end point).
+//! still). The static fitter moves a join that falls that near an extreme onto it
+//! (`crate::fit`), so such an extreme is left only beside a sharp point or a cusp, or where
+//! the moved cubic would not fit. In a family, a split that would leave such a piece in
+//! any master, or a piece running the other way, is not made (the compatible fitter does
+//! not move its joins). Rounding to the grid can still give a monotone curve a faint
+//! extreme (a handle rounded a unit past its end point).
 
 use kurbo::{BezPath, CubicBez, ParamCurve, ParamCurveDeriv, PathEl, Point};
 
