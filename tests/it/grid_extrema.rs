@@ -49,6 +49,11 @@ fn bowl(rng: &mut Rng, name: String) -> Glyph {
         (join + flat * reach, bottom + d3, pick()),
         (join, bottom + d4, 0.0),
     ];
+    one_contour(name, 1400.0, &points)
+}
+
+/// A glyph of one contour through `points` (`x`, `y`, `s`).
+fn one_contour(name: String, advance: f64, points: &[(f64, f64, f64)]) -> Glyph {
     let contour = Contour::new(
         points
             .iter()
@@ -59,7 +64,7 @@ fn bowl(rng: &mut Rng, name: String) -> Glyph {
     Glyph {
         name,
         unicodes: Vec::new(),
-        advance: 1400.0,
+        advance,
         contours: vec![contour],
         components: Vec::new(),
         anchors: Vec::new(),
@@ -189,22 +194,7 @@ fn waist(rng: &mut Rng, name: String) -> Glyph {
         (inner + at(20.0, 50.0), 19.0, s_in),
         (300.0, 0.0, 0.6),
     ];
-    let contour = Contour::new(
-        points
-            .iter()
-            .map(|&(x, y, s)| ControlPoint::new(x, y, s))
-            .collect(),
-    )
-    .expect("a valid contour");
-    Glyph {
-        name,
-        unicodes: Vec::new(),
-        advance: 700.0,
-        contours: vec![contour],
-        components: Vec::new(),
-        anchors: Vec::new(),
-        outline_mark: false,
-    }
+    one_contour(name, 700.0, &points)
 }
 
 #[test]
