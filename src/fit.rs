@@ -1987,4 +1987,82 @@ mod tests {
             "{bounded} of {compared}"
         );
     }
+
+    /// Regula falsi with the Illinois step finds a root to the interval's precision, from
+    /// either sign at the left end.
+    #[test]
+    fn root_is_found_to_the_precision() {
+        let sqrt2 = root(|t| t * t - 2.0, (1.0, -1.0), (2.0, 2.0));
+        assert!((sqrt2 - 2f64.sqrt()).abs() < 1e-12, "{sqrt2}");
+        let cbrt = root(|t| 0.5 - t * t * t, (0.0, 0.5), (1.0, -0.5));
+        assert!((cbrt - 0.5f64.cbrt()).abs() < 1e-12, "{cbrt}");
+    }
+
+    /// The bundled `B`'s outer contour at SemiBold (the masters blended at wght 600): the
+    /// curve turns round its waist within a unit. A join used to fall a fraction of a unit
+    /// from the waist's extreme, which the extrema pass cannot split off; now every extreme
+    /// left inside a cubic is at least a unit (the extrema pass's smallest piece at 1000
+    /// per em) from both its ends.
+    #[test]
+    fn a_join_near_an_extreme_moves_onto_it() {
+        use kurbo::{ParamCurve, ParamCurveArclen, ParamCurveExtrema, PathSeg};
+        let regular = [
+            (72.0, 0.0, 0.0),
+            (72.0, 700.0, 0.0),
+            (290.0, 700.0, 0.6),
+            (533.0, 684.0, 0.9),
+            (560.0, 544.0, -1.0),
+            (533.0, 404.0, 0.9),
+            (430.0, 385.0, 0.7),
+            (581.0, 366.0, 0.9),
+            (612.0, 192.0, -1.0),
+            (581.0, 19.0, 0.9),
+            (300.0, 0.0, 0.6),
+        ];
+        let bold = [
+            (76.0, 0.0),
+            (76.0, 700.0),
+            (335.0, 700.0),
+            (610.0, 683.0),
+            (641.0, 533.0),
+            (611.0, 385.0),
+            (573.0, 386.0),
+            (659.0, 382.0),
+            (693.0, 201.0),
+            (659.0, 20.0),
+            (345.0, 0.0),
+        ];
+        // As the instance blends them: weights 1/3 and 2/3.
+        let (w0, w1) = (1.0 - 200.0 / 300.0, 200.0 / 300.0);
+        let spline = XSpline::new(
+            regular
+                .iter()
+                .zip(&bold)
+                .map(|(&(x, y, s), &(bx, by))| {
+                    ControlPoint::new(w0 * x + w1 * bx, w0 * y + w1 * by, s)
+                })
+                .collect(),
+        )
+        .unwrap();
+        let fit = fit_contour(&spline, 0.5);
+        let cubics: Vec<CubicBez> = fit
+            .path
+            .segments()
+            .filter_map(|s| match s {
+                PathSeg::Cubic(c) => Some(c),
+                _ => None,
+            })
+            .collect();
+        for c in &cubics {
+            for t in c.extrema() {
+                let (before, after) = (c.subsegment(0.0..t), c.subsegment(t..1.0));
+                let near = before.arclen(1e-9).min(after.arclen(1e-9));
+                // (An end's own level tangent is a root at the end: the join itself.)
+                assert!(
+                    near < 1e-6 || near >= 1.0,
+                    "an extreme {near} from an end of {c:?}"
+                );
+            }
+        }
+    }
 }
