@@ -2059,7 +2059,7 @@ mod tests {
                 let near = before.arclen(1e-9).min(after.arclen(1e-9));
                 // (An end's own level tangent is a root at the end: the join itself.)
                 assert!(
-                    near < 1e-6 || near >= 1.0,
+                    !(1e-6..1.0).contains(&near),
                     "an extreme {near} from an end of {c:?}"
                 );
             }
