@@ -455,44 +455,25 @@ fn level_direction(d: Vec2, axis: usize) -> Vec2 {
 /// Nearer, the extreme was left inside the cubic, a fraction of a unit from its end: a
 /// handle past the end's range that FontForge reports as a missing extreme once rounded.
 const NEAR_EXTREME: f64 = 4.0;
-/// Most steps locating an extreme near a join ([`root`]).
-const ROOT_STEPS: usize = 30;
 /// Largest component across its axis of the unit tangent at a found extreme: beyond, the
 /// derivative changed sign by a jump rather than through zero, and the join stays. Within
 /// it, setting the handle level moves it by at most this fraction of its length.
 const LEVEL: f64 = 1e-9;
 
 /// The root of `f` in `[x0, x1]`, where `f` changes sign (`f0`, `f1` its values at the
-/// ends), by regula falsi with the Illinois modification (superlinear, and bracketed: it
-/// never leaves the interval); within about 1e-12 of the interval's width.
-fn root(
-    mut f: impl FnMut(f64) -> f64,
-    (mut x0, mut f0): (f64, f64),
-    (mut x1, mut f1): (f64, f64),
-) -> f64 {
-    let width = (x1 - x0).abs();
-    let mut side = 0;
-    for _ in 0..ROOT_STEPS {
-        let x = (x0 * f1 - x1 * f0) / (f1 - f0);
-        let fx = f(x);
-        if fx == 0.0 || (x1 - x0).abs() <= 1e-12 * width {
-            return x;
-        }
-        if (fx > 0.0) == (f1 > 0.0) {
-            (x1, f1) = (x, fx);
-            if side == 1 {
-                f0 *= 0.5;
-            }
-            side = 1;
-        } else {
-            (x0, f0) = (x, fx);
-            if side == -1 {
-                f1 *= 0.5;
-            }
-            side = -1;
-        }
+/// ends), within 1e-12 of the interval's width (or the parameters' precision): kurbo's ITP
+/// solver (bracketed, at most as many steps as bisection and superlinear on smooth
+/// functions), which takes `f` rising.
+fn root(mut f: impl FnMut(f64) -> f64, (x0, f0): (f64, f64), (x1, f1): (f64, f64)) -> f64 {
+    let width = x1 - x0;
+    // Never below the parameters' own precision, where the solver would not stop.
+    let epsilon = (1e-12 * width).max(8.0 * f64::EPSILON * x0.abs().max(x1.abs()));
+    let k1 = 0.2 / width;
+    if f0 < 0.0 {
+        kurbo::common::solve_itp(f, x0, x1, epsilon, 1, k1, f0, f1)
+    } else {
+        kurbo::common::solve_itp(|t| -f(t), x0, x1, epsilon, 1, k1, -f0, -f1)
     }
-    0.5 * (x0 + x1)
 }
 
 /// A stretch up to this many times the expected span (the guess, at least one segment) is
@@ -1988,8 +1969,7 @@ mod tests {
         );
     }
 
-    /// Regula falsi with the Illinois step finds a root to the interval's precision, from
-    /// either sign at the left end.
+    /// The root is found to the interval's precision, from either sign at the left end.
     #[test]
     fn root_is_found_to_the_precision() {
         let sqrt2 = root(|t| t * t - 2.0, (1.0, -1.0), (2.0, 2.0));
