@@ -583,14 +583,8 @@ impl<'a> StretchFit<'a> {
 
     /// The cubic for the whole rest `[a, t1]` of the stretch, if it passes the measure.
     fn whole_rest(&mut self, a: f64, d0: Vec2) -> Option<(f64, CubicBez, f64)> {
-        let trial = self.trial(a, self.t1, d0, 0.0);
-        let err = if trial.sampled <= self.goal {
-            self.measure(&trial)
-        } else {
-            trial.sampled
-        };
-        let cubic = self.recycle(trial);
-        (err <= self.goal).then_some((self.t1 - a, cubic, err))
+        let (cubic, err) = self.fits(a, self.t1, d0)?;
+        Some((self.t1 - a, cubic, err))
     }
 
     /// A join `b` that fell within [`NEAR_EXTREME`] tolerances of an x or y extreme `e` of
@@ -672,27 +666,27 @@ impl<'a> StretchFit<'a> {
 
     /// The cubic on `[a, b]` and its measured error, if it fits.
     fn fits(&mut self, a: f64, b: f64, d0: Vec2) -> Option<(CubicBez, f64)> {
+        let (cubic, err) = self.measured(a, b, d0);
+        (err <= self.goal).then_some((cubic, err))
+    }
+
+    /// The polished cubic on `[a, b]` and its error: measured when its samples are within
+    /// the goal, else their distance (a lower bound, already over the goal).
+    fn measured(&mut self, a: f64, b: f64, d0: Vec2) -> (CubicBez, f64) {
         let trial = self.trial(a, b, d0, 0.0);
         let err = if trial.sampled <= self.goal {
             self.measure(&trial)
         } else {
             trial.sampled
         };
-        let cubic = self.recycle(trial);
-        (err <= self.goal).then_some((cubic, err))
+        (self.recycle(trial), err)
     }
 
     /// Last resort for degenerate geometry: halve the span from `h` until it fits or is
     /// tiny.
     fn shortest(&mut self, a: f64, mut h: f64, d0: Vec2) -> (f64, CubicBez, f64) {
         loop {
-            let trial = self.trial(a, a + h, d0, 0.0);
-            let err = if trial.sampled <= self.goal {
-                self.measure(&trial)
-            } else {
-                trial.sampled
-            };
-            let cubic = self.recycle(trial);
+            let (cubic, err) = self.measured(a, a + h, d0);
             if err <= self.goal || h < 1e-9 {
                 return (h, cubic, err);
             }
