@@ -70,7 +70,7 @@ const MOVES: [(i8, i8); 24] = [
 ];
 
 /// The coordinate of `p` on `axis` (0 is x, 1 is y).
-fn coord(p: Point, axis: usize) -> f64 {
+pub(super) fn coord(p: Point, axis: usize) -> f64 {
     if axis == 0 {
         p.x
     } else {

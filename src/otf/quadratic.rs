@@ -9,7 +9,9 @@
 //! Contours are reversed: TrueType wants outer contours clockwise, the outlines arrive
 //! counter-clockwise (y up).
 
-use kurbo::{BezPath, CubicBez, PathEl, Point};
+use kurbo::{BezPath, CubicBez, ParamCurve, PathEl, Point};
+
+use super::monotone::coord;
 
 /// One TrueType contour point before rounding.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,9 +62,8 @@ pub fn truetype_contours(path: &BezPath, accuracy: f64) -> Vec<Vec<SplinePoint>>
             }
             PathEl::CurveTo(c1, c2, p) => {
                 let cubic = CubicBez::new(current, c1, c2, p);
-                match cubic.approx_spline(accuracy) {
-                    Some(spline) => {
-                        let pts = spline.points();
+                match spline_of(&cubic, accuracy) {
+                    Some(pts) => {
                         // pts = [start, off-curve points..., end]
                         let inner = &pts[1..pts.len().saturating_sub(1)];
                         points.extend(inner.iter().map(|&c| off(c)));
@@ -82,6 +83,97 @@ pub fn truetype_contours(path: &BezPath, accuracy: f64) -> Vec<Vec<SplinePoint>>
     finish(&mut points);
     contours
 }
+
+/// The quadratic spline of `cubic` within `accuracy` (its points: start, off-curve points,
+/// end), with no quadratic turning back needlessly ([`turns_back_needlessly`]), as far as
+/// [`finer_if_needed`] finds one.
+fn spline_of(cubic: &CubicBez, accuracy: f64) -> Option<Vec<Point>> {
+    finer_if_needed(
+        accuracy,
+        |accuracy| Some(cubic.approx_spline(accuracy)?.points().to_vec()),
+        |points| !turns_back_needlessly(cubic, points),
+    )
+}
+
+/// The spline `make` gives at `accuracy`, or, when it is not `clean`, the first clean one
+/// it gives at a finer accuracy, halving it up to [`FINER`] times; if none is, the first.
+///
+/// Why: cu2qu's single quadratic has its off-curve point where the end tangents cross.
+/// Across an inflection that point lies past the end range, even where the cubic runs one
+/// way, so the quadratic has an extreme without a point (the Regular `three` at
+/// `--tolerance 2`: an off-curve point 1.2 units past its end, too far for the grid to pull
+/// back, and a turn FontForge flags). kurbo's spline of a given piece count is private: a
+/// finer accuracy is how to ask for more pieces.
+pub(crate) fn finer_if_needed<T>(
+    accuracy: f64,
+    make: impl Fn(f64) -> Option<T>,
+    clean: impl Fn(&T) -> bool,
+) -> Option<T> {
+    let first = make(accuracy)?;
+    if clean(&first) {
+        return Some(first);
+    }
+    let finer = (1..=FINER).find_map(|k| make(accuracy / f64::from(1u32 << k)).filter(&clean));
+    Some(finer.unwrap_or(first))
+}
+
+/// Most halvings of the accuracy tried by [`finer_if_needed`].
+const FINER: u32 = 6;
+
+/// Whether the quadratic spline `points` of `cubic` (start, off-curve points, end) has a
+/// quadratic that turns back, by more than [`MENDED`], on an axis where the cubic runs
+/// one way.
+pub(crate) fn turns_back_needlessly(cubic: &CubicBez, points: &[Point]) -> bool {
+    (0..2).any(|axis| spline_turns_back(points, axis) && runs_one_way(cubic, axis))
+}
+
+/// Whether `cubic` runs one way on `axis` (within [`SLACK`]): its coordinate there at its
+/// start, at each root of its derivative inside, and at its end is a monotone sequence.
+fn runs_one_way(cubic: &CubicBez, axis: usize) -> bool {
+    let c = [cubic.p0, cubic.p1, cubic.p2, cubic.p3].map(|p| coord(p, axis));
+    // The derivative / 3 in Bernstein form, then in powers of t.
+    let [d0, d1, d2] = [c[1] - c[0], c[2] - c[1], c[3] - c[2]];
+    let mut roots = kurbo::common::solve_quadratic(d0, 2.0 * (d1 - d0), d0 - 2.0 * d1 + d2);
+    roots.retain(|t| *t > 0.0 && *t < 1.0);
+    roots.sort_by(f64::total_cmp);
+    let mut values = vec![c[0]];
+    values.extend(roots.iter().map(|&t| coord(cubic.eval(t), axis)));
+    values.push(c[3]);
+    let mut steps = values.windows(2).map(|w| w[1] - w[0]);
+    steps.clone().all(|d| d >= -SLACK) || steps.all(|d| d <= SLACK)
+}
+
+/// Whether a quadratic spline (start, off-curve points, end; implied on-curve points
+/// halfway between off-curve points) has a quadratic whose off-curve point passes the
+/// range of its two ends on `axis` by more than [`MENDED`].
+fn spline_turns_back(points: &[Point], axis: usize) -> bool {
+    let last = points.len() - 1;
+    (1..last).any(|i| {
+        let end = |j: usize| {
+            if j == 0 || j == last {
+                points[j]
+            } else {
+                points[i].midpoint(points[j])
+            }
+        };
+        let (a, c, b) = (
+            coord(end(i - 1), axis),
+            coord(points[i], axis),
+            coord(end(i + 1), axis),
+        );
+        c < a.min(b) - MENDED || c > a.max(b) + MENDED
+    })
+}
+
+/// The farthest an off-curve point may pass its end range, font units, for the grid to
+/// mend the turn: rounding moves it up to half a unit on each axis, and the grid may pull
+/// it back onto the range within one unit of its exact place
+/// (`super::monotone::keep_quadratics`).
+const MENDED: f64 = 0.25;
+
+/// Font units below which a step is arithmetic noise (an end tangent meant to
+/// be level, met by subdivision to within a few ulps).
+const SLACK: f64 = 1e-6;
 
 #[cfg(test)]
 mod tests {
@@ -117,6 +209,47 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn a_spline_does_not_turn_back_where_its_cubic_runs_one_way() {
+        // The Regular `three`'s waist at `--tolerance 2` (the SVG font's cubic, y up): it
+        // rises all the way to its end, where it turns level in x, past an inflection.
+        let cubic = CubicBez::new(
+            (436.79, 362.51),
+            (410.46, 386.15),
+            (400.16, 390.14),
+            (400.16, 394.2),
+        );
+        assert!(runs_one_way(&cubic, 0) && runs_one_way(&cubic, 1));
+        // The TrueType accuracy is the font's tolerance.
+        let accuracy = 2.0;
+        // cu2qu's one quadratic: its off-curve point where the end tangents cross, 1.2
+        // units above the end.
+        let first = cubic.approx_spline(accuracy).unwrap().points().to_vec();
+        assert_eq!(first.len(), 3);
+        assert!((first[1].y - 395.4).abs() < 0.05, "{:?}", first[1]);
+        assert!(spline_turns_back(&first, 1));
+        let points = spline_of(&cubic, accuracy).unwrap();
+        assert!(points.len() > 3, "{points:?}");
+        for axis in [0, 1] {
+            assert!(!spline_turns_back(&points, axis), "{points:?}");
+        }
+        // Still within the accuracy of the cubic.
+        let spline = kurbo::QuadSpline::new(points);
+        let worst = spline
+            .to_quads()
+            .flat_map(|q| (0..=100).map(move |i| q.eval(f64::from(i) / 100.0)))
+            .map(|p| cubic.nearest(p, 1e-9).distance_sq.sqrt())
+            .fold(0.0, f64::max);
+        assert!(worst <= accuracy, "{worst}");
+        // A cubic with a real extreme is left as cu2qu gives it.
+        let bulge = CubicBez::new((0.0, 0.0), (0.0, 60.0), (100.0, 60.0), (100.0, 0.0));
+        assert!(!runs_one_way(&bulge, 1));
+        assert_eq!(
+            spline_of(&bulge, accuracy).unwrap(),
+            bulge.approx_spline(accuracy).unwrap().points()
+        );
     }
 
     #[test]

@@ -15,9 +15,11 @@
 
 use std::mem::discriminant;
 
-use kurbo::{cubics_to_quadratic_splines, BezPath, CubicBez, ParamCurve, PathEl, Point};
+use kurbo::{
+    cubics_to_quadratic_splines, BezPath, CubicBez, ParamCurve, PathEl, Point, QuadSpline,
+};
 
-use crate::otf::quadratic::SplinePoint;
+use crate::otf::quadratic::{finer_if_needed, turns_back_needlessly, SplinePoint};
 
 /// Contour points of one glyph, per master (the default first): `[master][contour][point]`.
 pub type MasterContours = Vec<Vec<Vec<SplinePoint>>>;
@@ -116,8 +118,19 @@ fn finish(points: &mut [Vec<SplinePoint>], contours: &mut MasterContours) {
 
 /// The points after the start of one quadratic spline per cubic (same count for all):
 /// off-curve points, then the end point on the curve.
+///
+/// As in the static TTF, splines with a quadratic that turns back where its master's cubic
+/// runs one way are made again finer ([`finer_if_needed`]).
 fn splines(cubics: &[CubicBez], accuracy: f64, depth: u32) -> Vec<Vec<SplinePoint>> {
-    if let Some(splines) = cubics_to_quadratic_splines(cubics, accuracy) {
+    let found = finer_if_needed(
+        accuracy,
+        |accuracy| cubics_to_quadratic_splines(cubics, accuracy),
+        |splines| {
+            let turns = |(c, s): (&CubicBez, &QuadSpline)| turns_back_needlessly(c, s.points());
+            !cubics.iter().zip(splines).any(turns)
+        },
+    );
+    if let Some(splines) = found {
         return splines
             .iter()
             .map(|s| {
