@@ -16,6 +16,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 
 use harfrust::{Buffer, Direction, ShapeOptions, ShaperFont};
+use skrifa::raw::types::Tag;
 
 use crate::otf::{self, OtfError};
 use crate::outline::{notdef_box, OutlinedFont, OutlinedGlyph};
@@ -164,6 +165,23 @@ impl<'a> Layout<'a> {
             pen += f64::from(pos.x_advance);
         }
         Ok(Line { glyphs, width: pen })
+    }
+}
+
+/// The OpenType script tag of `c`'s script, or `None` for characters of no one script
+/// (punctuation, digits, combining marks), which a shaper's text takes into the run around
+/// them. The Unicode script comes from HarfRust's
+/// tables; its ISO 15924 tag in lower case is the OpenType tag for the scripts whose
+/// shapers do not differ (Indic scripts' newer `xxx2` tags are not tried).
+pub fn strong_script(c: char) -> Option<Tag> {
+    let mut buffer = harfrust::Buffer::new();
+    buffer.push_str(c.encode_utf8(&mut [0; 4]));
+    buffer.guess_segment_properties();
+    let iso = buffer.script()?.tag().to_be_bytes();
+    match &iso {
+        b"Zyyy" | b"Zinh" | b"Zzzz" => None,
+        b"Hira" | b"Kana" => Some(Tag::new(b"kana")),
+        _ => Some(Tag::new(&iso.map(|b| b.to_ascii_lowercase()))),
     }
 }
 

@@ -128,7 +128,7 @@ impl OutlinedFont {
         map
     }
 
-    /// Kerning value between two glyph names (0 when there is no pair).
+    /// Kerning value between two glyph names (0 when there is no pair; a linear search).
     pub fn kern(&self, left: &str, right: &str) -> f64 {
         self.kerning
             .iter()

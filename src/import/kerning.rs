@@ -11,14 +11,20 @@
 //! pairs, as the UFO import expands groups. In a variable font each value is the
 //! default's plus its `GDEF` variation delta at the master's location.
 //!
+//! A font whose GPOS has no `kern` feature (or that has no GPOS) is kerned by its legacy
+//! `kern` table, as HarfBuzz does it: its horizontal format-0 subtables, values added (an
+//! override subtable replacing the sum), the same at every location.
+//!
 //! Limits: only the first glyph's x-advance is read (left-to-right kerning); a pair that
-//! places a glyph or moves the second one is left out and counted in a note. Not read: the
-//! legacy `kern` table, feature variations, language systems other than a script's
-//! default, hinting device tables, and the 24-bit glyph id formats.
+//! places a glyph or moves the second one is left out and counted in a note. Not read:
+//! feature variations, language systems other than a script's default, hinting device
+//! tables, the 24-bit glyph id formats, and the legacy table's cross-stream, minimum and
+//! Apple formats 1–3 (counted in a note).
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use skrifa::raw::tables::gpos::{ExtensionSubtable, Gpos, PairPos, PositionLookup, ValueRecord};
+use skrifa::raw::tables::kern::{Subtable, SubtableKind};
 use skrifa::raw::tables::layout::{ClassDef, DeviceOrVariationIndex};
 use skrifa::raw::tables::variations::{DeltaSetIndex, ItemVariationStore};
 use skrifa::raw::types::{F2Dot14, GlyphId16, Tag};
@@ -33,6 +39,8 @@ pub struct Kerning {
     pub pairs: Vec<Vec<KernPair>>,
     /// Pairs left out (placement or second-glyph values), for the report.
     pub skipped: usize,
+    /// Read from the legacy `kern` table: the number of its subtables left out.
+    pub legacy: Option<usize>,
 }
 
 /// An imported glyph: id, name and code points.
@@ -45,34 +53,71 @@ pub struct KernGlyph<'a> {
     pub unicodes: &'a [char],
 }
 
+/// A table [`read_kerning`] could not read: its tag and read-fonts' error.
+#[derive(Debug)]
+pub struct DamagedTable(pub &'static str, pub ReadError);
+
 /// Reads the `kern` feature's pair kerning among `glyphs` at each of `locations`
-/// (normalised coordinates; an empty slice is the default). A font without `GPOS` has no
-/// kerning; a damaged table is an error.
+/// (normalised coordinates; an empty slice is the default), or, when GPOS has none, the
+/// legacy `kern` table's. A font with neither has no kerning; a damaged table is an error.
 pub fn read_kerning(
     font: &FontRef,
     glyphs: &[KernGlyph],
     locations: &[&[F2Dot14]],
-) -> Result<Kerning, ReadError> {
-    let mut out = Kerning {
-        pairs: vec![Vec::new(); locations.len()],
+) -> Result<Kerning, DamagedTable> {
+    let names: HashMap<u16, &str> = glyphs.iter().map(|g| (g.id, g.name)).collect();
+    if let Some(kerning) =
+        gpos_kerning(font, glyphs, &names, locations).map_err(|e| DamagedTable("GPOS", e))?
+    {
+        return Ok(kerning);
+    }
+    // Shapers apply the legacy table when GPOS has no `kern` feature; it cannot vary, so
+    // every location gets the same values.
+    let mut sums = BTreeMap::new();
+    let skipped = legacy_kerning(font, &names, &mut |pair, value| {
+        sums.insert(pair, vec![value; locations.len()]);
+    })
+    .map_err(|e| DamagedTable("kern", e))?;
+    Ok(Kerning {
+        pairs: by_name(sums, &names, locations.len()),
         skipped: 0,
-    };
+        legacy: Some(skipped),
+    })
+}
+
+/// The GPOS `kern` feature's pairs, as [`read_kerning`] describes them; `None` when the
+/// font has no GPOS or its GPOS no `kern` feature.
+fn gpos_kerning(
+    font: &FontRef,
+    glyphs: &[KernGlyph],
+    names: &HashMap<u16, &str>,
+    locations: &[&[F2Dot14]],
+) -> Result<Option<Kerning>, ReadError> {
     let gpos = match font.gpos() {
         Ok(gpos) => gpos,
-        Err(ReadError::TableIsMissing(_)) => return Ok(out),
+        Err(ReadError::TableIsMissing(_)) => return Ok(None),
         Err(e) => return Err(e),
     };
+    let by_script = kern_lookups(&gpos)?;
+    if by_script.values().all(Vec::is_empty) {
+        return Ok(None);
+    }
     let store = match font.gdef() {
         Ok(gdef) => gdef.item_var_store().transpose()?,
         Err(ReadError::TableIsMissing(_)) => None,
         Err(e) => return Err(e),
     };
-    let names: HashMap<u16, &str> = glyphs.iter().map(|g| (g.id, g.name)).collect();
     let scripts: HashMap<u16, Option<Tag>> = glyphs
         .iter()
-        .map(|g| (g.id, g.unicodes.first().and_then(|&c| strong_script(c))))
+        .map(|g| {
+            (
+                g.id,
+                g.unicodes
+                    .first()
+                    .and_then(|&c| crate::layout::strong_script(c)),
+            )
+        })
         .collect();
-    let by_script = kern_lookups(&gpos)?;
     let lookups_for = |script: Option<Tag>| -> &[u16] {
         let tags =
             script
@@ -95,6 +140,7 @@ pub fn read_kerning(
     let list = gpos.lookup_list()?;
     // (left, right) -> value per location, summed over lookups.
     let mut sums: BTreeMap<(u16, u16), Vec<f64>> = BTreeMap::new();
+    let mut skipped = 0;
     for index in all {
         let mut subtables = Vec::new();
         match list.lookups().get(usize::from(index))? {
@@ -114,7 +160,7 @@ pub fn read_kerning(
         }
         let applies = |l: u16, r: u16| pair_lookups(l, r).contains(&index);
         let mut lookup = LookupPairs {
-            names: &names,
+            names,
             applies: &applies,
             store: store.as_ref(),
             locations,
@@ -126,12 +172,27 @@ pub fn read_kerning(
         for subtable in &subtables {
             lookup.add(subtable)?;
         }
-        out.skipped += lookup.skipped;
+        skipped += lookup.skipped;
     }
+    Ok(Some(Kerning {
+        pairs: by_name(sums, names, locations.len()),
+        skipped,
+        legacy: None,
+    }))
+}
+
+/// The pairs of `sums` by glyph name, one list per location, sorted by the names; no zero
+/// value.
+fn by_name(
+    sums: BTreeMap<(u16, u16), Vec<f64>>,
+    names: &HashMap<u16, &str>,
+    locations: usize,
+) -> Vec<Vec<KernPair>> {
+    let mut out = vec![Vec::new(); locations];
     for ((left, right), values) in sums {
         for (k, value) in values.into_iter().enumerate() {
             if value != 0.0 {
-                out.pairs[k].push(KernPair {
+                out[k].push(KernPair {
                     left: names[&left].to_string(),
                     right: names[&right].to_string(),
                     value,
@@ -139,10 +200,76 @@ pub fn read_kerning(
             }
         }
     }
-    for pairs in &mut out.pairs {
+    for pairs in &mut out {
         pairs.sort_by(|a, b| (&a.left, &a.right).cmp(&(&b.left, &b.right)));
     }
-    Ok(out)
+    out
+}
+
+/// The legacy `kern` table's horizontal pairs among `names`, as HarfBuzz applies them
+/// when GPOS has no `kern` feature: the format-0 subtables in order, each value added to
+/// the pair's (an override subtable's replacing it), given to `put` once per pair at the
+/// end. Returns how many subtables were left out: vertical, cross-stream, minimum and
+/// variable ones, and the state-machine and class formats (1 to 3, Apple's; read-fonts
+/// reads them, but no font seen so far needed them).
+fn legacy_kerning(
+    font: &FontRef,
+    names: &HashMap<u16, &str>,
+    put: &mut dyn FnMut((u16, u16), f64),
+) -> Result<usize, ReadError> {
+    let kern = match font.kern() {
+        Ok(kern) => kern,
+        Err(ReadError::TableIsMissing(_)) => return Ok(0),
+        Err(e) => return Err(e),
+    };
+    /// OpenType `kern` coverage bits: minimum values, override.
+    const MINIMUM: u16 = 1 << 1;
+    const OVERRIDE: u16 = 1 << 3;
+    let mut values: BTreeMap<(u16, u16), f64> = BTreeMap::new();
+    let mut skipped = 0;
+    for subtable in kern.subtables() {
+        let subtable = subtable?;
+        let coverage = match &subtable {
+            Subtable::Ot(t) => t.coverage(),
+            Subtable::Aat(_) => 0,
+        };
+        let usable = subtable.is_horizontal()
+            && !subtable.is_cross_stream()
+            && !subtable.is_variable()
+            && coverage & MINIMUM == 0;
+        let SubtableKind::Format0(table) = subtable.kind()? else {
+            skipped += 1;
+            continue;
+        };
+        if !usable {
+            skipped += 1;
+            continue;
+        }
+        // read-fonts gives no pairs at all when the count runs past the data.
+        if table.pairs().len() != usize::from(table.n_pairs()) {
+            return Err(ReadError::OutOfBounds);
+        }
+        // A pair listed twice in one subtable counts once (a shaper's search finds one).
+        let mut seen = HashSet::new();
+        for pair in table.pairs() {
+            let (left, right) = (pair.left().to_u16(), pair.right().to_u16());
+            let ours = names.contains_key(&left) && names.contains_key(&right);
+            if !ours || !seen.insert((left, right)) {
+                continue;
+            }
+            let value = f64::from(pair.value());
+            let sum = values.entry((left, right)).or_insert(0.0);
+            *sum = if coverage & OVERRIDE != 0 {
+                value
+            } else {
+                *sum + value
+            };
+        }
+    }
+    for (pair, value) in values {
+        put(pair, value);
+    }
+    Ok(skipped)
 }
 
 /// The `kern` lookups of each script's default language system, by OpenType script tag.
@@ -170,22 +297,6 @@ fn kern_lookups(gpos: &Gpos) -> Result<HashMap<Tag, Vec<u16>>, ReadError> {
         out.insert(record.script_tag(), lookups);
     }
     Ok(out)
-}
-
-/// The OpenType script tag of `c`'s script, or `None` for characters of no one script
-/// (punctuation, digits, combining marks). The Unicode script comes from HarfRust's
-/// tables; its ISO 15924 tag in lower case is the OpenType tag for the scripts whose
-/// shapers do not differ (Indic scripts' newer `xxx2` tags are not tried).
-fn strong_script(c: char) -> Option<Tag> {
-    let mut buffer = harfrust::Buffer::new();
-    buffer.push_str(c.encode_utf8(&mut [0; 4]));
-    buffer.guess_segment_properties();
-    let iso = buffer.script()?.tag().to_be_bytes();
-    match &iso {
-        b"Zyyy" | b"Zinh" | b"Zzzz" => None,
-        b"Hira" | b"Kana" => Some(Tag::new(b"kana")),
-        _ => Some(Tag::new(&iso.map(|b| b.to_ascii_lowercase()))),
-    }
 }
 
 /// One lookup's subtables, applied in order to the pairs of imported glyphs.

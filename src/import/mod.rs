@@ -245,15 +245,26 @@ pub(crate) fn read_font_kerning(
             unicodes: &g.unicodes,
         })
         .collect();
-    let read = kerning::read_kerning(&font, &glyphs, locations)
-        .map_err(|e| ImportError::at(path, format!("damaged GPOS table: {e}")))?;
-    let note = (read.skipped > 0).then(|| {
-        format!(
-            "{} kerning pair(s) left out: they place glyphs or move the second glyph, which \
-             xglyph kerning (the first glyph's advance) cannot hold",
-            read.skipped
-        )
-    });
+    let read = kerning::read_kerning(&font, &glyphs, locations).map_err(
+        |kerning::DamagedTable(table, e)| {
+            ImportError::at(path, format!("damaged {table} table: {e}"))
+        },
+    )?;
+    let note = match read.legacy {
+        Some(0) => None,
+        Some(subtables) => Some(format!(
+            "{subtables} subtable(s) of the legacy `kern` table left out: vertical, \
+             cross-stream, minimum or Apple formats, which xglyph kerning (the first glyph's \
+             advance) does not hold"
+        )),
+        None => (read.skipped > 0).then(|| {
+            format!(
+                "{} kerning pair(s) left out: they place glyphs or move the second glyph, \
+                 which xglyph kerning (the first glyph's advance) cannot hold",
+                read.skipped
+            )
+        }),
+    };
     Ok(FontKerning {
         pairs: read.pairs,
         note,

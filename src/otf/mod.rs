@@ -69,7 +69,7 @@ use crate::reuse::{outline_key, Key, OutlineKeys, Reuse};
 pub use features::check_features;
 /// How far the CFF outlines may be from the exact ones (rounding, and a pulled handle).
 pub use grid::PULLED;
-pub use specimen::{specimen_html, specimen_html_sources, specimen_text};
+pub use specimen::{specimen_html, specimen_html_sources, specimen_text, KERN_ROWS};
 pub use variable::{variable_ttf, variable_ttf_explicit_deltas, variable_ttf_with_anchors};
 
 /// Something the model holds that an OpenType font cannot.

@@ -8,13 +8,21 @@
 //! expected one (sum of advances and kerning) into `<output id="font-check">`, with
 //! `data-loaded`, `data-width` and `data-expected` attributes for automated checks.
 //!
-//! Limits: combining marks (U+0300–036F, U+1AB0–1AFF, U+1DC0–1DFF, U+20D0–20FF,
-//! U+FE20–FE2F) and control characters are shown in the character set but left out of
-//! the sample and measured text, where browsers would compose or reorder them.
+//! Limits: at most [`KERN_ROWS`] kerning pairs are shown and measured (the first in the
+//! font's order, with a note giving the total); a pair of two scripts, which no shaper
+//! kerns, is not shown. Combining marks (U+0300–036F, U+1AB0–1AFF, U+1DC0–1DFF,
+//! U+20D0–20FF, U+FE20–FE2F), control characters and default-ignorable code points are
+//! shown in the character set but left out of the sample and measured text, where
+//! browsers would compose them or draw nothing. Right-to-left text is measured as if it
+//! were left to right.
 
+use std::collections::HashMap;
 use std::fmt::Write;
 
-use crate::outline::OutlinedFont;
+use skrifa::raw::types::Tag;
+
+use crate::layout::strong_script;
+use crate::outline::{OutlinedFont, OutlinedGlyph};
 
 /// The CSS family name the page gives the font (never the model's text).
 const CSS_FAMILY: &str = "xglyph-specimen";
@@ -41,14 +49,39 @@ fn escape_url(text: &str) -> String {
     out
 }
 
-fn is_combining_or_control(c: char) -> bool {
+/// Whether `c` is left out of the sample and measured text: controls, combining marks
+/// (which browsers compose), and the default-ignorable code points (which shapers draw as
+/// nothing: soft hyphen, joiners, bidi controls, variation selectors, the BOM).
+fn left_out(c: char) -> bool {
     let u = u32::from(c);
+    // Unicode 16's Default_Ignorable_Code_Point ranges (DerivedCoreProperties.txt), by
+    // hand: no dependency has the property public.
+    const IGNORABLE: [(u32, u32); 17] = [
+        (0x00AD, 0x00AD),
+        (0x034F, 0x034F),
+        (0x061C, 0x061C),
+        (0x115F, 0x1160),
+        (0x17B4, 0x17B5),
+        (0x180B, 0x180F),
+        (0x200B, 0x200F),
+        (0x202A, 0x202E),
+        (0x2060, 0x206F),
+        (0x3164, 0x3164),
+        (0xFE00, 0xFE0F),
+        (0xFEFF, 0xFEFF),
+        (0xFFA0, 0xFFA0),
+        (0xFFF0, 0xFFF8),
+        (0x1BCA0, 0x1BCA3),
+        (0x1D173, 0x1D17A),
+        (0xE0000, 0xE0FFF),
+    ];
     c.is_control()
         || (0x0300..=0x036F).contains(&u)
         || (0x1AB0..=0x1AFF).contains(&u)
         || (0x1DC0..=0x1DFF).contains(&u)
         || (0x20D0..=0x20FF).contains(&u)
         || (0xFE20..=0xFE2F).contains(&u)
+        || IGNORABLE.iter().any(|&(a, b)| (a..=b).contains(&u))
 }
 
 /// Characters to set as text: each glyph's first code point in glyph order, marks and
@@ -57,29 +90,50 @@ fn sample_chars(font: &OutlinedFont) -> Vec<char> {
     font.glyphs
         .iter()
         .filter_map(|g| g.unicodes.first().copied())
-        .filter(|&c| !is_combining_or_control(c) && c != ' ')
+        .filter(|&c| !left_out(c) && c != ' ')
         .collect()
 }
 
-/// The kerning pairs that can be typed (both glyphs have a usable code point).
-fn kern_strings(font: &OutlinedFont) -> Vec<(String, f64)> {
-    font.kerning
-        .iter()
-        .filter_map(|k| {
-            let first = |name: &str| {
-                font.glyph(name)?
-                    .unicodes
-                    .iter()
-                    .copied()
-                    .find(|&c| !is_combining_or_control(c))
-            };
-            Some((format!("{}{}", first(&k.left)?, first(&k.right)?), k.value))
+/// The kerning pairs that can be typed (both glyphs have a usable code point), in the
+/// font's order, at most [`KERN_ROWS`]; and how many there are in all.
+fn kern_strings(font: &OutlinedFont) -> (Vec<(String, f64)>, usize) {
+    let by_name: HashMap<&str, &OutlinedGlyph> =
+        font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
+    let first = |name: &str| {
+        by_name
+            .get(name)?
+            .unicodes
+            .iter()
+            .copied()
+            .find(|&c| !left_out(c))
+    };
+    // Each glyph's character and its script, once per glyph.
+    let typed_as: HashMap<&str, (char, Option<Tag>)> = by_name
+        .keys()
+        .filter_map(|&name| {
+            let c = first(name)?;
+            Some((name, (c, strong_script(c))))
         })
-        .collect()
+        .collect();
+    // A pair of two scripts is two runs, which a shaper never kerns.
+    let mut typed = font.kerning.iter().filter_map(|k| {
+        let (a, sa) = *typed_as.get(k.left.as_str())?;
+        let (b, sb) = *typed_as.get(k.right.as_str())?;
+        let one_run = sa.is_none() || sb.is_none() || sa == sb;
+        one_run.then(|| (format!("{a}{b}"), k.value))
+    });
+    let shown: Vec<_> = typed.by_ref().take(KERN_ROWS).collect();
+    let total = shown.len() + typed.count();
+    (shown, total)
 }
 
-/// The measured line: the sample characters, then the kerning pairs, separated by spaces
-/// when the font has a space glyph.
+/// Most kerning pairs the page shows and measures. A font imported with its class
+/// kerning expanded can have hundreds of thousands of pairs (Lato Regular: about 273,000),
+/// a page no browser lays out in reasonable time.
+pub const KERN_ROWS: usize = 500;
+
+/// The measured line: the sample characters, then the kerning pairs shown, separated by
+/// spaces when the font has a space glyph.
 pub fn specimen_text(font: &OutlinedFont) -> String {
     let sep = if font.glyph_for_char(' ').is_some() {
         " "
@@ -87,23 +141,40 @@ pub fn specimen_text(font: &OutlinedFont) -> String {
         ""
     };
     let mut parts: Vec<String> = vec![sample_chars(font).into_iter().collect()];
-    parts.extend(kern_strings(font).into_iter().map(|(s, _)| s));
+    parts.extend(kern_strings(font).0.into_iter().map(|(s, _)| s));
     parts.retain(|p| !p.is_empty());
     parts.join(sep)
 }
 
 /// Width of `text` in font units: advances plus kerning between neighbours, as a shaper
-/// applying the `kern` feature gives it.
+/// applying the `kern` feature gives it (the first pair of two glyphs, as
+/// [`OutlinedFont::kern`] takes it, looked up in a map made once). As a browser splits
+/// text into runs of one script (a character of none joining the run it is in), two
+/// neighbours of different runs are not kerned.
 fn text_width(font: &OutlinedFont, text: &str) -> f64 {
     let chars = font.char_map();
+    let mut kerning: HashMap<(&str, &str), f64> = HashMap::with_capacity(font.kerning.len());
+    for k in &font.kerning {
+        kerning.entry((&k.left, &k.right)).or_insert(k.value);
+    }
     let mut width = 0.0;
     let mut prev: Option<&str> = None;
+    let mut run: Option<Tag> = None;
     for c in text.chars() {
         let Some(glyph) = chars.get(&c) else {
             continue;
         };
+        let script = strong_script(c);
+        if script.is_some() && run.is_some() && script != run {
+            // A new run: nothing kerns across its start.
+            prev = None;
+        }
+        run = script.or(run);
         if let Some(p) = prev {
-            width += font.kern(p, &glyph.name);
+            width += kerning
+                .get(&(p, glyph.name.as_str()))
+                .copied()
+                .unwrap_or(0.0);
         }
         width += glyph.advance.round();
         prev = Some(&glyph.name);
@@ -205,9 +276,18 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
             escape_html(&sample)
         );
     }
-    html.push_str("</div>\n<h2>Kerning pairs</h2>\n<table class=\"pairs\">\n");
+    html.push_str("</div>\n<h2>Kerning pairs</h2>\n");
+    let (pairs, total) = kern_strings(font);
+    if total > pairs.len() {
+        let _ = writeln!(
+            html,
+            "<p>The first {} of {total} pairs that can be typed.</p>",
+            pairs.len()
+        );
+    }
+    html.push_str("<table class=\"pairs\">\n");
     html.push_str("<tr><th>kerned</th><th>not kerned</th><th>value</th></tr>\n");
-    for (pair, value) in kern_strings(font) {
+    for (pair, value) in pairs {
         let _ = writeln!(
             html,
             r#"<tr><td class="font" style="font-size: 64px">{}</td><td class="font" style="font-size: 64px; font-kerning: none">{}</td><td>{value}</td></tr>"#,

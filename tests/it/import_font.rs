@@ -398,6 +398,94 @@ fn a_damaged_gpos_is_an_error_naming_the_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// DejaVu with its GPOS hidden (the table record renamed `GPOX`, which keeps the
+/// directory sorted): a font with only its legacy `kern` table, as many older fonts are.
+fn dejavu_without_gpos() -> Vec<u8> {
+    let mut data = font_bytes();
+    let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));
+    let record = (0..tables)
+        .map(|i| 12 + 16 * i)
+        .find(|&r| &data[r..r + 4] == b"GPOS")
+        .expect("DejaVu has a GPOS");
+    data[record + 3] = b'X';
+    data
+}
+
+#[test]
+fn a_font_without_gpos_kerning_is_kerned_by_its_kern_table_as_harfbuzz_does() {
+    if !crate::common::tools::available(
+        crate::common::tools::python_imports("uharfbuzz"),
+        "uharfbuzz",
+        "pip install uharfbuzz",
+    ) {
+        return;
+    }
+    let data = dejavu_without_gpos();
+    let (font, _) = written("legacy-kern", "legacy-kern.ttf", &data);
+    let opts = ImportOptions {
+        glyphs: Some(xglyph::import::font::parse_glyph_list(LIST).unwrap()),
+        ..ImportOptions::default()
+    };
+    let imp = import_font(&font, &data, &opts).unwrap();
+    let latin: String = ('A'..='Z').chain('a'..='z').chain('0'..='9').collect();
+    // HarfBuzz applies the `kern` table when GPOS has no `kern` feature: half of a pair's
+    // value on each glyph's advance, the second also moved back. Its pen after the first
+    // glyph differs by the first half only; the whole value comes from the pair's width.
+    let expected: std::collections::BTreeMap<String, f64> =
+        crate::common::tools::python_json(HB_PAIR_WIDTHS, &[&font.to_str().unwrap(), &latin]);
+    let got = kerning_by_chars(&imp);
+    assert!(expected.len() > 150, "HarfBuzz kerns only {expected:?}");
+    // Before, such a font came in with no kerning at all.
+    assert_eq!(got, expected);
+    let _ = std::fs::remove_dir_all(font.parent().unwrap());
+}
+
+/// HarfBuzz's kerning of each pair of `chars` as the width of the shaped pair minus the
+/// two advances alone, for the pairs where they differ (ligatures off).
+const HB_PAIR_WIDTHS: &str = r#"
+import json, sys, uharfbuzz as hb
+font = hb.Font(hb.Face(hb.Blob.from_file_path(sys.argv[1])))
+chars = sys.argv[2]
+off = {"liga": False, "clig": False, "dlig": False, "calt": False, "rlig": False}
+def width(text):
+    buf = hb.Buffer()
+    buf.add_str(text)
+    buf.guess_segment_properties()
+    hb.shape(font, buf, off)
+    assert len(buf.glyph_positions) == len(text), text
+    return sum(p.x_advance for p in buf.glyph_positions)
+alone = {c: width(c) for c in chars}
+out = {}
+for a in chars:
+    for b in chars:
+        kern = width(a + b) - alone[a] - alone[b]
+        if kern != 0:
+            out[a + b] = kern
+print(json.dumps(out))
+"#;
+
+#[test]
+fn a_damaged_kern_table_is_an_error_naming_it() {
+    // The GPOS hidden, and the `kern` subtable's pair count far past the table's end.
+    let mut data = dejavu_without_gpos();
+    let (offset, _) = table(&data, b"kern");
+    // Table header (version, nTables: 4 bytes), subtable header (version, length,
+    // coverage: 6 bytes), then nPairs.
+    let pairs = offset + 4 + 6;
+    data[pairs..pairs + 2].copy_from_slice(&u16::MAX.to_be_bytes());
+    let (font, out) = written("damaged-kern", "damaged.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
+    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "A-C"], &out);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: damaged kern table: An offset was out of bounds\n",
+            font.display()
+        )
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The offset and length of table `tag` in the font bytes `data`.
 fn table(data: &[u8], tag: &[u8; 4]) -> (usize, usize) {
     let tables = usize::from(u16::from_be_bytes([data[4], data[5]]));

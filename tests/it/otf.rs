@@ -338,6 +338,118 @@ fn specimen_escapes_and_expects_the_advances() {
 }
 
 #[test]
+fn a_specimen_shows_its_first_kerning_pairs_and_how_many_there_are() {
+    // Every pair of 32 Cyrillic letters kerned: 1,024 pairs. An import that expands class
+    // kerning gets hundreds of thousands (Lato Regular: about 273,000); the page listed and
+    // measured them all, and its width sum searched the kerning list once per character,
+    // which took minutes.
+    let (mut font, _) = mini();
+    let letters: Vec<char> = ('а'..='я').collect();
+    for (i, &c) in letters.iter().enumerate() {
+        font.glyphs
+            .push(glyph(&format!("cyr{i}"), &[c], 500.0 + i as f64, vec![]));
+    }
+    let before = font.kerning.len();
+    for i in 0..letters.len() {
+        for j in 0..letters.len() {
+            font.kerning.push(KernPair {
+                left: format!("cyr{i}"),
+                right: format!("cyr{j}"),
+                value: -((i + j) as f64),
+            });
+        }
+    }
+    let outlines = outline_font(&font, font.info.tolerance);
+    let html = specimen_html(&outlines, "Mini.ttf");
+    let rows = html.matches(r#"<tr><td class="font""#).count();
+    assert_eq!(rows, xglyph::otf::KERN_ROWS);
+    // The mini font's own pairs come first: two of them can be typed.
+    assert!(before >= 2);
+    assert!(
+        html.contains("<p>The first 500 of 1026 pairs that can be typed.</p>"),
+        "{}",
+        &html[..2000]
+    );
+    // The measured line: the sample, then the pairs shown; its expected width is the sum
+    // of advances and of the kerning between neighbours, counted here by a plain search.
+    let text = specimen_text(&outlines);
+    assert_eq!(text.split(' ').count(), 1 + xglyph::otf::KERN_ROWS);
+    let by_char = |c: char| outlines.glyphs.iter().find(|g| g.unicodes.contains(&c));
+    let mut width = 0.0;
+    let mut prev: Option<&str> = None;
+    for c in text.chars() {
+        let Some(g) = by_char(c) else { continue };
+        if let Some(p) = prev {
+            width += outlines.kern(p, &g.name);
+        }
+        width += g.advance.round();
+        prev = Some(&g.name);
+    }
+    assert!(
+        html.contains(&format!(r#"data-expected="{width:.3}""#)),
+        "{width}"
+    );
+}
+
+#[test]
+fn chromium_measures_the_specimen_line_as_expected_with_invisible_and_greek_letters() {
+    // The mini font plus a soft hyphen (which browsers draw as nothing) and a Greek Alpha
+    // kerned against the Latin A (pairs of two script runs, which browsers do not kern).
+    // The page counted both: imported Gentium's line measured 690 px short, Lato's 613.
+    let Some(mut browser) = crate::studio_browser::Browser::start() else {
+        return;
+    };
+    let (mut font, _) = mini();
+    font.glyphs
+        .push(glyph("softhyphen", &['\u{AD}'], 333.0, vec![]));
+    font.glyphs.push(glyph("Alpha", &['Α'], 640.0, vec![]));
+    for (left, right, value) in [
+        ("A", "Alpha", -150.0),
+        ("Alpha", "A", -120.0),
+        ("Alpha", "Alpha", -45.0),
+    ] {
+        font.kerning.push(KernPair {
+            left: left.into(),
+            right: right.into(),
+            value,
+        });
+    }
+    let outlines = outline_font(&font, font.info.tolerance);
+    assert_eq!(specimen_text(&outlines), "AVoó.Α AV Vo ΑΑ");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("Mini.ttf"), ttf(&outlines).unwrap()).unwrap();
+    let page = dir.path().join("specimen.html");
+    std::fs::write(&page, specimen_html(&outlines, "Mini.ttf")).unwrap();
+    browser.open_until(
+        &format!("file://{}", page.display()),
+        "document.getElementById('font-check').dataset.loaded === 'yes'",
+    );
+    let attr = |browser: &mut crate::studio_browser::Browser, name: &str| {
+        let v = browser.eval(&format!(
+            "parseFloat(document.getElementById('font-check').getAttribute('{name}'))"
+        ));
+        v.as_f64().unwrap()
+    };
+    let (width, expected) = (
+        attr(&mut browser, "data-width"),
+        attr(&mut browser, "data-expected"),
+    );
+    // A+V −60, V+o −40, Α+Α −45; no soft hyphen, no A|Α across the runs.
+    let advances: f64 = [
+        "A", "V", "o", "oacute", "period", "Alpha", "space", "A", "V", "space", "V", "o", "space",
+        "Alpha", "Alpha",
+    ]
+    .iter()
+    .map(|n| outlines.glyph(n).unwrap().advance.round())
+    .sum();
+    assert_eq!(expected, advances - 60.0 - 40.0 - 60.0 - 40.0 - 45.0);
+    assert!(
+        (width - expected).abs() <= 0.5,
+        "Chromium {width} px, expected {expected} px"
+    );
+}
+
+#[test]
 fn names_styles_and_em_size_from_the_model() {
     let (mut font, _) = mini();
     font.info.style = "Light Italic".into();

@@ -141,11 +141,13 @@ impl Browser {
     }
 
     pub(crate) fn open(&mut self, url: &str) {
+        self.open_until(url, "document.body && document.body.dataset.ready === '1'");
+    }
+
+    /// Opens `url` and waits until `ready` is true in it.
+    pub(crate) fn open_until(&mut self, url: &str, ready: &str) {
         self.call("Page.navigate", json!({"url": url}));
-        self.wait_for(
-            "document.body && document.body.dataset.ready === '1'",
-            Duration::from_secs(60),
-        );
+        self.wait_for(ready, Duration::from_secs(60));
     }
 
     /// The centre of control point `c`.`i` on the screen, CSS pixels.
