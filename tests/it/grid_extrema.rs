@@ -160,8 +160,10 @@ fn rounding_makes_no_extreme_without_a_point() {
         }
     }
     println!("rounded on their own, {by_rounding} cubics would turn back; real extremes left by the fit: {real}");
+    // 18 since the fitter moves joins within six tolerances of an extreme onto it (more
+    // before: a join beside an extreme is one source of such cubics).
     assert!(
-        by_rounding >= 20,
+        by_rounding >= 15,
         "the corpus no longer has the case: {by_rounding}"
     );
     assert!(

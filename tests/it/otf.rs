@@ -422,7 +422,7 @@ fn chromium_measures_the_specimen_line_as_expected_with_invisible_and_greek_lett
     std::fs::write(&page, specimen_html(&outlines, "Mini.ttf")).unwrap();
     browser.open_until(
         &format!("file://{}", page.display()),
-        "document.getElementById('font-check').dataset.loaded === 'yes'",
+        "document.getElementById('font-check')?.dataset.loaded === 'yes'",
     );
     let attr = |browser: &mut crate::studio_browser::Browser, name: &str| {
         let v = browser.eval(&format!(
