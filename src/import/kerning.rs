@@ -73,11 +73,11 @@ pub fn read_kerning(
     }
     // Shapers apply the legacy table when GPOS has no `kern` feature; it cannot vary, so
     // every location gets the same values.
-    let mut sums = BTreeMap::new();
-    let skipped = legacy_kerning(font, &names, &mut |pair, value| {
-        sums.insert(pair, vec![value; locations.len()]);
-    })
-    .map_err(|e| DamagedTable("kern", e))?;
+    let (values, skipped) = legacy_kerning(font, &names).map_err(|e| DamagedTable("kern", e))?;
+    let sums = values
+        .into_iter()
+        .map(|(pair, value)| (pair, vec![value; locations.len()]))
+        .collect();
     Ok(Kerning {
         pairs: by_name(sums, &names, locations.len()),
         skipped: 0,
@@ -208,18 +208,17 @@ fn by_name(
 
 /// The legacy `kern` table's horizontal pairs among `names`, as HarfBuzz applies them
 /// when GPOS has no `kern` feature: the format-0 subtables in order, each value added to
-/// the pair's (an override subtable's replacing it), given to `put` once per pair at the
-/// end. Returns how many subtables were left out: vertical, cross-stream, minimum and
-/// variable ones, and the state-machine and class formats (1 to 3, Apple's; read-fonts
-/// reads them, but no font seen so far needed them).
+/// the pair's (an override subtable's replacing it). Also returns how many subtables were
+/// left out: vertical, cross-stream, minimum and variable ones, and the state-machine and
+/// class formats (1 to 3, Apple's; read-fonts reads them, but no font seen so far needed
+/// them).
 fn legacy_kerning(
     font: &FontRef,
     names: &HashMap<u16, &str>,
-    put: &mut dyn FnMut((u16, u16), f64),
-) -> Result<usize, ReadError> {
+) -> Result<(BTreeMap<(u16, u16), f64>, usize), ReadError> {
     let kern = match font.kern() {
         Ok(kern) => kern,
-        Err(ReadError::TableIsMissing(_)) => return Ok(0),
+        Err(ReadError::TableIsMissing(_)) => return Ok((BTreeMap::new(), 0)),
         Err(e) => return Err(e),
     };
     /// OpenType `kern` coverage bits: minimum values, override.
@@ -266,10 +265,7 @@ fn legacy_kerning(
             };
         }
     }
-    for (pair, value) in values {
-        put(pair, value);
-    }
-    Ok(skipped)
+    Ok((values, skipped))
 }
 
 /// The `kern` lookups of each script's default language system, by OpenType script tag.

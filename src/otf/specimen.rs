@@ -97,6 +97,9 @@ fn sample_chars(font: &OutlinedFont) -> Vec<char> {
 /// The kerning pairs that can be typed (both glyphs have a usable code point), in the
 /// font's order, at most [`KERN_ROWS`]; and how many there are in all.
 fn kern_strings(font: &OutlinedFont) -> (Vec<(String, f64)>, usize) {
+    if font.kerning.is_empty() {
+        return (Vec::new(), 0);
+    }
     let by_name: HashMap<&str, &OutlinedGlyph> =
         font.glyphs.iter().map(|g| (g.name.as_str(), g)).collect();
     let first = |name: &str| {
@@ -164,7 +167,12 @@ fn text_width(font: &OutlinedFont, text: &str) -> f64 {
         let Some(glyph) = chars.get(&c) else {
             continue;
         };
-        let script = strong_script(c);
+        // (Runs only matter to kerning: a CJK font without any is not asked per character.)
+        let script = if kerning.is_empty() {
+            None
+        } else {
+            strong_script(c)
+        };
         if script.is_some() && run.is_some() && script != run {
             // A new run: nothing kerns across its start.
             prev = None;
