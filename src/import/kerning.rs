@@ -206,6 +206,9 @@ fn by_name(
     out
 }
 
+/// Kerning values by (first, second) glyph id.
+type GlyphPairs = BTreeMap<(u16, u16), f64>;
+
 /// The legacy `kern` table's horizontal pairs among `names`, as HarfBuzz applies them
 /// when GPOS has no `kern` feature: the format-0 subtables in order, each value added to
 /// the pair's (an override subtable's replacing it). Also returns how many subtables were
@@ -215,16 +218,16 @@ fn by_name(
 fn legacy_kerning(
     font: &FontRef,
     names: &HashMap<u16, &str>,
-) -> Result<(BTreeMap<(u16, u16), f64>, usize), ReadError> {
+) -> Result<(GlyphPairs, usize), ReadError> {
     let kern = match font.kern() {
         Ok(kern) => kern,
-        Err(ReadError::TableIsMissing(_)) => return Ok((BTreeMap::new(), 0)),
+        Err(ReadError::TableIsMissing(_)) => return Ok((GlyphPairs::new(), 0)),
         Err(e) => return Err(e),
     };
     /// OpenType `kern` coverage bits: minimum values, override.
     const MINIMUM: u16 = 1 << 1;
     const OVERRIDE: u16 = 1 << 3;
-    let mut values: BTreeMap<(u16, u16), f64> = BTreeMap::new();
+    let mut values = GlyphPairs::new();
     let mut skipped = 0;
     for subtable in kern.subtables() {
         let subtable = subtable?;
