@@ -291,7 +291,8 @@ fn read_info(face: &Face) -> FontInfo {
     let upm = face.units_per_em();
     // The US English record first, as fontTools' `getDebugName` takes it: a font's
     // records in other languages are its localised names (WenQuanYi's Chinese family name
-    // comes first in its table), and the PostScript name is made from the family.
+    // comes first in its table), and the PostScript name is made from the family. Leading
+    // and trailing white space is dropped.
     let name = |ids: &[u16]| -> Option<String> {
         ids.iter().find_map(|&id| {
             let mut any = None;
@@ -299,7 +300,10 @@ fn read_info(face: &Face) -> FontInfo {
                 if n.name_id != id || !n.is_unicode() {
                     continue;
                 }
-                let Some(text) = n.to_string().filter(|s| !s.trim().is_empty()) else {
+                // Trimmed: old tools ended records with "\r\n" (Gentium's copyright and
+                // license), which FontBakery fails as trailing spaces in the built fonts.
+                let text = n.to_string().map(|s| s.trim().to_string());
+                let Some(text) = text.filter(|s| !s.is_empty()) else {
                     continue;
                 };
                 if n.language() == ttf_parser::Language::English_UnitedStates {
