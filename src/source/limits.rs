@@ -149,10 +149,21 @@ fn shown(x: f64) -> String {
     }
 }
 
-/// Checks `copyright`, `designer`, `version`, `license` and `license_url`: at most [`MAX_TEXT_UTF16`] UTF-16 code
-/// units each. Returns whether it passed. (Control characters are not refused: the SVG
-/// font writes U+FFFD for what XML cannot hold, and the terminal output escapes them.)
+/// Checks `copyright`, `designer`, `version`, `license` and `license_url`: at most
+/// [`MAX_TEXT_UTF16`] UTF-16 code units each. Returns whether it passed. (Control characters
+/// are not refused: the SVG font writes U+FFFD for what XML cannot hold, and the terminal
+/// output escapes them.) Any of these or `style` with white space at its start or end gets
+/// a warning: the fonts' `name` table carries it, and FontBakery fails it.
 pub(super) fn text(ctx: &mut Ctx<'_>, value: &str, offset: usize, key: &str) -> bool {
+    if value.trim() != value {
+        ctx.warn(
+            offset,
+            format!(
+                "`{key}` begins or ends with white space, which the fonts' `name` table \
+                 would carry and FontBakery fails; remove it"
+            ),
+        );
+    }
     let units = value.encode_utf16().count();
     if matches!(
         key,

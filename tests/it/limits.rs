@@ -311,6 +311,29 @@ fn expected_special() -> Vec<String> {
     .to_vec()
 }
 
+/// A name with white space around it (an import from an old font ended its copyright with
+/// "\r\n") is a warning at the value: FontBakery fails it in the built fonts.
+#[test]
+fn names_with_white_space_around_them_are_a_warning() {
+    let dir = font_dir("names", &[("a.toml", TRIANGLE.to_string())]);
+    let info = format!(
+        "{}copyright = \"(c) T\\r\\n\"\nversion = \"1.0\"\nlicense = \" OFL\"\n",
+        crate::common::fonts::SMALL_FONT
+    );
+    std::fs::write(dir.join("font.toml"), info).expect("write");
+    let warning = |line: usize, key: &str| {
+        format!(
+            "font.toml:{line}:{}: warning: `{key}` begins or ends with white space, which the \
+             fonts' `name` table would carry and FontBakery fails; remove it",
+            key.len() + 4
+        )
+    };
+    assert_eq!(
+        diagnostics(&dir),
+        vec![warning(7, "copyright"), warning(9, "license")]
+    );
+}
+
 /// Issue 13.6: `fmt` stopped with "internal error: … would not load back the same" on huge
 /// numbers; now it refuses with the diagnostic `check` prints and changes nothing.
 #[test]
