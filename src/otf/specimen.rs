@@ -138,15 +138,22 @@ pub const KERN_ROWS: usize = 500;
 /// The measured line: the sample characters, then the kerning pairs shown, separated by
 /// spaces when the font has a space glyph.
 pub fn specimen_text(font: &OutlinedFont) -> String {
+    let sample: String = sample_chars(font).into_iter().collect();
+    measured_line(font, &sample, &kern_strings(font).0)
+}
+
+/// [`specimen_text`] from the sample and the pairs shown, made once per page.
+fn measured_line(font: &OutlinedFont, sample: &str, pairs: &[(String, f64)]) -> String {
     let sep = if font.glyph_for_char(' ').is_some() {
         " "
     } else {
         ""
     };
-    let mut parts: Vec<String> = vec![sample_chars(font).into_iter().collect()];
-    parts.extend(kern_strings(font).0.into_iter().map(|(s, _)| s));
-    parts.retain(|p| !p.is_empty());
-    parts.join(sep)
+    let parts = std::iter::once(sample).chain(pairs.iter().map(|(s, _)| s.as_str()));
+    parts
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join(sep)
 }
 
 /// Width of `text` in font units: advances plus kerning between neighbours, as a shaper
@@ -219,7 +226,8 @@ pub fn specimen_html_sources(font: &OutlinedFont, font_files: &[&str]) -> String
     let title = escape_html(&format!("{} {}", info.family, info.style));
     let upm = info.units_per_em;
     let sample: String = sample_chars(font).into_iter().collect();
-    let measure = specimen_text(font);
+    let (pairs, total) = kern_strings(font);
+    let measure = measured_line(font, &sample, &pairs);
     let expected = text_width(font, &measure);
 
     let mut html = String::new();
@@ -285,7 +293,6 @@ body {{ font-family: sans-serif; margin: 2em; color: #111; }}
         );
     }
     html.push_str("</div>\n<h2>Kerning pairs</h2>\n");
-    let (pairs, total) = kern_strings(font);
     if total > pairs.len() {
         let _ = writeln!(
             html,
