@@ -28,7 +28,9 @@ pub struct ImportArgs {
     /// Output font directory (must be empty or absent unless --force).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Fonts: characters to import, e.g. `A-Z,a-z,0-9` (default: every mapped character).
+    /// Fonts: characters to import, e.g. `A-Z,a-z,0-9`, with the glyphs their default
+    /// shaping substitutes in (default: every mapped character and every glyph the font's
+    /// substitutions reach).
     #[arg(long)]
     pub glyphs: Option<String>,
     /// Collections: which font to import, from 0 (default 0).

@@ -33,6 +33,7 @@ pub mod discrete;
 pub mod fea;
 pub mod fit;
 pub mod font;
+mod gsub;
 pub mod kerning;
 pub mod masters;
 pub mod report;
@@ -53,7 +54,7 @@ use std::sync::Arc;
 use kurbo::BezPath;
 use rayon::prelude::*;
 
-use crate::model::{Contour, Font, FontInfo, Glyph};
+use crate::model::{Contour, FeatureFile, Font, FontInfo, Glyph};
 use crate::source::check_tolerance_flag;
 use crate::xspline::{ControlPoint, XSpline};
 use report::{GlyphReport, Report};
@@ -143,7 +144,9 @@ pub struct ImportOptions {
     pub face: u32,
     /// Told the glyph counts while fitting.
     pub progress: Progress,
-    /// Characters to import from a font (`None`: every mapped character).
+    /// Characters to import from a font, with the glyphs the features shaping applies
+    /// unasked reach from them (`None`: every mapped character, and every glyph any
+    /// feature reaches).
     pub glyphs: Option<Vec<char>>,
     /// Import tolerance `T` in font units (`None`: 1/1000 of the em).
     pub tolerance: Option<f64>,
@@ -179,8 +182,15 @@ pub fn import_font(
     data: &[u8],
     opts: &ImportOptions,
 ) -> Result<Imported, ImportError> {
-    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), |_| {
-        Vec::new()
+    let skrifa_font = skrifa::FontRef::from_index(data, opts.face).ok();
+    // The glyphs the substitutions reach (ligatures, alternates) come in with the mapped:
+    // through every feature for the whole font, through those shaping applies unasked for
+    // a character subset.
+    let features = opts.glyphs.as_ref().map(|_| gsub::SHAPING_FEATURES);
+    let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), |mapped| {
+        skrifa_font
+            .as_ref()
+            .map_or_else(Vec::new, |f| gsub::reachable(f, mapped, features))
     })?;
     if source.glyphs.is_empty() {
         return Err(ImportError::at(
@@ -192,6 +202,7 @@ pub fn import_font(
     // Read before the glyphs are fitted: a damaged GPOS fails at once.
     let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
     let anchors = read_font_anchors(path, data, opts.face, &source)?;
+    let substitutions = read_font_gsub(path, data, opts.face, &source, &[])?;
     let info = FontInfo {
         family: opts.family.clone().unwrap_or(source.info.family),
         tolerance: BUILD_SHARE * tolerance,
@@ -202,6 +213,8 @@ pub fn import_font(
     })?;
     imported.font.kerning = kerning.pairs.into_iter().next().unwrap_or_default();
     imported.report.notes.extend(kerning.note);
+    imported.font.features = substitutions.features;
+    imported.report.notes.extend(substitutions.note);
     anchors.give(imported.font.glyphs.iter_mut());
     imported.report.notes.extend(anchors.note);
     imported
@@ -268,6 +281,63 @@ pub(crate) fn read_font_kerning(
     Ok(FontKerning {
         pairs: read.pairs,
         note,
+    })
+}
+
+/// What [`read_font_gsub`] gives: the font's substitutions as `features.fea`, and a note.
+pub(crate) struct FontSubstitutions {
+    pub(crate) features: Option<FeatureFile>,
+    pub(crate) note: Option<String>,
+}
+
+/// The font's GSUB as feature code over the imported glyphs ([`gsub`]), without the
+/// features in `skip`; a damaged GSUB is an error naming the file. Feature code fea-rs
+/// refuses (which would stop every build) is left out with a note instead.
+pub(crate) fn read_font_gsub(
+    path: &Path,
+    data: &[u8],
+    face: u32,
+    source: &font::SourceFont,
+    skip: &[&str],
+) -> Result<FontSubstitutions, ImportError> {
+    let font = skrifa::FontRef::from_index(data, face)
+        .map_err(|e| ImportError::at(path, format!("not a readable font ({e})")))?;
+    let names: HashMap<u16, String> = source
+        .ids
+        .iter()
+        .zip(&source.glyphs)
+        .map(|(&id, g)| (id, g.name.clone()))
+        .collect();
+    let read = gsub::read_gsub(&font, &names, skip)
+        .map_err(|e| ImportError::at(path, format!("damaged GSUB table: {e}")))?;
+    let Some(text) = read.text else {
+        return Ok(FontSubstitutions {
+            features: None,
+            note: read.note,
+        });
+    };
+    let features = FeatureFile {
+        path: PathBuf::from("features.fea"),
+        text,
+    };
+    let mut glyph_names: Vec<&str> = vec![".notdef"];
+    glyph_names.extend(source.glyphs.iter().map(|g| g.name.as_str()));
+    let refused = crate::otf::check_features(&features, &glyph_names)
+        .into_iter()
+        .find(|d| d.severity == crate::source::Severity::Error);
+    if let Some(d) = refused {
+        let note = format!(
+            "GSUB left out: its feature code does not compile ({}); please report this font",
+            d.message
+        );
+        return Ok(FontSubstitutions {
+            features: None,
+            note: Some(note),
+        });
+    }
+    Ok(FontSubstitutions {
+        features: Some(features),
+        note: read.note,
     })
 }
 

@@ -20,6 +20,7 @@ mod flatten;
 mod grid_extrema;
 mod import_bound;
 mod import_font;
+mod import_gsub;
 mod import_malformed;
 mod import_output;
 mod import_points;
