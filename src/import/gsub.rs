@@ -20,6 +20,9 @@
 //! only imported glyphs: a rule that needs another glyph is left out (no imported text
 //! can reach it); a glyph class keeps its imported members.
 //!
+//! GDEF's ligature carets come along as `LigatureCaretByPos` (the default master's, in a
+//! variable font).
+//!
 //! `aalt` is written as its glyphs' alternates (the only form feature syntax takes there).
 //! fea-rs builds its lookups first in the lookup list, a single substitution before an
 //! alternate one; a font with one `aalt` lookup after `liga` (DejaVu) shapes differently
@@ -39,7 +42,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::fmt::Write as _;
 
 use skrifa::raw::collections::IntSet;
-use skrifa::raw::tables::gdef::Gdef;
+use skrifa::raw::tables::gdef::{CaretValue, Gdef};
 use skrifa::raw::tables::gsub::{
     AlternateSubst, ChainedSequenceContext, ClassDef, CoverageTable, Gsub, LigatureSubst,
     MultipleSubst, ReverseChainSingleSubst, SequenceContext, SingleSubst, SubstitutionLookup,
@@ -179,6 +182,7 @@ pub(crate) fn read_gsub(
     }
     text.push_str(&lookups);
     text.push_str(&blocks);
+    text.push_str(&w.ligature_carets()?);
     Ok(ReadGsub {
         text: Some(text),
         note,
@@ -320,6 +324,8 @@ struct Writer<'a> {
     systems: Vec<(String, String)>,
     /// Subtables in formats not read.
     formats_left: usize,
+    /// Ligature carets at contour points (left out).
+    carets_left: usize,
     /// Feature tags left out.
     features_left: BTreeSet<String>,
     /// Features with parameters (left out).
@@ -349,6 +355,7 @@ impl<'a> Writer<'a> {
             classes: Classes::default(),
             systems: vec![("DFLT".into(), "dflt".into())],
             formats_left: 0,
+            carets_left: 0,
             features_left: BTreeSet::new(),
             params_left: BTreeSet::new(),
             respelled: BTreeSet::new(),
@@ -1009,6 +1016,38 @@ impl<'a> Writer<'a> {
         Some(format!("rsub {} by [{}];", parts.join(" "), to.join(" ")))
     }
 
+    /// GDEF's caret positions inside the imported ligatures, as a `table GDEF` block
+    /// (empty when there are none). Carets at contour points (format 2) are left out and
+    /// counted: the fitted outline has other points.
+    fn ligature_carets(&mut self) -> Result<String, ReadError> {
+        let Some(list) = self.gdef.as_ref().and_then(|g| g.lig_caret_list()) else {
+            return Ok(String::new());
+        };
+        let list = list?;
+        let mut lines = String::new();
+        for (g, carets) in list.coverage()?.iter().zip(list.lig_glyphs().iter()) {
+            let Some(name) = self.name(glyph16(g)) else {
+                continue;
+            };
+            let mut at = Vec::new();
+            for caret in carets?.caret_values().iter() {
+                match caret? {
+                    CaretValue::Format1(c) => at.push(c.coordinate()),
+                    CaretValue::Format3(c) => at.push(c.coordinate()),
+                    CaretValue::Format2(_) => self.carets_left += 1,
+                }
+            }
+            if !at.is_empty() {
+                let at: Vec<String> = at.iter().map(i16::to_string).collect();
+                let _ = writeln!(lines, "    LigatureCaretByPos {name} {};", at.join(" "));
+            }
+        }
+        Ok(match lines.is_empty() {
+            true => String::new(),
+            false => format!("table GDEF {{\n{lines}}} GDEF;\n"),
+        })
+    }
+
     fn note(&self) -> Option<String> {
         let mut parts = Vec::new();
         if !self.features_left.is_empty() {
@@ -1030,6 +1069,12 @@ impl<'a> Writer<'a> {
             parts.push(format!(
                 "{} `aalt` lookup(s) other than single and alternate substitutions",
                 self.aalt_left
+            ));
+        }
+        if self.carets_left > 0 {
+            parts.push(format!(
+                "{} ligature caret(s) at contour points",
+                self.carets_left
             ));
         }
         if self.formats_left > 0 {

@@ -104,10 +104,16 @@ pub fn import_variable_font(
         rules: Vec::new(),
         rules_last: false,
     };
-    // The rules' alternates come in with the glyphs that reach them.
+    // The rules' alternates and the glyphs the substitutions reach come in with the glyphs
+    // that reach them (see `import_font`).
     let rules = super::rules::read_rules(&font);
+    let shaping = opts.glyphs.as_ref().map(|_| super::gsub::SHAPING_FEATURES);
     let source = font::read_font(path, data, opts.face, opts.glyphs.as_deref(), |mapped| {
-        rules.alternates(mapped)
+        let mut extra = rules.alternates(mapped);
+        extra.extend(super::gsub::reachable(&font, mapped, shaping));
+        extra.sort_unstable();
+        extra.dedup();
+        extra
     })?;
     if source.glyphs.is_empty() {
         return Err(fail(
@@ -133,6 +139,13 @@ pub fn import_variable_font(
         masters.iter().map(|m| m.coords.coords()).collect();
     let kerning = super::read_font_kerning(path, data, opts.face, &source, &locations)?;
     let anchors = super::read_font_anchors(path, data, opts.face, &source)?;
+    // The feature the rules vary is generated from them, not read again.
+    let varied: &[&str] = match (designspace.rules.is_empty(), designspace.rules_last) {
+        (true, _) => &[],
+        (false, false) => &["rvrn"],
+        (false, true) => &["rclt"],
+    };
+    let substitutions = super::read_font_gsub(path, data, opts.face, &source, varied)?;
     let style_of = |m: &MasterAt| m.name.clone();
     // Every glyph in every master, read first (a damaged gvar is an error naming the file).
     let mut per_glyph: Vec<Vec<SourceGlyph>> = Vec::with_capacity(source.glyphs.len());
@@ -232,6 +245,7 @@ pub fn import_variable_font(
         );
     }
     notes.extend(rules_note);
+    notes.extend(substitutions.note);
     notes.extend(kerning.note);
     notes.extend(anchors.note);
     notes.extend(outline_marks);
@@ -247,7 +261,7 @@ pub fn import_variable_font(
         info,
         glyphs: glyphs.next().unwrap_or_default(),
         kerning: kerning.next().unwrap_or_default(),
-        features: None,
+        features: substitutions.features,
     };
     let report = |rows: Vec<GlyphReport>, notes: Vec<String>| Report {
         rows,

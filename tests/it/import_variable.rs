@@ -394,3 +394,52 @@ fn each_master_gets_the_kerning_of_its_location() {
         assert_eq!(imported, source, "{folder}");
     }
 }
+
+/// GDEF's ligature carets of `font`: (ligature glyph name, caret x positions).
+fn carets(path: &Path) -> Vec<(String, Vec<i16>)> {
+    use skrifa::raw::tables::gdef::CaretValue;
+    use skrifa::raw::TableProvider;
+    let data = bytes(path);
+    let font = FontRef::new(&data).unwrap();
+    let names = skrifa::GlyphNames::new(&font);
+    let list = font.gdef().unwrap().lig_caret_list().unwrap().unwrap();
+    list.coverage()
+        .unwrap()
+        .iter()
+        .zip(list.lig_glyphs().iter())
+        .map(|(g, carets)| {
+            let at = carets
+                .unwrap()
+                .caret_values()
+                .iter()
+                .map(|c| match c.unwrap() {
+                    CaretValue::Format1(c) => c.coordinate(),
+                    other => panic!("caret format {}", other.caret_value_format()),
+                })
+                .collect();
+            (names.get(g).unwrap().to_string(), at)
+        })
+        .collect()
+}
+
+#[test]
+fn the_imported_family_keeps_its_ligatures_and_their_carets() {
+    // The family's `liga` (f i, f l) and its ligature carets come in as feature code, with
+    // the ligatures themselves (no character maps them), and build back the same.
+    let trip = round_trip();
+    let features = std::fs::read_to_string(trip.imported.join("features.fea")).unwrap();
+    for rule in [
+        "sub f i by fi;",
+        "sub f l by fl;",
+        "LigatureCaretByPos fi 328;",
+    ] {
+        assert!(features.contains(rule), "{rule}\n{features}");
+    }
+    assert!(trip.imported.join("fi.toml").is_file());
+    let original = carets(&trip.original);
+    assert_eq!(
+        original,
+        [("fi".to_string(), vec![328]), ("fl".to_string(), vec![328])]
+    );
+    assert_eq!(carets(&trip.rebuilt), original);
+}
