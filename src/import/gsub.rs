@@ -124,7 +124,7 @@ pub(crate) fn read_gsub(
             note: None,
         });
     };
-    let mut w = Writer::new(font, gsub, names)?;
+    let mut w = Writer::new(font, gsub, names);
     let features = w.features(skip)?;
     let listed: BTreeSet<u16> = features
         .iter()
@@ -339,14 +339,10 @@ struct Writer<'a> {
 }
 
 impl<'a> Writer<'a> {
-    fn new(
-        font: &FontRef<'a>,
-        gsub: Gsub<'a>,
-        names: &'a HashMap<u16, String>,
-    ) -> Result<Self, ReadError> {
+    fn new(font: &FontRef<'a>, gsub: Gsub<'a>, names: &'a HashMap<u16, String>) -> Self {
         let mut imported: Vec<u16> = names.keys().copied().collect();
         imported.sort_unstable();
-        Ok(Writer {
+        Writer {
             gsub,
             gdef: font.gdef().ok(),
             names,
@@ -361,7 +357,7 @@ impl<'a> Writer<'a> {
             respelled: BTreeSet::new(),
             aalt_lookups: BTreeSet::new(),
             aalt_left: 0,
-        })
+        }
     }
 
     /// Per feature tag (in the feature list's order), its lookups per script and language.
@@ -849,11 +845,7 @@ impl<'a> Writer<'a> {
     }
 
     fn name(&self, g: u16) -> Option<String> {
-        let name = self.names.get(&g)?;
-        Some(match KEYWORDS.contains(&name.as_str()) {
-            true => format!("\\{name}"),
-            false => name.clone(),
-        })
+        Some(escaped(self.names.get(&g)?))
     }
 
     fn names_of(&self, glyphs: &[u16]) -> Vec<String> {
@@ -1209,10 +1201,38 @@ fn glyph16(g: GlyphId) -> u16 {
     u16::try_from(g.to_u32()).unwrap_or(u16::MAX)
 }
 
+/// A glyph name as feature code writes it: a keyword (`mark`, `by`, `NULL`, …) escaped.
+fn escaped(name: &str) -> String {
+    match KEYWORDS.contains(&name) {
+        true => format!("\\{name}"),
+        false => name.to_string(),
+    }
+}
+
 /// A tag as feature syntax spells it (trailing spaces dropped), when it can.
 fn spelled(tag: Tag) -> Option<String> {
     let text = tag.to_string();
     let text = text.trim_end_matches(' ');
     let ok = !text.is_empty() && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     ok.then(|| text.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tags_and_names_as_feature_code_writes_them() {
+        assert_eq!(spelled(Tag::new(b"liga")).as_deref(), Some("liga"));
+        assert_eq!(spelled(Tag::new(b"lao ")).as_deref(), Some("lao"));
+        assert_eq!(spelled(Tag::new(b"KUR ")).as_deref(), Some("KUR"));
+        // DejaVu's required feature.
+        assert_eq!(spelled(Tag::new(b" RQD")), None);
+        assert_eq!(spelled(Tag::new(b"c-v1")), None);
+        assert_eq!(escaped("mark"), "\\mark");
+        assert_eq!(escaped("NULL"), "\\NULL");
+        assert_eq!(escaped("by"), "\\by");
+        assert_eq!(escaped("f_f_i"), "f_f_i");
+        assert_eq!(escaped("markup"), "markup");
+    }
 }
