@@ -388,6 +388,28 @@ fn a_damaged_gpos_is_an_error_naming_the_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn a_damaged_gsub_is_an_error_naming_the_file() {
+    // DejaVu with its GSUB lookup list offset pointed past the end of the table: the
+    // import stops before fitting and writes nothing.
+    let mut data = font_bytes();
+    let (offset, length) = table(&data, b"GSUB");
+    let lookup_list = offset + 8;
+    data[lookup_list..lookup_list + 2].copy_from_slice(&(length as u16 + 16).to_be_bytes());
+    let (font, out) = written("damaged-gsub", "damaged.ttf", &data);
+    let dir = font.parent().unwrap().to_path_buf();
+    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "f,i"], &out);
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: damaged GSUB table: An offset was out of bounds\n",
+            font.display()
+        )
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// DejaVu with its GPOS hidden (the table record renamed `GPOX`, which keeps the
 /// directory sorted): a font with only its legacy `kern` table, as many older fonts are.
 fn dejavu_without_gpos() -> Vec<u8> {
