@@ -28,8 +28,10 @@
 //! alternate one; a font with one `aalt` lookup after `liga` (DejaVu) shapes differently
 //! with `aalt` turned on.
 //!
-//! Limits: feature parameters (`size`, stylistic set and character variant names) are not
-//! read; a required feature whose tag feature syntax cannot spell (DejaVu's ` RQD`)
+//! Stylistic set names and character variant parameters come along (`featureNames`,
+//! `cvParameters`, English names only).
+//!
+//! Limits: `size` parameters are not read; a required feature whose tag feature syntax cannot spell (DejaVu's ` RQD`)
 //! comes in under its letters (shapers apply it whatever its tag), any other such feature
 //! is left out; `aalt` holds only single and alternate lookups; within a lookup, the
 //! first subtable that substitutes a glyph keeps it (as a shaper applies them); a lookup
@@ -48,10 +50,10 @@ use skrifa::raw::tables::gsub::{
     MultipleSubst, ReverseChainSingleSubst, SequenceContext, SingleSubst, SubstitutionLookup,
     SubstitutionSubtables,
 };
-use skrifa::raw::tables::layout::{LookupFlag, SequenceLookupRecord};
-use skrifa::raw::types::{GlyphId, GlyphId16, Tag};
+use skrifa::raw::tables::layout::{FeatureParams, LookupFlag, SequenceLookupRecord};
+use skrifa::raw::types::{GlyphId, GlyphId16, NameId, Tag};
 use skrifa::raw::{ReadError, TableProvider};
-use skrifa::FontRef;
+use skrifa::{FontRef, MetadataProvider};
 
 /// What [`read_gsub`] gives: the feature code (`None` when nothing came in) and a note on
 /// what was left out.
@@ -157,7 +159,7 @@ pub(crate) fn read_gsub(
     w.aalt(&mut blocks)?;
     let mut written = BTreeSet::new();
     for (tag, systems) in &features {
-        if write_feature(tag, systems, &kept, &mut blocks) {
+        if write_feature(tag, systems, &kept, w.parameters.get(tag), &mut blocks) {
             written.insert(tag.clone());
         }
     }
@@ -313,6 +315,7 @@ const KEYWORDS: &[&str] = &[
 ];
 
 struct Writer<'a> {
+    font: FontRef<'a>,
     gsub: Gsub<'a>,
     gdef: Option<Gdef<'a>>,
     names: &'a HashMap<u16, String>,
@@ -328,8 +331,10 @@ struct Writer<'a> {
     carets_left: usize,
     /// Feature tags left out.
     features_left: BTreeSet<String>,
-    /// Features with parameters (left out).
+    /// Features with parameters left out (`size`, or names the font lacks).
     params_left: BTreeSet<String>,
+    /// Stylistic set names and character variant parameters, by feature tag, as written.
+    parameters: BTreeMap<String, String>,
     /// Required features whose tags feature syntax cannot spell: (tag, the tag written).
     respelled: BTreeSet<(String, String)>,
     /// The lookups of `aalt` (written as its alternates, the only form fea-rs takes).
@@ -343,6 +348,7 @@ impl<'a> Writer<'a> {
         let mut imported: Vec<u16> = names.keys().copied().collect();
         imported.sort_unstable();
         Writer {
+            font: font.clone(),
             gsub,
             gdef: font.gdef().ok(),
             names,
@@ -354,6 +360,7 @@ impl<'a> Writer<'a> {
             carets_left: 0,
             features_left: BTreeSet::new(),
             params_left: BTreeSet::new(),
+            parameters: BTreeMap::new(),
             respelled: BTreeSet::new(),
             aalt_lookups: BTreeSet::new(),
             aalt_left: 0,
@@ -426,8 +433,15 @@ impl<'a> Writer<'a> {
                         self.aalt_lookups.extend(lookups);
                         continue;
                     }
-                    if feature.feature_params().is_some() {
-                        self.params_left.insert(tag.clone());
+                    if let Some(params) = feature.feature_params() {
+                        match params.ok().and_then(|p| self.parameters(&p)) {
+                            Some(text) => {
+                                self.parameters.insert(tag.clone(), text);
+                            }
+                            None => {
+                                self.params_left.insert(tag.clone());
+                            }
+                        }
                     }
                     let lookups = feature.lookup_list_indices().iter().map(|l| l.get());
                     match here.iter_mut().find(|(t, _, _)| *t == tag) {
@@ -456,6 +470,48 @@ impl<'a> Writer<'a> {
             }
         }
         Ok(by_tag)
+    }
+
+    /// A stylistic set's name or a character variant's parameters as feature code (the
+    /// English names, as fea-rs writes them: Windows platform, US English); `None` for
+    /// `size` and for a name the font lacks.
+    fn parameters(&self, params: &FeatureParams) -> Option<String> {
+        let name = |id: NameId| -> Option<String> {
+            let text = self
+                .font
+                .localized_strings(id)
+                .english_or_first()?
+                .to_string();
+            Some(format!("name \"{}\";", fea_string(&text)))
+        };
+        match params {
+            FeatureParams::StylisticSet(p) => Some(format!(
+                "    featureNames {{\n        {}\n    }};\n",
+                name(p.ui_name_id())?
+            )),
+            FeatureParams::CharacterVariant(p) => {
+                let mut text = String::from("    cvParameters {\n");
+                let labels = [
+                    ("FeatUILabelNameID", p.feat_ui_label_name_id()),
+                    ("FeatUITooltipTextNameID", p.feat_ui_tooltip_text_name_id()),
+                    ("SampleTextNameID", p.sample_text_name_id()),
+                ];
+                let first = p.first_param_ui_label_name_id().to_u16();
+                let params = (0..p.num_named_parameters())
+                    .map(|k| ("ParamUILabelNameID", NameId::new(first.saturating_add(k))));
+                for (key, id) in labels.into_iter().chain(params) {
+                    if id.to_u16() != 0 {
+                        let _ = writeln!(text, "        {key} {{ {} }};", name(id)?);
+                    }
+                }
+                for c in p.character() {
+                    let _ = writeln!(text, "        Character 0x{:04X};", c.get().to_u32());
+                }
+                text.push_str("    };\n");
+                Some(text)
+            }
+            FeatureParams::Size(_) => None,
+        }
     }
 
     /// Lookup `index` read.
@@ -1123,9 +1179,19 @@ fn definition_order(bodies: &BTreeMap<u16, Body>, kept: &BTreeSet<u16>) -> Vec<u
     out
 }
 
-/// Writes feature `tag`'s block; false when none of its lookups is kept (nothing written).
-fn write_feature(tag: &str, systems: &[System], kept: &BTreeSet<u16>, out: &mut String) -> bool {
+/// Writes feature `tag`'s block, `parameters` first; false when none of its lookups is
+/// kept (nothing written).
+fn write_feature(
+    tag: &str,
+    systems: &[System],
+    kept: &BTreeSet<u16>,
+    parameters: Option<&String>,
+    out: &mut String,
+) -> bool {
     let mut text = format!("feature {tag} {{\n");
+    if let Some(p) = parameters {
+        text.push_str(p);
+    }
     let mut any = false;
     let mut script = "";
     for s in systems {
@@ -1201,6 +1267,23 @@ fn glyph16(g: GlyphId) -> u16 {
     u16::try_from(g.to_u32()).unwrap_or(u16::MAX)
 }
 
+/// `text` inside a feature-code `name "…"` string: quotes, backslashes and everything
+/// outside printable ASCII as `\XXXX` UTF-16 code units (the Windows-platform escape).
+fn fea_string(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_ascii_graphic() && c != '"' && c != '\\' || c == ' ' {
+            out.push(c);
+        } else {
+            let mut units = [0u16; 2];
+            for u in c.encode_utf16(&mut units) {
+                let _ = write!(out, "\\{u:04X}");
+            }
+        }
+    }
+    out
+}
+
 /// A glyph name as feature code writes it: a keyword (`mark`, `by`, `NULL`, …) escaped.
 fn escaped(name: &str) -> String {
     match KEYWORDS.contains(&name) {
@@ -1234,5 +1317,10 @@ mod tests {
         assert_eq!(escaped("by"), "\\by");
         assert_eq!(escaped("f_f_i"), "f_f_i");
         assert_eq!(escaped("markup"), "markup");
+        assert_eq!(fea_string("Alternate a"), "Alternate a");
+        assert_eq!(
+            fea_string("\"ß\" \\ 😀"),
+            "\\0022\\00DF\\0022 \\005C \\D83D\\DE00"
+        );
     }
 }

@@ -101,6 +101,22 @@ pub(crate) struct LayoutTables {
     pub gsub: Option<Vec<u8>>,
     pub gpos: Option<Vec<u8>>,
     pub gdef: Option<Vec<u8>>,
+    /// The `name` records the layout refers to (stylistic set names, character variant
+    /// labels: IDs from 256, as fea-rs numbers them), as (platform, encoding, language,
+    /// ID, text). A variable font's own names take the IDs after them.
+    pub names: Vec<(u16, u16, u16, u16, String)>,
+}
+
+impl LayoutTables {
+    /// The first name ID after the layout's own.
+    pub(crate) fn next_name_id(&self) -> u16 {
+        self.names
+            .iter()
+            .map(|r| r.3 + 1)
+            .max()
+            .unwrap_or(256)
+            .max(256)
+    }
 }
 
 /// Compiles the layout of `source`: `features.fea` and the generated features.
@@ -151,6 +167,25 @@ pub(crate) fn layout_tables(source: &LayoutSource) -> Result<LayoutTables, OtfEr
         OtfError::Table(format!("{what} from features.fea: {e}"))
     };
     let mut out = LayoutTables::default();
+    // Names of the user's file for standard IDs (a `table name` block) are not taken: the
+    // font's own come from font.toml.
+    if let Some(name) = &compilation.name {
+        out.names = name
+            .name_record
+            .iter()
+            .filter(|r| r.name_id.to_u16() >= 256)
+            .map(|r| {
+                let text: &str = &r.string;
+                (
+                    r.platform_id,
+                    r.encoding_id,
+                    r.language_id,
+                    r.name_id.to_u16(),
+                    text.to_string(),
+                )
+            })
+            .collect();
+    }
     if let Some(gsub) = &compilation.gsub {
         out.gsub = Some(fea_write_fonts::dump_table(gsub).map_err(|e| table_err("GSUB", e))?);
     }

@@ -231,6 +231,21 @@ pub(crate) fn font_builder(
     }
     let mut os2 = os2_table(&naming, &metrics, set, !pairs.is_empty());
     let mut name = name_table(info, &naming);
+    name.name_record.extend(
+        layout
+            .names
+            .iter()
+            .map(|(platform, encoding, language, id, text)| {
+                NameRecord::new(
+                    *platform,
+                    *encoding,
+                    *language,
+                    NameId::new(*id),
+                    text.clone().into(),
+                )
+            }),
+    );
+    name.name_record.sort();
     if let Some(variable) = variable {
         if let Some(weight) = variable.weight_class {
             os2.us_weight_class = weight;

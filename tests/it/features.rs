@@ -600,3 +600,65 @@ fn a_precomposed_letter_takes_a_further_accent_on_its_components_anchor() {
         );
     }
 }
+
+/// The `name` text of `id` in `font` (English, or the first record).
+fn name_text(font: &skrifa::FontRef, id: skrifa::raw::types::NameId) -> Option<String> {
+    use skrifa::MetadataProvider;
+    Some(font.localized_strings(id).english_or_first()?.to_string())
+}
+
+/// The name of stylistic set `tag` in `font`, through its GSUB feature parameters.
+fn stylistic_set_name(font: &skrifa::FontRef, tag: &[u8; 4]) -> Option<String> {
+    use skrifa::raw::tables::layout::FeatureParams;
+    use skrifa::raw::TableProvider;
+    let gsub = font.gsub().ok()?;
+    let list = gsub.feature_list().ok()?;
+    let record = list
+        .feature_records()
+        .iter()
+        .find(|r| r.feature_tag() == skrifa::raw::types::Tag::new(tag))?;
+    let feature = record.feature(list.offset_data()).ok()?;
+    match feature.feature_params()?.ok()? {
+        FeatureParams::StylisticSet(p) => name_text(font, p.ui_name_id()),
+        _ => None,
+    }
+}
+
+#[test]
+fn stylistic_set_names_reach_the_name_table_beside_the_variable_fonts_names() {
+    // fea-rs numbers feature names from 256, as `fvar` and `STAT` names are: the layout's
+    // come first and the variable font's take the IDs after them. (Before, the names were
+    // dropped: GSUB pointed at IDs the name table lacked.)
+    let features = FeatureFile {
+        path: PathBuf::from("features.fea"),
+        text: "feature ss01 {\n    featureNames {\n        name \"Accent \\0022o\\0022\";\n    \
+               };\n    sub o by acutecomb;\n} ss01;\n"
+            .into(),
+    };
+    let (mut family, anchors) = variable_family();
+    family.default.features = Some(features.clone());
+    let variable = variable_ttf_with_anchors(&family, &anchors).expect("variable TTF builds");
+    let variable = skrifa::FontRef::new(&variable).unwrap();
+    assert_eq!(
+        stylistic_set_name(&variable, b"ss01").as_deref(),
+        Some("Accent \"o\"")
+    );
+    use skrifa::raw::TableProvider;
+    let fvar = variable.fvar().unwrap();
+    let axis = fvar.axes().unwrap()[0].axis_name_id();
+    assert_eq!(name_text(&variable, axis).as_deref(), Some("Weight"));
+    assert_eq!(axis.to_u16(), 257);
+
+    let mut font = test_font();
+    font.features = Some(features);
+    let (_dir, paths) = built(&font);
+    for path in paths {
+        let data = std::fs::read(&path).unwrap();
+        let font = skrifa::FontRef::new(&data).unwrap();
+        assert_eq!(
+            stylistic_set_name(&font, b"ss01").as_deref(),
+            Some("Accent \"o\""),
+            "{path:?}"
+        );
+    }
+}

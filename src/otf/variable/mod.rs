@@ -162,16 +162,6 @@ fn build(
         advance_deltas.push((&model.regions[..], advance_deltas_of(model, &advances)));
     }
 
-    let names = VariableNames::new(designspace, &font.info.family);
-    let weight_class = designspace
-        .axes
-        .iter()
-        .find(|a| a.tag == "wght")
-        .map(|a| a.default.round().clamp(1.0, 1000.0) as u16);
-    let shared = VariableShared {
-        weight_class,
-        names: names.records.clone(),
-    };
     let mut kerning = vec![kern_pairs(&font.kerning, &set)?];
     for master in &family.masters {
         kerning.push(kern_pairs(&master.kerning, &set)?);
@@ -214,6 +204,17 @@ fn build(
         axis_count,
         features: font.features.as_ref(),
     })?;
+    // The axis and instance names take the IDs after the layout's (stylistic set names).
+    let names = VariableNames::new(designspace, &font.info.family, layout.next_name_id());
+    let weight_class = designspace
+        .axes
+        .iter()
+        .find(|a| a.tag == "wght")
+        .map(|a| a.default.round().clamp(1.0, 1000.0) as u16);
+    let shared = VariableShared {
+        weight_class,
+        names: names.records.clone(),
+    };
     let mut builder = font_builder(
         font,
         &set,

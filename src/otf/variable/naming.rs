@@ -14,20 +14,21 @@ pub struct VariableNames {
     pub instances: Vec<u16>,
     /// Per named instance, the ID of its PostScript name.
     pub ps_names: Vec<u16>,
-    /// `(id, text)` records, IDs from 256 upwards; equal texts share one ID.
+    /// `(id, text)` records, IDs from `first` (256, or after the layout's names) upwards;
+    /// equal texts share one ID.
     pub records: Vec<(u16, String)>,
 }
 
 impl VariableNames {
     /// IDs for the axis names, the instance names, then their PostScript names, in
-    /// design-space order, for the family named `family`.
-    pub fn new(designspace: &Designspace, family: &str) -> Self {
+    /// design-space order, for the family named `family`, from ID `first` (at least 256).
+    pub fn new(designspace: &Designspace, family: &str, first: u16) -> Self {
         let mut records: Vec<(u16, String)> = Vec::new();
         let mut id_of = |text: &str| -> u16 {
             if let Some((id, _)) = records.iter().find(|(_, t)| t == text) {
                 return *id;
             }
-            let id = 256 + records.len() as u16;
+            let id = first + records.len() as u16;
             records.push((id, text.to_owned()));
             id
         };
