@@ -557,16 +557,9 @@ impl<'a> Writer<'a> {
             SubstitutionSubtables::Alternate(subtables) => {
                 let mut seen = BTreeSet::new();
                 for subtable in subtables.iter() {
-                    let AlternateSubst::Format1(t) = subtable? else {
-                        self.formats_left += 1;
-                        continue;
-                    };
-                    for (from, set) in t.coverage()?.iter().zip(t.alternate_sets().iter()) {
-                        let from = glyph16(from);
-                        let alternates: Vec<u16> = set?
-                            .alternate_glyph_ids()
-                            .iter()
-                            .map(|g| g.get().to_u16())
+                    for (from, alternates) in self.alternate_sets(&subtable?)? {
+                        let alternates: Vec<u16> = alternates
+                            .into_iter()
                             .filter(|g| self.names.contains_key(g))
                             .collect();
                         if !seen.insert(from) {
@@ -673,17 +666,8 @@ impl<'a> Writer<'a> {
                 }
                 SubstitutionSubtables::Alternate(subtables) => {
                     for subtable in subtables.iter() {
-                        let AlternateSubst::Format1(t) = subtable? else {
-                            self.formats_left += 1;
-                            continue;
-                        };
-                        for (from, set) in t.coverage()?.iter().zip(t.alternate_sets().iter()) {
-                            let to: Vec<u16> = set?
-                                .alternate_glyph_ids()
-                                .iter()
-                                .map(|g| g.get().to_u16())
-                                .collect();
-                            add(glyph16(from), &to);
+                        for (from, to) in self.alternate_sets(&subtable?)? {
+                            add(from, &to);
                         }
                     }
                 }
@@ -711,6 +695,24 @@ impl<'a> Writer<'a> {
             out.push_str(&text);
         }
         Ok(())
+    }
+
+    /// (glyph, its alternates) of an alternate-substitution subtable; nothing from the
+    /// 24-bit format (counted).
+    fn alternate_sets(
+        &mut self,
+        subtable: &AlternateSubst,
+    ) -> Result<Vec<(u16, Vec<u16>)>, ReadError> {
+        let AlternateSubst::Format1(t) = subtable else {
+            self.formats_left += 1;
+            return Ok(Vec::new());
+        };
+        let mut out = Vec::new();
+        for (from, set) in t.coverage()?.iter().zip(t.alternate_sets().iter()) {
+            let to = set?.alternate_glyph_ids().iter().map(|g| g.get().to_u16());
+            out.push((glyph16(from), to.collect()));
+        }
+        Ok(out)
     }
 
     fn single_pairs(&mut self, subtable: &SingleSubst) -> Result<Vec<(u16, u16)>, ReadError> {
