@@ -1154,29 +1154,31 @@ impl<'a> Writer<'a> {
 /// lookup defined before it is called); a call back into a lookup being written (a cycle,
 /// invalid in a font) is not followed.
 fn definition_order(bodies: &BTreeMap<u16, Body>, kept: &BTreeSet<u16>) -> Vec<u16> {
-    fn visit(
-        i: u16,
-        bodies: &BTreeMap<u16, Body>,
-        kept: &BTreeSet<u16>,
-        state: &mut BTreeMap<u16, bool>,
-        out: &mut Vec<u16>,
-    ) {
-        if state.contains_key(&i) || !kept.contains(&i) {
-            return;
+    // Depth first with an explicit stack (a damaged font may chain thousands of lookups):
+    // a lookup is written once every lookup it calls is.
+    let mut seen = BTreeSet::new();
+    let mut out = Vec::new();
+    for &root in kept {
+        if !seen.insert(root) {
+            continue;
         }
-        state.insert(i, false);
-        if let Some(body) = bodies.get(&i) {
-            for n in body.nested() {
-                visit(n, bodies, kept, state, out);
+        let nested = |i: u16| bodies.get(&i).map(Body::nested).unwrap_or_default();
+        let mut stack = vec![(root, nested(root), 0usize)];
+        while let Some((i, calls, next)) = stack.last_mut() {
+            match calls.get(*next).copied() {
+                Some(n) => {
+                    *next += 1;
+                    if kept.contains(&n) && seen.insert(n) {
+                        let calls = nested(n);
+                        stack.push((n, calls, 0));
+                    }
+                }
+                None => {
+                    out.push(*i);
+                    stack.pop();
+                }
             }
         }
-        state.insert(i, true);
-        out.push(i);
-    }
-    let mut state = BTreeMap::new();
-    let mut out = Vec::new();
-    for &i in kept {
-        visit(i, bodies, kept, &mut state, &mut out);
     }
     out
 }
