@@ -412,7 +412,7 @@ impl<'a> Writer<'a> {
                         let letters: String = raw_tag
                             .to_string()
                             .chars()
-                            .filter(|c| c.is_ascii_alphanumeric() || *c == '_')
+                            .filter(char::is_ascii_alphabetic)
                             .collect();
                         (is_required && !letters.is_empty()).then_some(letters)
                     };
@@ -1300,7 +1300,9 @@ fn escaped(name: &str) -> String {
 fn spelled(tag: Tag) -> Option<String> {
     let text = tag.to_string();
     let text = text.trim_end_matches(' ');
-    let ok = !text.is_empty() && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    // A tag that starts with a digit reads as a number.
+    let ok = text.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     ok.then(|| text.to_string())
 }
 
@@ -1316,6 +1318,8 @@ mod tests {
         // DejaVu's required feature.
         assert_eq!(spelled(Tag::new(b" RQD")), None);
         assert_eq!(spelled(Tag::new(b"c-v1")), None);
+        assert_eq!(spelled(Tag::new(b"0x12")), None);
+        assert_eq!(spelled(Tag::new(b"1234")), None);
         assert_eq!(escaped("mark"), "\\mark");
         assert_eq!(escaped("NULL"), "\\NULL");
         assert_eq!(escaped("by"), "\\by");
