@@ -201,3 +201,76 @@ fn a_character_subset_takes_the_glyphs_default_shaping_reaches() {
         assert!(shaped.substituted >= 60, "{}", shaped.substituted);
     }
 }
+
+#[test]
+fn a_mutated_gsub_imports_or_is_refused_naming_its_table() {
+    // The layout fixture with bytes of its GSUB or GDEF overwritten (a fixed pseudo-random
+    // sequence): each import either succeeds with feature code fea-rs compiles, or fails
+    // naming the damaged table; none panics. (Found this way: tags that start with a digit.)
+    let original = std::fs::read(LAYOUT).unwrap();
+    let table = |tag: &[u8; 4]| {
+        let count = usize::from(u16::from_be_bytes([original[4], original[5]]));
+        let record = (0..count)
+            .map(|i| 12 + 16 * i)
+            .find(|&r| &original[r..r + 4] == tag)
+            .unwrap();
+        let at = |k: usize| u32::from_be_bytes(original[k..k + 4].try_into().unwrap()) as usize;
+        (at(record + 8), at(record + 12))
+    };
+    let tables = [table(b"GSUB"), table(b"GSUB"), table(b"GDEF")];
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = |n: usize| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 33) as usize) % n
+    };
+    let opts = ImportOptions {
+        glyphs: Some(xglyph::import::font::parse_glyph_list("f,i,l,ŋ,б,U+0644,U+0627").unwrap()),
+        ..ImportOptions::default()
+    };
+    let (mut imported, mut refused) = (0, 0);
+    for _ in 0..60 {
+        let mut data = original.clone();
+        let (offset, length) = tables[next(3)];
+        for _ in 0..1 + next(6) {
+            let reach = if next(2) == 0 {
+                length.min(400)
+            } else {
+                length
+            };
+            data[offset + next(reach)] = next(256) as u8;
+        }
+        match import_font(Path::new(LAYOUT), &data, &opts) {
+            Ok(imp) => {
+                imported += 1;
+                let refused_note = imp
+                    .report
+                    .notes
+                    .iter()
+                    .find(|n| n.contains("does not compile"));
+                assert!(refused_note.is_none(), "{refused_note:?}");
+                if let Some(features) = &imp.font.features {
+                    let names: Vec<&str> =
+                        imp.font.glyphs.iter().map(|g| g.name.as_str()).collect();
+                    let errors = xglyph::otf::check_features(features, &names);
+                    assert!(errors.is_empty(), "{errors:?}");
+                }
+            }
+            Err(e) => {
+                refused += 1;
+                assert!(
+                    ["GSUB", "GDEF", "GPOS"]
+                        .iter()
+                        .any(|t| e.message.starts_with(&format!("damaged {t} table: "))),
+                    "{e}"
+                );
+            }
+        }
+    }
+    // Both outcomes occur.
+    assert!(
+        imported >= 10 && refused >= 10,
+        "{imported} imported, {refused} refused"
+    );
+}
