@@ -266,53 +266,12 @@ impl Classes {
 const INLINE: usize = 8;
 
 /// Feature syntax keywords a glyph name must escape (`\name`).
-const KEYWORDS: &[&str] = &[
-    "anchor",
-    "anchorDef",
-    "anon",
-    "anonymous",
-    "by",
-    "contour",
-    "cursive",
-    "device",
-    "enum",
-    "enumerate",
-    "exclude_dflt",
-    "excludeDFLT",
-    "feature",
-    "from",
-    "ignore",
-    "IgnoreBaseGlyphs",
-    "IgnoreLigatures",
-    "IgnoreMarks",
-    "include",
-    "include_dflt",
-    "includeDFLT",
-    "language",
-    "languagesystem",
-    "lookup",
-    "lookupflag",
-    "mark",
-    "MarkAttachmentType",
-    "markClass",
-    "nameid",
-    "NULL",
-    "parameters",
-    "pos",
-    "position",
-    "required",
-    "reversesub",
-    "RightToLeft",
-    "rsub",
-    "script",
-    "sub",
-    "substitute",
-    "subtable",
-    "table",
-    "useExtension",
-    "UseMarkFilteringSet",
-    "valueRecordDef",
-];
+const KEYWORDS: &str = "anchor anchorDef anon anonymous by contour cursive device enum enumerate \
+     exclude_dflt excludeDFLT feature from ignore IgnoreBaseGlyphs IgnoreLigatures \
+     IgnoreMarks include include_dflt includeDFLT language languagesystem lookup \
+     lookupflag mark MarkAttachmentType markClass nameid NULL parameters pos position \
+     required reversesub RightToLeft rsub script sub substitute subtable table \
+     useExtension UseMarkFilteringSet valueRecordDef";
 
 struct Writer<'a> {
     font: FontRef<'a>,
@@ -1290,7 +1249,7 @@ fn fea_string(text: &str) -> String {
 
 /// A glyph name as feature code writes it: a keyword (`mark`, `by`, `NULL`, …) escaped.
 fn escaped(name: &str) -> String {
-    match KEYWORDS.contains(&name) {
+    match KEYWORDS.split_whitespace().any(|k| k == name) {
         true => format!("\\{name}"),
         false => name.to_string(),
     }
