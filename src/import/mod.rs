@@ -320,8 +320,8 @@ pub(crate) fn read_font_gsub(
         path: PathBuf::from("features.fea"),
         text,
     };
-    let mut glyph_names: Vec<&str> = vec![".notdef"];
-    glyph_names.extend(source.glyphs.iter().map(|g| g.name.as_str()));
+    // `check_features` puts `.notdef` first itself.
+    let glyph_names: Vec<&str> = source.glyphs.iter().map(|g| g.name.as_str()).collect();
     let refused = crate::otf::check_features(&features, &glyph_names)
         .into_iter()
         .find(|d| d.severity == crate::source::Severity::Error);

@@ -368,46 +368,37 @@ fn kerning_equals_harfbuzz_on_every_pair() {
     }
 }
 
-#[test]
-fn a_damaged_gpos_is_an_error_naming_the_file() {
-    // DejaVu with its GPOS lookup list offset pointed past the end of the table.
+/// DejaVu with the lookup list offset of its `tag` table (GSUB or GPOS) pointed past the
+/// end of the table, imported with `--glyphs glyphs`: the import stops before fitting,
+/// names the file and the table, and writes nothing.
+fn assert_a_damaged_lookup_list_is_named(tag: &str, glyphs: &str) {
     let mut data = font_bytes();
-    let (offset, length) = table(&data, b"GPOS");
+    let (offset, length) = table(&data, tag.as_bytes().try_into().unwrap());
     let lookup_list = offset + 8;
     data[lookup_list..lookup_list + 2].copy_from_slice(&(length as u16 + 16).to_be_bytes());
-    let (font, out) = written("damaged-gpos", "damaged.ttf", &data);
+    let case = format!("damaged-{}", tag.to_lowercase());
+    let (font, out) = written(&case, "damaged.ttf", &data);
     let dir = font.parent().unwrap().to_path_buf();
-    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "A-C"], &out);
+    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", glyphs], &out);
     assert_eq!(
         err,
         format!(
-            "error: {}: damaged GPOS table: An offset was out of bounds\n",
-            font.display()
-        )
-    );
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
-fn a_damaged_gsub_is_an_error_naming_the_file() {
-    // DejaVu with its GSUB lookup list offset pointed past the end of the table: the
-    // import stops before fitting and writes nothing.
-    let mut data = font_bytes();
-    let (offset, length) = table(&data, b"GSUB");
-    let lookup_list = offset + 8;
-    data[lookup_list..lookup_list + 2].copy_from_slice(&(length as u16 + 16).to_be_bytes());
-    let (font, out) = written("damaged-gsub", "damaged.ttf", &data);
-    let dir = font.parent().unwrap().to_path_buf();
-    let err = crate::common::cli::import_fails(&[font.to_str().unwrap(), "--glyphs", "f,i"], &out);
-    assert_eq!(
-        err,
-        format!(
-            "error: {}: damaged GSUB table: An offset was out of bounds\n",
+            "error: {}: damaged {tag} table: An offset was out of bounds\n",
             font.display()
         )
     );
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_damaged_gpos_is_an_error_naming_the_file() {
+    assert_a_damaged_lookup_list_is_named("GPOS", "A-C");
+}
+
+#[test]
+fn a_damaged_gsub_is_an_error_naming_the_file() {
+    assert_a_damaged_lookup_list_is_named("GSUB", "f,i");
 }
 
 /// DejaVu with its GPOS hidden (the table record renamed `GPOX`, which keeps the
