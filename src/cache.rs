@@ -100,7 +100,7 @@ const DELTA_SHARE: usize = 8;
 
 /// Version of the fitter's output: bump it whenever [`crate::fit`] changes what it returns.
 /// (The fingerprint catches most changes anyway; the version makes the intent explicit.)
-pub const FIT_VERSION: u32 = 9;
+pub const FIT_VERSION: u32 = 10;
 
 /// Version of the compatible fitter's output: bump it whenever [`crate::compatible`]
 /// changes what it returns (paths, errors or the bound between the masters).

@@ -1184,7 +1184,8 @@ fn polish(
     for round in 0..POLISH_ROUNDS {
         let poly = Poly::new(&cubic_of(alpha, beta));
         let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        let mut worst: f64 = 0.0;
+        // The worst squared sample distance: the plain rounds need no square root.
+        let mut worst2: f64 = 0.0;
         let lawson = round >= LAWSON_AFTER;
         let inside = samples.p[polished.clone()].iter();
         for ((&p, u), w) in inside
@@ -1193,26 +1194,30 @@ fn polish(
         {
             // Parameters carry over between rounds, so a couple of steps suffice.
             let (ui, r) = poly.residual_steps(p, *u, 3, TRIAL_NEWTON_DONE);
-            let dist = r.hypot();
+            let dist2 = r.hypot2();
             *u = ui;
-            worst = worst.max(dist);
+            worst2 = worst2.max(dist2);
             if lawson {
-                *w *= dist;
+                *w *= dist2.sqrt();
             }
-            if dist <= 0.0 {
+            if dist2 <= 0.0 {
                 continue;
             }
-            let normal = -r / dist;
+            // The Jacobian of the distance along the normal `-r / |r|`, times `|r|` (so
+            // that no root is taken): `j = g / |r|`, and the normal equations' sums are
+            // `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
             let mt = 1.0 - ui;
-            let j0 = 3.0 * mt * mt * ui * normal.dot(d0);
-            let j1 = -3.0 * mt * ui * ui * normal.dot(d1);
+            let g0 = -3.0 * mt * mt * ui * r.dot(d0);
+            let g1 = 3.0 * mt * ui * ui * r.dot(d1);
             let w = *w;
-            c00 += w * j0 * j0;
-            c01 += w * j0 * j1;
-            c11 += w * j1 * j1;
-            x0 += w * j0 * dist;
-            x1 += w * j1 * dist;
+            let scaled = w / dist2;
+            c00 += scaled * g0 * g0;
+            c01 += scaled * g0 * g1;
+            c11 += scaled * g1 * g1;
+            x0 += w * g0;
+            x1 += w * g1;
         }
+        let worst = worst2.sqrt();
         if round >= LAWSON_AFTER {
             let sum: f64 = w.iter().sum();
             if sum > 0.0 {
