@@ -415,7 +415,8 @@ impl TrialBuffers {
         for round in 0..ROUNDS {
             normal.fill(0.0);
             rhs.fill(0.0);
-            let mut worst: f64 = 0.0;
+            // The worst squared sample distance: the plain rounds need no square root.
+            let mut worst2: f64 = 0.0;
             let mut sum = 0.0;
             let mut offset = 0;
             for (j, part) in parts.iter().enumerate() {
@@ -437,27 +438,29 @@ impl TrialBuffers {
                 for (p, (param, weight)) in samples.zip(state) {
                     let (u, r) = poly.nearest(p.to_vec2(), *param);
                     *param = u;
-                    let dist = r.hypot();
-                    worst = worst.max(dist);
+                    let dist2 = r.hypot2();
+                    worst2 = worst2.max(dist2);
                     if round >= LAWSON_FROM {
-                        *weight *= dist;
+                        *weight *= dist2.sqrt();
                     }
                     sum += *weight;
-                    if dist <= 0.0 {
+                    if dist2 <= 0.0 {
                         continue;
                     }
-                    // How the distance changes with each handle length (along the residual).
-                    let away = r / dist;
+                    // How the distance changes with each handle length (along the residual
+                    // `r / |r|`), times `|r|` so that no root is taken: `j = g / |r|`, and
+                    // the sums are `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
                     let v = 1.0 - u;
-                    let ja = 3.0 * v * v * u * away.dot(da) * sa;
-                    let jb = -3.0 * v * u * u * away.dot(db) * sb;
+                    let ga = 3.0 * v * v * u * r.dot(da) * sa;
+                    let gb = -3.0 * v * u * u * r.dot(db) * sb;
                     let w = *weight;
-                    ra += w * ja * dist;
-                    rb += w * jb * dist;
-                    naa += w * ja * ja;
-                    nab += w * ja * jb;
-                    nba += w * jb * ja;
-                    nbb += w * jb * jb;
+                    let scaled = w / dist2;
+                    ra += w * ga;
+                    rb += w * gb;
+                    naa += scaled * ga * ga;
+                    nab += scaled * ga * gb;
+                    nba += scaled * gb * ga;
+                    nbb += scaled * gb * gb;
                 }
                 (rhs[ka], rhs[kb]) = (ra, rb);
                 normal[ka * n + ka] = naa;
@@ -466,6 +469,7 @@ impl TrialBuffers {
                 normal[kb * n + kb] = nbb;
                 offset += count;
             }
+            let worst = worst2.sqrt();
             if round >= LAWSON_FROM && sum > 0.0 {
                 weights.iter_mut().for_each(|w| *w /= sum);
             }
