@@ -67,6 +67,8 @@ const PEAK: f64 = 0.6;
 const EXACT_PEAK: f64 = 0.9;
 /// Gauss-Newton rounds when polishing a cubic's handles.
 const POLISH_ROUNDS: usize = 6;
+/// Samples whose projections the polish runs interleaved ([`Poly::residual_lanes`]).
+const LANES: usize = 4;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
 const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
@@ -1187,35 +1189,51 @@ fn polish(
         // The worst squared sample distance: the plain rounds need no square root.
         let mut worst2: f64 = 0.0;
         let lawson = round >= LAWSON_AFTER;
-        let inside = samples.p[polished.clone()].iter();
-        for ((&p, u), w) in inside
-            .zip(&mut u[polished.clone()])
-            .zip(&mut w[polished.clone()])
+        let inside = &samples.p[polished.clone()];
+        let (us, ws) = (&mut u[polished.clone()], &mut w[polished.clone()]);
+        let mut projected = [(0.0, Vec2::ZERO); LANES];
+        for ((points, us), ws) in inside
+            .chunks(LANES)
+            .zip(us.chunks_mut(LANES))
+            .zip(ws.chunks_mut(LANES))
         {
-            // Parameters carry over between rounds, so a couple of steps suffice.
-            let (ui, r) = poly.residual_steps(p, *u, 3, TRIAL_NEWTON_DONE);
-            let dist2 = r.hypot2();
-            *u = ui;
-            worst2 = worst2.max(dist2);
-            if lawson {
-                *w *= dist2.sqrt();
+            // Parameters carry over between rounds, so a couple of steps suffice. A whole
+            // chunk's Newton steps run interleaved (see [`Poly::residual_lanes`]); the sums
+            // are added in the samples' order either way.
+            if let (Ok(points), Ok(starts)) = (
+                <&[Point; LANES]>::try_from(points),
+                <&[f64; LANES]>::try_from(&*us),
+            ) {
+                projected = poly.residual_lanes(points, starts, 3, TRIAL_NEWTON_DONE);
+            } else {
+                for ((&p, &u), out) in points.iter().zip(&*us).zip(&mut projected) {
+                    *out = poly.residual_steps(p, u, 3, TRIAL_NEWTON_DONE);
+                }
             }
-            if dist2 <= 0.0 {
-                continue;
+            for ((&(ui, r), u), w) in projected.iter().zip(us).zip(ws) {
+                let dist2 = r.hypot2();
+                *u = ui;
+                worst2 = worst2.max(dist2);
+                if lawson {
+                    *w *= dist2.sqrt();
+                }
+                if dist2 <= 0.0 {
+                    continue;
+                }
+                // The Jacobian of the distance along the normal `-r / |r|`, times `|r|` (so
+                // that no root is taken): `j = g / |r|`, and the normal equations' sums are
+                // `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
+                let mt = 1.0 - ui;
+                let g0 = -3.0 * mt * mt * ui * r.dot(d0);
+                let g1 = 3.0 * mt * ui * ui * r.dot(d1);
+                let w = *w;
+                let scaled = w / dist2;
+                c00 += scaled * g0 * g0;
+                c01 += scaled * g0 * g1;
+                c11 += scaled * g1 * g1;
+                x0 += w * g0;
+                x1 += w * g1;
             }
-            // The Jacobian of the distance along the normal `-r / |r|`, times `|r|` (so
-            // that no root is taken): `j = g / |r|`, and the normal equations' sums are
-            // `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
-            let mt = 1.0 - ui;
-            let g0 = -3.0 * mt * mt * ui * r.dot(d0);
-            let g1 = 3.0 * mt * ui * ui * r.dot(d1);
-            let w = *w;
-            let scaled = w / dist2;
-            c00 += scaled * g0 * g0;
-            c01 += scaled * g0 * g1;
-            c11 += scaled * g1 * g1;
-            x0 += w * g0;
-            x1 += w * g1;
         }
         let worst = worst2.sqrt();
         if round >= LAWSON_AFTER {
@@ -1339,6 +1357,43 @@ impl Poly {
     fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
         let (u, r) = self.residual_steps(p, u, steps, 1e-10);
         (u, r.hypot())
+    }
+
+    /// [`Poly::residual_steps`] of `N` points at once, their steps interleaved: the same
+    /// operations on each, so the same bits. Each point's steps are a chain of dependent
+    /// divisions, and the processor overlaps independent chains: on the bench corpus the
+    /// polish takes about a tenth less time in lanes of [`LANES`].
+    fn residual_lanes<const N: usize>(
+        &self,
+        points: &[Point; N],
+        starts: &[f64; N],
+        steps: usize,
+        done_below: f64,
+    ) -> [(f64, Vec2); N] {
+        let mut u = *starts;
+        let mut done = [false; N];
+        for _ in 0..steps {
+            for k in 0..N {
+                if done[k] {
+                    continue;
+                }
+                let r = self.eval(u[k]) - points[k].to_vec2();
+                let d1 = self.c1 + u[k] * (2.0 * self.c2 + 3.0 * u[k] * self.c3);
+                let d2 = 2.0 * self.c2 + 6.0 * u[k] * self.c3;
+                let denom = d1.dot(d1) + r.dot(d2);
+                if denom <= 1e-300 {
+                    done[k] = true;
+                    continue;
+                }
+                let next = (u[k] - r.dot(d1) / denom).clamp(0.0, 1.0);
+                done[k] = (next - u[k]).abs() < done_below;
+                u[k] = next;
+            }
+            if done.iter().all(|&d| d) {
+                break;
+            }
+        }
+        std::array::from_fn(|k| (u[k], self.eval(u[k]) - points[k].to_vec2()))
     }
 
     /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length,
@@ -1681,6 +1736,10 @@ fn project_samples_between(
         u[i] = ui;
         near[i] = (poly.eval(ui) - samples.p[i].to_vec2()).hypot();
     }
+    // Every other sample starts from its share between its two known neighbours, so their
+    // projections are independent: they run in lanes of [`LANES`] (the same bits).
+    let mut lane = [0; LANES];
+    let mut filled = 0;
     for pair in at.windows(2) {
         let (i0, i1) = (pair[0], pair[1]);
         let (t0, dt, u0, du) = (
@@ -1690,9 +1749,22 @@ fn project_samples_between(
             u[i1] - u[i0],
         );
         for i in i0 + 1..i1 {
-            let guess = (u0 + du * ((samples.t[i] - t0) / dt)).clamp(0.0, 1.0);
-            (u[i], near[i]) = poly.project_loose(samples.p[i], guess);
+            u[i] = (u0 + du * ((samples.t[i] - t0) / dt)).clamp(0.0, 1.0);
+            lane[filled] = i;
+            filled += 1;
+            if filled == LANES {
+                let points = lane.map(|i| samples.p[i]);
+                let starts = lane.map(|i| u[i]);
+                let done = poly.residual_lanes(&points, &starts, 6, PAIRING_NEWTON_DONE);
+                for (&i, (ui, r)) in lane.iter().zip(done) {
+                    (u[i], near[i]) = (ui, r.hypot());
+                }
+                filled = 0;
+            }
         }
+    }
+    for &i in &lane[..filled] {
+        (u[i], near[i]) = poly.project_loose(samples.p[i], u[i]);
     }
 }
 

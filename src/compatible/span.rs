@@ -47,6 +47,8 @@ const HOPELESS_LATE: f64 = 2.0;
 const MIN_HANDLE: f64 = 1e-4;
 /// Newton steps projecting a sample onto the cubic per round (parameters carry over).
 const PROJECT_STEPS: usize = 2;
+/// Samples whose projections the polish runs interleaved ([`Power::nearest_lanes`]).
+const LANES: usize = 4;
 
 /// Curve samples of one smooth stretch of one master on uniform grids from its start, each
 /// grid point evaluated once per level.
@@ -197,6 +199,42 @@ impl Power {
     fn nearest(&self, p: Vec2, u: f64) -> (f64, Vec2) {
         let u = self.newton(p, u, PROJECT_STEPS);
         (u, self.at(u) - p)
+    }
+
+    /// [`Power::nearest`] of [`LANES`] points at once, their Newton steps interleaved: the
+    /// same operations on each, so the same bits, while the processor overlaps the
+    /// independent chains of divisions (as `fit`'s polish does).
+    fn nearest_lanes(
+        &self,
+        points: &[Point; LANES],
+        starts: &[f64; LANES],
+    ) -> [(f64, Vec2); LANES] {
+        let [_, c1, c2, c3] = self.0;
+        let p = points.map(|p| p.to_vec2());
+        let mut u = *starts;
+        let mut done = [false; LANES];
+        for _ in 0..PROJECT_STEPS {
+            for k in 0..LANES {
+                if done[k] {
+                    continue;
+                }
+                let r = self.at(u[k]) - p[k];
+                let d1 = c1 + u[k] * (2.0 * c2 + 3.0 * u[k] * c3);
+                let d2 = 2.0 * c2 + 6.0 * u[k] * c3;
+                let curvature = d1.dot(d1) + r.dot(d2);
+                if curvature <= 1e-300 {
+                    done[k] = true;
+                    continue;
+                }
+                let next = (u[k] - r.dot(d1) / curvature).clamp(0.0, 1.0);
+                done[k] = (next - u[k]).abs() < 1e-10;
+                u[k] = next;
+            }
+            if done.iter().all(|&d| d) {
+                break;
+            }
+        }
+        std::array::from_fn(|k| (u[k], self.at(u[k]) - p[k]))
     }
 
     /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
@@ -433,34 +471,51 @@ impl TrialBuffers {
                     normal[kb * n + ka],
                     normal[kb * n + kb],
                 ];
-                let samples = part.samples.p[1..count - 1].iter();
-                let state = params[inner.clone()].iter_mut().zip(&mut weights[inner]);
-                for (p, (param, weight)) in samples.zip(state) {
-                    let (u, r) = poly.nearest(p.to_vec2(), *param);
-                    *param = u;
-                    let dist2 = r.hypot2();
-                    worst2 = worst2.max(dist2);
-                    if round >= LAWSON_FROM {
-                        *weight *= dist2.sqrt();
+                let samples = &part.samples.p[1..count - 1];
+                let (params, weights) = (&mut params[inner.clone()], &mut weights[inner]);
+                let mut projected = [(0.0, Vec2::ZERO); LANES];
+                for ((points, params), weights) in samples
+                    .chunks(LANES)
+                    .zip(params.chunks_mut(LANES))
+                    .zip(weights.chunks_mut(LANES))
+                {
+                    // A whole chunk's Newton steps run interleaved (the same bits).
+                    if let (Ok(points), Ok(starts)) = (
+                        <&[Point; LANES]>::try_from(points),
+                        <&[f64; LANES]>::try_from(&*params),
+                    ) {
+                        projected = poly.nearest_lanes(points, starts);
+                    } else {
+                        for ((p, &u), out) in points.iter().zip(&*params).zip(&mut projected) {
+                            *out = poly.nearest(p.to_vec2(), u);
+                        }
                     }
-                    sum += *weight;
-                    if dist2 <= 0.0 {
-                        continue;
+                    for ((&(u, r), param), weight) in projected.iter().zip(params).zip(weights) {
+                        *param = u;
+                        let dist2 = r.hypot2();
+                        worst2 = worst2.max(dist2);
+                        if round >= LAWSON_FROM {
+                            *weight *= dist2.sqrt();
+                        }
+                        sum += *weight;
+                        if dist2 <= 0.0 {
+                            continue;
+                        }
+                        // How the distance changes with each handle length (along the residual
+                        // `r / |r|`), times `|r|` so that no root is taken: `j = g / |r|`, and
+                        // the sums are `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
+                        let v = 1.0 - u;
+                        let ga = 3.0 * v * v * u * r.dot(da) * sa;
+                        let gb = -3.0 * v * u * u * r.dot(db) * sb;
+                        let w = *weight;
+                        let scaled = w / dist2;
+                        ra += w * ga;
+                        rb += w * gb;
+                        naa += scaled * ga * ga;
+                        nab += scaled * ga * gb;
+                        nba += scaled * gb * ga;
+                        nbb += scaled * gb * gb;
                     }
-                    // How the distance changes with each handle length (along the residual
-                    // `r / |r|`), times `|r|` so that no root is taken: `j = g / |r|`, and
-                    // the sums are `w j j = (w / |r|^2) g g` and `w j |r| = w g`.
-                    let v = 1.0 - u;
-                    let ga = 3.0 * v * v * u * r.dot(da) * sa;
-                    let gb = -3.0 * v * u * u * r.dot(db) * sb;
-                    let w = *weight;
-                    let scaled = w / dist2;
-                    ra += w * ga;
-                    rb += w * gb;
-                    naa += scaled * ga * ga;
-                    nab += scaled * ga * gb;
-                    nba += scaled * gb * ga;
-                    nbb += scaled * gb * gb;
                 }
                 (rhs[ka], rhs[kb]) = (ra, rb);
                 normal[ka * n + ka] = naa;
