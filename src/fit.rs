@@ -1514,11 +1514,32 @@ pub(crate) fn project_onto(cubic: &CubicBez, p: Point, guess: f64, steps: usize)
     Poly::new(cubic).project_steps(p, guess, steps).0
 }
 
-/// [`project_onto`] for many points on one cubic: its power form built once (the same
-/// values).
-pub(crate) fn projector(cubic: &CubicBez, steps: usize) -> impl Fn(Point, f64) -> f64 {
+/// [`project_onto`] for many points on one cubic, each `u[k]` from its own start to the
+/// parameter of `point(k)`: the power form built once, the projections in lanes of
+/// [`LANES`] (the same values as one by one).
+pub(crate) fn project_each(
+    cubic: &CubicBez,
+    u: &mut [f64],
+    point: impl Fn(usize) -> Point,
+    steps: usize,
+) {
     let poly = Poly::new(cubic);
-    move |p, guess| poly.project_steps(p, guess, steps).0
+    let mut k = 0;
+    while k + LANES <= u.len() {
+        let points: [Point; LANES] = std::array::from_fn(|lane| point(k + lane));
+        let starts = std::array::from_fn(|lane| u[k + lane]);
+        for (lane, (ui, _)) in poly
+            .residual_lanes(&points, &starts, steps, 1e-10)
+            .into_iter()
+            .enumerate()
+        {
+            u[k + lane] = ui;
+        }
+        k += LANES;
+    }
+    for (k, u) in u.iter_mut().enumerate().skip(k) {
+        *u = poly.project_steps(point(k), *u, steps).0;
+    }
 }
 
 /// The distance from `q` to the true curve near parameter `t`: `steps` Newton steps on the

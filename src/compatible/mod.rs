@@ -1389,11 +1389,16 @@ impl JointSamples {
             stack.clear();
         }
         let last = out.t.len() - 1;
-        for (j, cubic) in cubics.iter().enumerate() {
-            let power = Power::new(cubic);
-            let (t, u) = (&out.t, &mut out.u[j]);
+        let powers: Vec<Power> = cubics.iter().map(Power::new).collect();
+        for u in &mut out.u {
             u.push(0.0);
-            for i in 1..last {
+        }
+        // Sample by sample, each master in turn: a master's projections form a chain (each
+        // starts from the last ones), and the masters' chains, side by side, overlap in the
+        // processor. Each master's operations are the same in either order.
+        for i in 1..last {
+            for (j, power) in powers.iter().enumerate() {
+                let (t, u) = (&out.t, &mut out.u[j]);
                 // From the last two samples' parameters, extrapolated (Newton then needs
                 // a step or two).
                 let guess = match i {
@@ -1420,6 +1425,8 @@ impl JointSamples {
                 };
                 u.push(next);
             }
+        }
+        for u in &mut out.u {
             u.push(1.0);
         }
         // The middle at the masters' samples (it does not refine them), paired with the
@@ -1428,17 +1435,10 @@ impl JointSamples {
             let mut run = Run::new(spline);
             let (p, d): (Vec<Point>, Vec<Vec2>) = out.t.iter().map(|&t| run.eval_deriv(t)).unzip();
             let cubic = blend_cubic(&[*c0, *c1], &[0.5, 0.5]);
-            let project = fit::projector(&cubic, REPROJECT_STEPS);
-            let u = (0..=last)
-                .map(|i| {
-                    let guess = 0.5 * (out.u[0][i] + out.u[1][i]);
-                    if i == 0 || i == last {
-                        guess
-                    } else {
-                        project(p[i], guess)
-                    }
-                })
+            let mut u: Vec<f64> = (0..=last)
+                .map(|i| 0.5 * (out.u[0][i] + out.u[1][i]))
                 .collect();
+            fit::project_each(&cubic, &mut u[1..last], |k| p[k + 1], REPROJECT_STEPS);
             out.middle = Some((p, d, u));
         }
         out
@@ -1674,18 +1674,13 @@ impl JointSamples {
         let samples: Vec<(Point, Vec2)> = (0..n).map(sample).collect();
         // The blended pairing, moved to the blended cubic's nearest points (from there the
         // Newton steps are few).
-        let project = fit::projector(&cubic, REPROJECT_STEPS);
-        let u: Vec<f64> = u
-            .iter()
-            .enumerate()
-            .map(|(i, &u)| {
-                if i == 0 || i == n - 1 {
-                    u
-                } else {
-                    project(samples[i].0, u)
-                }
-            })
-            .collect();
+        let mut u = u.to_vec();
+        fit::project_each(
+            &cubic,
+            &mut u[1..n - 1],
+            |k| samples[k + 1].0,
+            REPROJECT_STEPS,
+        );
         let mut worst: f64 = 0.0;
         for i in 0..n - 1 {
             let (left, right) = (samples[i], samples[i + 1]);
