@@ -201,20 +201,44 @@ impl Power {
         (u, self.at(u) - p)
     }
 
-    /// [`Power::nearest`] of [`LANES`] points at once, their Newton steps interleaved: the
-    /// same operations on each, so the same bits, while the processor overlaps the
-    /// independent chains of divisions (as `fit`'s polish does).
+    /// [`Power::nearest`] of [`LANES`] points at once (see [`Power::newton_lanes`]).
     fn nearest_lanes(
         &self,
         points: &[Point; LANES],
         starts: &[f64; LANES],
     ) -> [(f64, Vec2); LANES] {
-        let [_, c1, c2, c3] = self.0;
         let p = points.map(|p| p.to_vec2());
+        let u = self.newton_lanes(&p, starts, PROJECT_STEPS);
+        std::array::from_fn(|k| (u[k], self.at(u[k]) - p[k]))
+    }
+
+    /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
+    /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
+    pub(super) fn project(&self, p: Vec2, u: f64, steps: usize) -> (f64, f64) {
+        let u = self.newton(p, u, steps);
+        (u, (self.at(u) - p).hypot())
+    }
+
+    /// At most `steps` Newton steps from `u` towards the parameter nearest `p`.
+    fn newton(&self, p: Vec2, u: f64, steps: usize) -> f64 {
+        let [u] = self.newton_lanes(&[p], &[u], steps);
+        u
+    }
+
+    /// [`Power::newton`] of `N` points at once, their steps interleaved: the same
+    /// operations on each, so the same bits as one by one, while the processor overlaps
+    /// the independent chains of divisions (as `fit`'s polish does).
+    fn newton_lanes<const N: usize>(
+        &self,
+        p: &[Vec2; N],
+        starts: &[f64; N],
+        steps: usize,
+    ) -> [f64; N] {
+        let [_, c1, c2, c3] = self.0;
         let mut u = *starts;
-        let mut done = [false; LANES];
-        for _ in 0..PROJECT_STEPS {
-            for k in 0..LANES {
+        let mut done = [false; N];
+        for _ in 0..steps {
+            for k in 0..N {
                 if done[k] {
                     continue;
                 }
@@ -231,34 +255,6 @@ impl Power {
                 u[k] = next;
             }
             if done.iter().all(|&d| d) {
-                break;
-            }
-        }
-        std::array::from_fn(|k| (u[k], self.at(u[k]) - p[k]))
-    }
-
-    /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
-    /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
-    pub(super) fn project(&self, p: Vec2, u: f64, steps: usize) -> (f64, f64) {
-        let u = self.newton(p, u, steps);
-        (u, (self.at(u) - p).hypot())
-    }
-
-    /// At most `steps` Newton steps from `u` towards the parameter nearest `p`.
-    fn newton(&self, p: Vec2, mut u: f64, steps: usize) -> f64 {
-        let [_, c1, c2, c3] = self.0;
-        for _ in 0..steps {
-            let r = self.at(u) - p;
-            let d1 = c1 + u * (2.0 * c2 + 3.0 * u * c3);
-            let d2 = 2.0 * c2 + 6.0 * u * c3;
-            let curvature = d1.dot(d1) + r.dot(d2);
-            if curvature <= 1e-300 {
-                break;
-            }
-            let next = (u - r.dot(d1) / curvature).clamp(0.0, 1.0);
-            let done = (next - u).abs() < 1e-10;
-            u = next;
-            if done {
                 break;
             }
         }
