@@ -25,7 +25,7 @@ pub struct SourceFont {
     pub info: FontInfo,
     /// The glyphs asked for, with their outlines.
     pub glyphs: Vec<SourceGlyph>,
-    /// Characters asked for that the font does not map.
+    /// Characters asked for (`--glyphs`) that the font does not map.
     pub missing: Vec<char>,
     /// Notes on visible characters whose glyph the font leaves empty (imported empty).
     pub empty: Vec<String>,
@@ -135,6 +135,10 @@ pub fn read_font(
     for &c in &wanted {
         match face.glyph_index(c) {
             Some(gid) if gid.0 != 0 => by_glyph.entry(gid.0).or_default().push(c),
+            // A whole-font import lists the code points of the cmap's segments, and a
+            // format-4 segment can map some of its range to glyph 0: those are not mapped
+            // (fontTools leaves them out too), so they are no news to the user.
+            _ if chars.is_none() => {}
             _ => missing.push(c),
         }
     }
@@ -207,6 +211,20 @@ pub fn read_font(
         empty,
         ids,
     })
+}
+
+impl SourceFont {
+    /// The import report's notes on the characters read: one per character asked for that
+    /// the font lacks, then one per glyph left empty.
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes: Vec<String> = self
+            .missing
+            .iter()
+            .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
+            .collect();
+        notes.extend(self.empty.iter().cloned());
+        notes
+    }
 }
 
 /// Refuses a glyph that the sources could not hold ([`crate::source::limits`]): an

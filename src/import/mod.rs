@@ -199,6 +199,7 @@ pub fn import_font(
         ));
     }
     let tolerance = check_tolerance(opts.tolerance, source.info.units_per_em)?;
+    let source_notes = source.notes();
     // Read before the glyphs are fitted: a damaged GPOS fails at once.
     let kerning = read_font_kerning(path, data, opts.face, &source, &[&[]])?;
     let anchors = read_font_anchors(path, data, opts.face, &source)?;
@@ -221,13 +222,7 @@ pub fn import_font(
         .report
         .notes
         .extend(anchors::outline_marks_note(&imported.font.glyphs));
-    for c in source.missing {
-        imported.report.notes.push(format!(
-            "no glyph for '{c}' (U+{:04X}) in the font",
-            u32::from(c)
-        ));
-    }
-    imported.report.notes.extend(source.empty);
+    imported.report.notes.extend(source_notes);
     Ok(imported)
 }
 

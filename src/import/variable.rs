@@ -220,12 +220,7 @@ pub fn import_variable_font(
         .and_then(|g| super::anchors::outline_marks_note(g));
     let mut glyphs = glyphs.into_iter();
     let mut rows = rows.into_iter();
-    let mut notes: Vec<String> = source
-        .missing
-        .iter()
-        .map(|c| format!("no glyph for '{c}' (U+{:04X}) in the font", u32::from(*c)))
-        .collect();
-    notes.extend(source.empty.iter().cloned());
+    let mut notes = source.notes();
     if !peaks.reproduced || !corners_reproduced {
         notes.push(
             "gvar has variation regions that the masters at their peaks do not give back \

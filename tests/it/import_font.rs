@@ -876,3 +876,41 @@ fn a_mark_placed_by_its_outline_comes_in_with_mark_outline_and_shapes_as_in_deja
     assert_eq!(classes, want);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A whole-font import reads the characters DejaVu's cmap maps, and no others: its format-4
+/// segments also span code points they map to glyph 0 (U+0000, U+02F4, U+02F5 among them;
+/// ttf-parser lists every code point of a segment), which are not mapped and get no note.
+/// A character asked for with `--glyphs` that the font lacks keeps its note. The count is
+/// fontTools' (`len(getBestCmap())`: 5,918, each to its own glyph).
+#[test]
+fn a_whole_font_import_reads_the_mapped_characters_only() {
+    use xglyph::import::font::read_font;
+    let data = font_bytes();
+    let path = Path::new(DEJAVU);
+    let whole = read_font(path, &data, 0, None, |_| Vec::new()).expect("DejaVu reads");
+    let chars: Vec<char> = whole
+        .glyphs
+        .iter()
+        .flat_map(|g| g.unicodes.clone())
+        .collect();
+    assert_eq!((chars.len(), whole.glyphs.len()), (5918, 5918));
+    for c in ['\u{0}', '\u{02F4}', '\u{02F5}'] {
+        assert!(
+            !chars.contains(&c),
+            "U+{:04X} is mapped to glyph 0",
+            u32::from(c)
+        );
+    }
+    assert_eq!(whole.notes(), Vec::<String>::new());
+    // Asked for: one note each.
+    let asked = ['A', '\u{02F4}', '\u{E000}'];
+    let some = read_font(path, &data, 0, Some(&asked), |_| Vec::new()).expect("DejaVu reads");
+    assert_eq!(some.glyphs.len(), 1);
+    assert_eq!(
+        some.notes(),
+        [
+            "no glyph for '\u{02F4}' (U+02F4) in the font",
+            "no glyph for '\u{E000}' (U+E000) in the font"
+        ]
+    );
+}
