@@ -104,7 +104,7 @@ pub const FIT_VERSION: u32 = 10;
 
 /// Version of the compatible fitter's output: bump it whenever [`crate::compatible`]
 /// changes what it returns (paths, errors or the bound between the masters).
-pub const COMPATIBLE_VERSION: u32 = 8;
+pub const COMPATIBLE_VERSION: u32 = 9;
 
 /// Layout of the file itself.
 const FORMAT_VERSION: u32 = 4;

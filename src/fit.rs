@@ -40,6 +40,7 @@
 
 use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 
+use crate::power::PowerCubic;
 use crate::xspline::{Segment, XSpline};
 
 /// Curve samples per unit of parameter (one X-spline segment) when measuring a span.
@@ -67,7 +68,7 @@ const PEAK: f64 = 0.6;
 const EXACT_PEAK: f64 = 0.9;
 /// Gauss-Newton rounds when polishing a cubic's handles.
 const POLISH_ROUNDS: usize = 6;
-/// Samples whose projections the polish runs interleaved ([`Poly::residual_lanes`]).
+/// Samples whose projections the polish runs interleaved ([`PowerCubic::residual_lanes`]).
 const LANES: usize = 4;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
@@ -87,7 +88,7 @@ const LOW_ROUND: usize = 1;
 const GUESS_POWER: f64 = 0.2;
 /// Bounds of that scale.
 const GUESS_RANGE: (f64, f64) = (0.8, 1.25);
-/// Projections for pairings ([`Poly::project_loose`]) stop when a Newton step moves the
+/// Projections for pairings ([`project_loose`]) stop when a Newton step moves the
 /// parameter less than this (the distance is then off by about its square).
 const PAIRING_NEWTON_DONE: f64 = 1e-5;
 /// [`fit_contour`]'s trials stop projecting a sample once a Newton step moves it less than
@@ -1184,7 +1185,7 @@ fn polish(
     // Whether `u` holds the projections onto the best cubic.
     let mut current = false;
     for round in 0..POLISH_ROUNDS {
-        let poly = Poly::new(&cubic_of(alpha, beta));
+        let poly = PowerCubic::new(&cubic_of(alpha, beta));
         let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
         // The worst squared sample distance: the plain rounds need no square root.
         let mut worst2: f64 = 0.0;
@@ -1198,7 +1199,7 @@ fn polish(
             .zip(ws.chunks_mut(LANES))
         {
             // Parameters carry over between rounds, so a couple of steps suffice. A whole
-            // chunk's Newton steps run interleaved (see [`Poly::residual_lanes`]); the sums
+            // chunk's Newton steps run interleaved (see [`PowerCubic::residual_lanes`]); the sums
             // are added in the samples' order either way.
             if let (Ok(points), Ok(starts)) = (
                 <&[Point; LANES]>::try_from(points),
@@ -1288,121 +1289,11 @@ pub(crate) fn handle_ceiling(direction: Vec2, chord: Vec2) -> f64 {
     }
 }
 
-/// A cubic in power form, `c0 + c1 u + c2 u^2 + c3 u^3`: cheap repeated evaluation of the
-/// point and its derivatives, which projection needs thousands of times per fit.
-#[derive(Clone, Copy)]
-struct Poly {
-    c0: Vec2,
-    c1: Vec2,
-    c2: Vec2,
-    c3: Vec2,
-}
-
-impl Poly {
-    fn new(c: &CubicBez) -> Poly {
-        let (p0, p1, p2, p3) = (
-            c.p0.to_vec2(),
-            c.p1.to_vec2(),
-            c.p2.to_vec2(),
-            c.p3.to_vec2(),
-        );
-        Poly {
-            c0: p0,
-            c1: 3.0 * (p1 - p0),
-            c2: 3.0 * (p2 - 2.0 * p1 + p0),
-            c3: p3 - p0 + 3.0 * (p1 - p2),
-        }
-    }
-
-    fn eval(&self, u: f64) -> Vec2 {
-        self.c0 + u * (self.c1 + u * (self.c2 + u * self.c3))
-    }
-
-    /// `self(u0 + s du)` as a cubic in `s`, in power form (expanded about `u0`).
-    fn along(&self, u0: f64, du: f64) -> Poly {
-        let d1 = self.c1 + u0 * (2.0 * self.c2 + 3.0 * u0 * self.c3);
-        let d2 = self.c2 + 3.0 * u0 * self.c3;
-        Poly {
-            c0: self.eval(u0),
-            c1: d1 * du,
-            c2: d2 * (du * du),
-            c3: self.c3 * (du * du * du),
-        }
-    }
-
-    /// `self(s) - other(s)`.
-    fn minus(&self, other: &Poly) -> Poly {
-        Poly {
-            c0: self.c0 - other.c0,
-            c1: self.c1 - other.c1,
-            c2: self.c2 - other.c2,
-            c3: self.c3 - other.c3,
-        }
-    }
-
-    /// Nearest point to `p` by Newton iteration from `u` (clamped to `[0, 1]`);
-    /// `(u, distance)`. Local: callers start it near the answer.
-    fn project(&self, p: Point, u: f64) -> (f64, f64) {
-        self.project_steps(p, u, 6)
-    }
-
-    /// [`Poly::project`], stopping at a step below [`PAIRING_NEWTON_DONE`]: for pairings,
-    /// where any parameter gives a valid bound and a near one a tight bound.
-    fn project_loose(&self, p: Point, u: f64) -> (f64, f64) {
-        let (u, r) = self.residual_steps(p, u, 6, PAIRING_NEWTON_DONE);
-        (u, r.hypot())
-    }
-
-    /// [`Poly::project`] with at most `steps` Newton steps.
-    fn project_steps(&self, p: Point, u: f64, steps: usize) -> (f64, f64) {
-        let (u, r) = self.residual_steps(p, u, steps, 1e-10);
-        (u, r.hypot())
-    }
-
-    /// [`Poly::residual_steps`] of `N` points at once, their Newton steps interleaved: the
-    /// same operations on each, so the same bits as one by one (a step below `done_below`
-    /// ends a point's steps). Each point's steps are a chain of dependent divisions, and the
-    /// processor overlaps independent chains: in lanes of [`LANES`] the fitter takes 15–22 %
-    /// less time on its benchmarks (BENCHMARKS.md, session 38).
-    fn residual_lanes<const N: usize>(
-        &self,
-        points: &[Point; N],
-        starts: &[f64; N],
-        steps: usize,
-        done_below: f64,
-    ) -> [(f64, Vec2); N] {
-        let mut u = *starts;
-        let mut done = [false; N];
-        for _ in 0..steps {
-            for k in 0..N {
-                if done[k] {
-                    continue;
-                }
-                let r = self.eval(u[k]) - points[k].to_vec2();
-                let d1 = self.c1 + u[k] * (2.0 * self.c2 + 3.0 * u[k] * self.c3);
-                let d2 = 2.0 * self.c2 + 6.0 * u[k] * self.c3;
-                let denom = d1.dot(d1) + r.dot(d2);
-                if denom <= 1e-300 {
-                    done[k] = true;
-                    continue;
-                }
-                let next = (u[k] - r.dot(d1) / denom).clamp(0.0, 1.0);
-                done[k] = (next - u[k]).abs() < done_below;
-                u[k] = next;
-            }
-            if done.iter().all(|&d| d) {
-                break;
-            }
-        }
-        std::array::from_fn(|k| (u[k], self.eval(u[k]) - points[k].to_vec2()))
-    }
-
-    /// [`Poly::project_steps`], returning the residual `self(u) - p` instead of its length,
-    /// and stopping when a step is below `done_below`.
-    fn residual_steps(&self, p: Point, u: f64, steps: usize, done_below: f64) -> (f64, Vec2) {
-        let [projected] = self.residual_lanes(&[p], &[u], steps, done_below);
-        projected
-    }
+/// [`PowerCubic::project`], stopping at a step below [`PAIRING_NEWTON_DONE`]: for
+/// pairings, where any parameter gives a valid bound and a near one a tight bound.
+fn project_loose(poly: &PowerCubic, p: Point, u: f64) -> (f64, f64) {
+    let (u, r) = poly.residual_steps(p, u, 6, PAIRING_NEWTON_DONE);
+    (u, r.hypot())
 }
 
 /// Sub-steps per sample interval at which [`gap_bound`] evaluates the gap polynomial.
@@ -1443,7 +1334,7 @@ fn measure_within(spline: &XSpline, trial: &Trial, goal: f64, buffers: &mut Meas
     } = buffers;
     Samples::doubled(spline, &trial.samples, samples, at);
     let samples = &*samples;
-    let poly = Poly::new(&trial.cubic);
+    let poly = PowerCubic::new(&trial.cubic);
     if trial.projected {
         project_samples_between(samples, &poly, at, &trial.u, u, near);
     } else {
@@ -1497,7 +1388,7 @@ fn measure_within(spline: &XSpline, trial: &Trial, goal: f64, buffers: &mut Meas
 /// The parameter of `cubic` nearest `p`: `steps` Newton steps from `guess` within `[0, 1]`
 /// (stopping early when a step is below 1e-10).
 pub(crate) fn project_onto(cubic: &CubicBez, p: Point, guess: f64, steps: usize) -> f64 {
-    Poly::new(cubic).project_steps(p, guess, steps).0
+    PowerCubic::new(cubic).project_steps(p, guess, steps).0
 }
 
 /// [`project_onto`] for many points on one cubic, each `u[k]` from its own start to the
@@ -1509,7 +1400,7 @@ pub(crate) fn project_each(
     point: impl Fn(usize) -> Point,
     steps: usize,
 ) {
-    let poly = Poly::new(cubic);
+    let poly = PowerCubic::new(cubic);
     let mut k = 0;
     while k + LANES <= u.len() {
         let points: [Point; LANES] = std::array::from_fn(|lane| point(k + lane));
@@ -1570,8 +1461,8 @@ pub(crate) fn distance_to_curve_by(
 /// sharp point the curve's speed changes fast, and a linear pairing drifts along the cubic
 /// by more than the distance itself. Any pairing is a valid bound; a closer one is tighter.
 fn paired_gap(
-    piece: &Poly,
-    cubic: &Poly,
+    piece: &PowerCubic,
+    cubic: &PowerCubic,
     u0: f64,
     u1: f64,
     goal: f64,
@@ -1581,9 +1472,7 @@ fn paired_gap(
     if gap <= goal || splits == 0 {
         return (gap, at);
     }
-    let um = cubic
-        .project_loose(piece.eval(0.5).to_point(), 0.5 * (u0 + u1))
-        .0;
+    let um = project_loose(cubic, piece.eval(0.5).to_point(), 0.5 * (u0 + u1)).0;
     let left = paired_gap(&piece.along(0.0, 0.5), cubic, u0, um, goal, splits - 1);
     let right = paired_gap(&piece.along(0.5, 0.5), cubic, um, u1, goal, splits - 1);
     if left.0 >= right.0 {
@@ -1603,7 +1492,7 @@ const GAP_SPLITS: usize = 3;
 /// values), `|g|` at fraction `x` is at most `(1 - x) a + x b + x (1 - x) w^2 m / 2`: the
 /// chord of `g` (whose length is at most the chord of `|g|`, by convexity of the norm) plus
 /// the linear interpolation remainder. That concave quadratic's maximum is taken exactly.
-fn gap_bound(g: &Poly) -> (f64, f64) {
+fn gap_bound(g: &PowerCubic) -> (f64, f64) {
     let w = 1.0 / GAP_STEPS as f64;
     let second = |s: f64| (2.0 * g.c2 + 6.0 * s * g.c3).hypot();
     let (mut a, mut ma) = (g.c0.hypot(), second(0.0));
@@ -1642,7 +1531,7 @@ fn gap_bound(g: &Poly) -> (f64, f64) {
 /// form is the reference the bound is tested against, and the compatible fitter's measure.
 pub(crate) fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64 {
     let samples = &Samples::new(spline, a, b, SAMPLES_PER_SEGMENT, MIN_SAMPLES, true);
-    let poly = Poly::new(cubic);
+    let poly = PowerCubic::new(cubic);
     let (u, near) = project_samples(samples, &poly);
     let mut pieces = Vec::new();
     hermite_pieces(samples, &mut pieces);
@@ -1650,7 +1539,7 @@ pub(crate) fn measure(spline: &XSpline, a: f64, b: f64, cubic: &CubicBez) -> f64
 }
 
 /// Every sample projected onto the cubic: each one's cubic parameter and distance.
-fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
+fn project_samples(samples: &Samples, poly: &PowerCubic) -> (Vec<f64>, Vec<f64>) {
     let n = samples.len();
     let mut u = vec![0.0; n];
     let mut near = vec![0.0; n];
@@ -1681,7 +1570,12 @@ fn project_samples(samples: &Samples, poly: &Poly) -> (Vec<f64>, Vec<f64>) {
 /// curve parameter, which the cubic follows closely; the retry from the sample's share of
 /// the span only where Newton stopped at a clamp. (Samples that coincide in floating point
 /// start from the previous parameter.)
-fn project_samples_ahead(samples: &Samples, poly: &Poly, u: &mut Vec<f64>, near: &mut Vec<f64>) {
+fn project_samples_ahead(
+    samples: &Samples,
+    poly: &PowerCubic,
+    u: &mut Vec<f64>,
+    near: &mut Vec<f64>,
+) {
     let n = samples.len();
     u.clear();
     u.resize(n, 0.0);
@@ -1708,10 +1602,10 @@ fn project_samples_ahead(samples: &Samples, poly: &Poly, u: &mut Vec<f64>, near:
         } else {
             0.0
         };
-        let (mut ui, mut d) = poly.project_loose(samples.p[i], guess);
+        let (mut ui, mut d) = project_loose(poly, samples.p[i], guess);
         if i > 0 && i + 1 < n && d > largest && (ui <= 0.0 || ui >= 1.0) {
             let share = (samples.t[i] - samples.t[0]) / span;
-            let alt = poly.project_loose(samples.p[i], share);
+            let alt = project_loose(poly, samples.p[i], share);
             if alt.1 < d {
                 (ui, d) = alt;
             }
@@ -1728,7 +1622,7 @@ fn project_samples_ahead(samples: &Samples, poly: &Poly, u: &mut Vec<f64>, near:
 /// curve parameter.
 fn project_samples_between(
     samples: &Samples,
-    poly: &Poly,
+    poly: &PowerCubic,
     at: &[usize],
     known: &[f64],
     u: &mut Vec<f64>,
@@ -1771,14 +1665,14 @@ fn project_samples_between(
         }
     }
     for &i in &lane[..filled] {
-        (u[i], near[i]) = poly.project_loose(samples.p[i], u[i]);
+        (u[i], near[i]) = project_loose(poly, samples.p[i], u[i]);
     }
 }
 
 /// The Hermite pieces between samples, in power form, each built once, into `pieces`.
-fn hermite_pieces(samples: &Samples, pieces: &mut Vec<Poly>) {
+fn hermite_pieces(samples: &Samples, pieces: &mut Vec<PowerCubic>) {
     pieces.clear();
-    pieces.extend((0..samples.len() - 1).map(|i| Poly::new(&samples.piece(i))));
+    pieces.extend((0..samples.len() - 1).map(|i| PowerCubic::new(&samples.piece(i))));
 }
 
 /// The buffers of [`measure_within`], kept between measures.
@@ -1789,7 +1683,7 @@ struct MeasureBuffers {
     at: Vec<usize>,
     u: Vec<f64>,
     near: Vec<f64>,
-    pieces: Vec<Poly>,
+    pieces: Vec<PowerCubic>,
     /// (bound, where) on each interval.
     gaps: Vec<(f64, f64)>,
 }
@@ -1799,8 +1693,8 @@ struct MeasureBuffers {
 fn measure_golden(
     spline: &XSpline,
     samples: &Samples,
-    poly: &Poly,
-    pieces: &[Poly],
+    poly: &PowerCubic,
+    pieces: &[PowerCubic],
     u: &[f64],
     near: &[f64],
 ) -> f64 {
@@ -1949,7 +1843,13 @@ mod tests {
 
     /// Newton's projection one point at a time, written out as it was before the lanes: the
     /// reference the lanes must equal bit for bit.
-    fn one_by_one(poly: &Poly, p: Point, mut u: f64, steps: usize, done_below: f64) -> (f64, Vec2) {
+    fn one_by_one(
+        poly: &PowerCubic,
+        p: Point,
+        mut u: f64,
+        steps: usize,
+        done_below: f64,
+    ) -> (f64, Vec2) {
         let p = p.to_vec2();
         for _ in 0..steps {
             let r = poly.eval(u) - p;
@@ -1989,7 +1889,7 @@ mod tests {
         };
         let mut compared = 0;
         for cubic in &cubics {
-            let poly = Poly::new(cubic);
+            let poly = PowerCubic::new(cubic);
             for (steps, done_below) in [(1, 1e-5), (3, 1e-5), (6, 1e-5), (6, 1e-10), (2, 0.0)] {
                 for _ in 0..50 {
                     let points: [Point; LANES] = std::array::from_fn(|_| {
@@ -2048,7 +1948,7 @@ mod tests {
             ),
         ];
         for (c0, c1, c2, c3, exact) in cases {
-            let g = Poly { c0, c1, c2, c3 };
+            let g = PowerCubic { c0, c1, c2, c3 };
             let dense = (0..=100_000)
                 .map(|i| g.eval(i as f64 / 100_000.0).hypot())
                 .fold(0.0, f64::max);

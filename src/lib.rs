@@ -13,7 +13,7 @@
 //! The usual entry points are re-exported here: [`pipeline::load`] a font directory into an
 //! [`OutlinedFont`], then hand it to any backend, or to [`pipeline::outputs`] for every
 //! build output at once. The curve core ([`xspline`], [`fit`], [`flatten`], [`orient`])
-//! works on its own.
+//! works on its own; `power` holds the cubic in power form that both fitters project onto.
 
 #![warn(missing_docs)]
 
@@ -38,6 +38,7 @@ pub mod otf;
 pub mod outline;
 pub mod overlap;
 pub mod pipeline;
+mod power;
 mod record;
 pub mod render;
 pub mod reuse;

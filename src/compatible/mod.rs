@@ -67,9 +67,10 @@ use crate::fit::{self, turns_fast, Stretch, MAX_REFINE, MIN_SAMPLES, SAMPLES_PER
 mod prepared;
 mod span;
 
+use crate::power::PowerCubic;
 use crate::xspline::{ControlPoint, Segment, XSpline, XSplineError};
 use prepared::Prepared;
-use span::{Handle, Part, Power, StretchGrid, TrialBuffers};
+use span::{Handle, Part, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
@@ -1389,7 +1390,7 @@ impl JointSamples {
             stack.clear();
         }
         let last = out.t.len() - 1;
-        let powers: Vec<Power> = cubics.iter().map(Power::new).collect();
+        let powers: Vec<PowerCubic> = cubics.iter().map(PowerCubic::new).collect();
         for u in &mut out.u {
             u.push(0.0);
         }
@@ -1408,15 +1409,15 @@ impl JointSamples {
                         (u[i - 1] + slope * (t[i] - t[i - 1])).clamp(0.0, 1.0)
                     }
                 };
-                let point = out.rows[i * count + j].0.to_vec2();
-                let (near, far) = power.project(point, guess, PROJECT_STEPS);
+                let point = out.rows[i * count + j].0;
+                let (near, far) = power.project_steps(point, guess, PROJECT_STEPS);
                 let next = if far <= goal {
                     near
                 } else {
                     // A poor start can stall at a clamp or a far branch: retry from the
                     // sample's share of the span.
                     let share = (t[i] - a) / (b - a);
-                    let (alt, other) = power.project(point, share, PROJECT_STEPS);
+                    let (alt, other) = power.project_steps(point, share, PROJECT_STEPS);
                     if other < far {
                         alt
                     } else {
@@ -1539,7 +1540,7 @@ impl JointSamples {
     /// position between the masters (convex hull again), and the pairing suits both ends.
     fn segment_bound(&self, cubics: [&CubicBez; 2], goal: f64) -> f64 {
         let n = self.t.len();
-        let powers = cubics.map(Power::new);
+        let powers = cubics.map(PowerCubic::new);
         // The blended cubics at the nets' five positions, per range of the axis.
         let whole_axis = &along_axis(&powers, (0.0, 1.0));
         let halves = self
@@ -1762,7 +1763,7 @@ fn paired_bound(
 fn interval_net_bound(
     curve: Curve,
     cubics: [&CubicBez; 2],
-    blends: &[Power; 5],
+    blends: &[PowerCubic; 5],
     (l0, l1): (f64, f64),
     ends: [(f64, f64); 2],
     known: [Option<[Vec2; 4]>; 2],
@@ -1837,7 +1838,7 @@ fn interval_net_bound(
 /// One column of [`interval_net_bound`]'s values: the gap's control points in `s` at
 /// position `lambda` between the curve there and `blend` (the cubics blended there) run
 /// from `u0` to `u1`.
-fn net_column(curve: &Curve, blend: &Power, lambda: f64, (u0, u1): (f64, f64)) -> [Vec2; 4] {
+fn net_column(curve: &Curve, blend: &PowerCubic, lambda: f64, (u0, u1): (f64, f64)) -> [Vec2; 4] {
     let paired = blend.subsegment(u0, u1);
     let at = curve.at(lambda);
     std::array::from_fn(|k| at[k] - paired[k])
@@ -1845,7 +1846,7 @@ fn net_column(curve: &Curve, blend: &Power, lambda: f64, (u0, u1): (f64, f64)) -
 
 /// The blend of two masters' cubics (power form) at the five positions
 /// `λ = l0 + μ (l1 - l0)`, `μ = 0, 1/4, ..., 1`, where [`interval_net_bound`] takes the gap.
-fn along_axis(powers: &[Power; 2], (l0, l1): (f64, f64)) -> [Power; 5] {
+fn along_axis(powers: &[PowerCubic; 2], (l0, l1): (f64, f64)) -> [PowerCubic; 5] {
     std::array::from_fn(|m| {
         let mu = m as f64 / 4.0;
         let lambda = l0 + mu * (l1 - l0);
@@ -2293,7 +2294,7 @@ mod tests {
     fn a_net_with_its_end_columns_given_is_the_net_without() {
         let c0 = CubicBez::new((0., 0.), (40., 90.), (160., 110.), (200., 0.));
         let c1 = CubicBez::new((10., -20.), (30., 120.), (190., 150.), (230., -10.));
-        let powers = [Power::new(&c0), Power::new(&c1)];
+        let powers = [PowerCubic::new(&c0), PowerCubic::new(&c1)];
         let piece = |dx: f64, dy: f64| -> [Vec2; 4] {
             [
                 Vec2::new(dx, dy),

@@ -23,6 +23,7 @@ use kurbo::{CubicBez, Point, Vec2};
 
 use super::Run;
 use crate::fit;
+use crate::power::{PowerCubic, NEWTON_DONE};
 use crate::xspline::XSpline;
 
 /// Grid points per X-spline segment at the coarsest level.
@@ -47,7 +48,7 @@ const HOPELESS_LATE: f64 = 2.0;
 const MIN_HANDLE: f64 = 1e-4;
 /// Newton steps projecting a sample onto the cubic per round (parameters carry over).
 const PROJECT_STEPS: usize = 2;
-/// Samples whose projections the polish runs interleaved ([`Power::nearest_lanes`]).
+/// Samples whose projections the polish runs interleaved ([`PowerCubic::residual_lanes`]).
 const LANES: usize = 4;
 
 /// Curve samples of one smooth stretch of one master on uniform grids from its start, each
@@ -172,124 +173,6 @@ impl SpanSamples {
     /// The span's end points.
     fn ends(&self) -> (Point, Point) {
         (self.p[0], self.p[self.p.len() - 1])
-    }
-}
-
-/// A cubic in power form for cheap evaluation: `c0 + c1 u + c2 u² + c3 u³`.
-#[derive(Clone, Copy)]
-pub(super) struct Power([Vec2; 4]);
-
-impl Power {
-    pub(super) fn new(c: &CubicBez) -> Power {
-        let (p0, p1, p2, p3) = (
-            c.p0.to_vec2(),
-            c.p1.to_vec2(),
-            c.p2.to_vec2(),
-            c.p3.to_vec2(),
-        );
-        Power([
-            p0,
-            3.0 * (p1 - p0),
-            3.0 * (p0 - 2.0 * p1 + p2),
-            p3 - p0 + 3.0 * (p1 - p2),
-        ])
-    }
-
-    /// The residual `self(u) - p` at the parameter nearest `p` by Newton's method from `u`.
-    fn nearest(&self, p: Vec2, u: f64) -> (f64, Vec2) {
-        let u = self.newton(p, u, PROJECT_STEPS);
-        (u, self.at(u) - p)
-    }
-
-    /// [`Power::nearest`] of [`LANES`] points at once (see [`Power::newton_lanes`]).
-    fn nearest_lanes(
-        &self,
-        points: &[Point; LANES],
-        starts: &[f64; LANES],
-    ) -> [(f64, Vec2); LANES] {
-        let p = points.map(|p| p.to_vec2());
-        let u = self.newton_lanes(&p, starts, PROJECT_STEPS);
-        std::array::from_fn(|k| (u[k], self.at(u[k]) - p[k]))
-    }
-
-    /// The parameter nearest `p` by at most `steps` Newton steps from `u` (stopping at a
-    /// step below 1e-10, as [`fit::project_onto`]), and the distance there.
-    pub(super) fn project(&self, p: Vec2, u: f64, steps: usize) -> (f64, f64) {
-        let u = self.newton(p, u, steps);
-        (u, (self.at(u) - p).hypot())
-    }
-
-    /// At most `steps` Newton steps from `u` towards the parameter nearest `p`.
-    fn newton(&self, p: Vec2, u: f64, steps: usize) -> f64 {
-        let [u] = self.newton_lanes(&[p], &[u], steps);
-        u
-    }
-
-    /// [`Power::newton`] of `N` points at once, their steps interleaved: the same
-    /// operations on each, so the same bits as one by one, while the processor overlaps
-    /// the independent chains of divisions (as `fit`'s polish does).
-    fn newton_lanes<const N: usize>(
-        &self,
-        p: &[Vec2; N],
-        starts: &[f64; N],
-        steps: usize,
-    ) -> [f64; N] {
-        let [_, c1, c2, c3] = self.0;
-        let mut u = *starts;
-        let mut done = [false; N];
-        for _ in 0..steps {
-            for k in 0..N {
-                if done[k] {
-                    continue;
-                }
-                let r = self.at(u[k]) - p[k];
-                let d1 = c1 + u[k] * (2.0 * c2 + 3.0 * u[k] * c3);
-                let d2 = 2.0 * c2 + 6.0 * u[k] * c3;
-                let curvature = d1.dot(d1) + r.dot(d2);
-                if curvature <= 1e-300 {
-                    done[k] = true;
-                    continue;
-                }
-                let next = (u[k] - r.dot(d1) / curvature).clamp(0.0, 1.0);
-                done[k] = (next - u[k]).abs() < 1e-10;
-                u[k] = next;
-            }
-            if done.iter().all(|&d| d) {
-                break;
-            }
-        }
-        u
-    }
-
-    fn at(&self, u: f64) -> Vec2 {
-        let [c0, c1, c2, c3] = self.0;
-        c0 + u * (c1 + u * (c2 + u * c3))
-    }
-
-    /// The derivative at `u`.
-    fn deriv_at(&self, u: f64) -> Vec2 {
-        let [_, c1, c2, c3] = self.0;
-        c1 + u * (2.0 * c2 + 3.0 * u * c3)
-    }
-
-    /// `(1 - λ) self + λ other`, coefficient by coefficient (the blend of the two cubics).
-    pub(super) fn blend(&self, other: &Power, lambda: f64) -> Power {
-        Power(std::array::from_fn(|k| {
-            (1.0 - lambda) * self.0[k] + lambda * other.0[k]
-        }))
-    }
-
-    /// The Bézier control points of the cubic run from `u0` to `u1` (as kurbo's
-    /// `subsegment`: the end points and the end derivatives scaled to the run).
-    pub(super) fn subsegment(&self, u0: f64, u1: f64) -> [Vec2; 4] {
-        let (p0, p3) = (self.at(u0), self.at(u1));
-        let third = (u1 - u0) * (1.0 / 3.0);
-        [
-            p0,
-            p0 + third * self.deriv_at(u0),
-            p3 - third * self.deriv_at(u1),
-            p3,
-        ]
     }
 }
 
@@ -454,7 +337,7 @@ impl TrialBuffers {
             let mut sum = 0.0;
             let mut offset = 0;
             for (j, part) in parts.iter().enumerate() {
-                let poly = Power::new(&unknowns.cubic(part, j, values));
+                let poly = PowerCubic::new(&unknowns.cubic(part, j, values));
                 let [(ka, sa), (kb, sb)] = unknowns.slots[j];
                 let (da, db) = (part.start.direction, part.end.direction);
                 let count = part.samples.p.len();
@@ -480,10 +363,10 @@ impl TrialBuffers {
                         <&[Point; LANES]>::try_from(points),
                         <&[f64; LANES]>::try_from(&*params),
                     ) {
-                        projected = poly.nearest_lanes(points, starts);
+                        projected = poly.residual_lanes(points, starts, PROJECT_STEPS, NEWTON_DONE);
                     } else {
                         for ((p, &u), out) in points.iter().zip(&*params).zip(&mut projected) {
-                            *out = poly.nearest(p.to_vec2(), u);
+                            *out = poly.residual_steps(*p, u, PROJECT_STEPS, NEWTON_DONE);
                         }
                     }
                     for ((&(u, r), param), weight) in projected.iter().zip(params).zip(weights) {
