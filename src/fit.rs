@@ -40,7 +40,7 @@
 
 use kurbo::{BezPath, CubicBez, CurveFitSample, ParamCurveFit, Point, Vec2};
 
-use crate::power::PowerCubic;
+use crate::power::{PowerCubic, LANES, NEWTON_DONE};
 use crate::xspline::{Segment, XSpline};
 
 /// Curve samples per unit of parameter (one X-spline segment) when measuring a span.
@@ -68,8 +68,6 @@ const PEAK: f64 = 0.6;
 const EXACT_PEAK: f64 = 0.9;
 /// Gauss-Newton rounds when polishing a cubic's handles.
 const POLISH_ROUNDS: usize = 6;
-/// Samples whose projections the polish runs interleaved ([`PowerCubic::residual_lanes`]).
-const LANES: usize = 4;
 /// Curve samples per unit of parameter when polishing a candidate (the measure takes
 /// [`SAMPLES_PER_SEGMENT`]).
 const POLISH_SAMPLES_PER_SEGMENT: f64 = 10.0;
@@ -1191,35 +1189,23 @@ fn polish(
         let mut worst2: f64 = 0.0;
         let lawson = round >= LAWSON_AFTER;
         let inside = &samples.p[polished.clone()];
-        let (us, ws) = (&mut u[polished.clone()], &mut w[polished.clone()]);
-        let mut projected = [(0.0, Vec2::ZERO); LANES];
-        for ((points, us), ws) in inside
-            .chunks(LANES)
-            .zip(us.chunks_mut(LANES))
-            .zip(ws.chunks_mut(LANES))
-        {
-            // Parameters carry over between rounds, so a couple of steps suffice. A whole
-            // chunk's Newton steps run interleaved (see [`PowerCubic::residual_lanes`]); the sums
-            // are added in the samples' order either way.
-            if let (Ok(points), Ok(starts)) = (
-                <&[Point; LANES]>::try_from(points),
-                <&[f64; LANES]>::try_from(&*us),
-            ) {
-                projected = poly.residual_lanes(points, starts, 3, TRIAL_NEWTON_DONE);
-            } else {
-                for ((&p, &u), out) in points.iter().zip(&*us).zip(&mut projected) {
-                    *out = poly.residual_steps(p, u, 3, TRIAL_NEWTON_DONE);
-                }
-            }
-            for ((&(ui, r), u), w) in projected.iter().zip(us).zip(ws) {
+        let ws = &mut w[polished.clone()];
+        // Parameters carry over between rounds, so a couple of steps suffice (interleaved:
+        // [`PowerCubic::project_all`]); the sums are added in the samples' order.
+        let newton = (3, TRIAL_NEWTON_DONE);
+        poly.project_all(
+            &mut u[polished.clone()],
+            |k| inside[k],
+            newton,
+            |k, ui, r| {
                 let dist2 = r.hypot2();
-                *u = ui;
                 worst2 = worst2.max(dist2);
+                let w = &mut ws[k];
                 if lawson {
                     *w *= dist2.sqrt();
                 }
                 if dist2 <= 0.0 {
-                    continue;
+                    return;
                 }
                 // The Jacobian of the distance along the normal `-r / |r|`, times `|r|` (so
                 // that no root is taken): `j = g / |r|`, and the normal equations' sums are
@@ -1234,8 +1220,8 @@ fn polish(
                 c11 += scaled * g1 * g1;
                 x0 += w * g0;
                 x1 += w * g1;
-            }
-        }
+            },
+        );
         let worst = worst2.sqrt();
         if round >= LAWSON_AFTER {
             let sum: f64 = w.iter().sum();
@@ -1400,23 +1386,8 @@ pub(crate) fn project_each(
     point: impl Fn(usize) -> Point,
     steps: usize,
 ) {
-    let poly = PowerCubic::new(cubic);
-    let mut k = 0;
-    while k + LANES <= u.len() {
-        let points: [Point; LANES] = std::array::from_fn(|lane| point(k + lane));
-        let starts = std::array::from_fn(|lane| u[k + lane]);
-        for (lane, (ui, _)) in poly
-            .residual_lanes(&points, &starts, steps, 1e-10)
-            .into_iter()
-            .enumerate()
-        {
-            u[k + lane] = ui;
-        }
-        k += LANES;
-    }
-    for (k, u) in u.iter_mut().enumerate().skip(k) {
-        *u = poly.project_steps(point(k), *u, steps).0;
-    }
+    let newton = (steps, NEWTON_DONE);
+    PowerCubic::new(cubic).project_all(u, point, newton, |_, _, _| {});
 }
 
 /// The distance from `q` to the true curve near parameter `t`: `steps` Newton steps on the

@@ -48,8 +48,6 @@ const HOPELESS_LATE: f64 = 2.0;
 const MIN_HANDLE: f64 = 1e-4;
 /// Newton steps projecting a sample onto the cubic per round (parameters carry over).
 const PROJECT_STEPS: usize = 2;
-/// Samples whose projections the polish runs interleaved ([`PowerCubic::residual_lanes`]).
-const LANES: usize = 4;
 
 /// Curve samples of one smooth stretch of one master on uniform grids from its start, each
 /// grid point evaluated once per level.
@@ -351,34 +349,23 @@ impl TrialBuffers {
                     normal[kb * n + kb],
                 ];
                 let samples = &part.samples.p[1..count - 1];
-                let (params, weights) = (&mut params[inner.clone()], &mut weights[inner]);
-                let mut projected = [(0.0, Vec2::ZERO); LANES];
-                for ((points, params), weights) in samples
-                    .chunks(LANES)
-                    .zip(params.chunks_mut(LANES))
-                    .zip(weights.chunks_mut(LANES))
-                {
-                    // A whole chunk's Newton steps run interleaved (the same bits).
-                    if let (Ok(points), Ok(starts)) = (
-                        <&[Point; LANES]>::try_from(points),
-                        <&[f64; LANES]>::try_from(&*params),
-                    ) {
-                        projected = poly.residual_lanes(points, starts, PROJECT_STEPS, NEWTON_DONE);
-                    } else {
-                        for ((p, &u), out) in points.iter().zip(&*params).zip(&mut projected) {
-                            *out = poly.residual_steps(*p, u, PROJECT_STEPS, NEWTON_DONE);
-                        }
-                    }
-                    for ((&(u, r), param), weight) in projected.iter().zip(params).zip(weights) {
-                        *param = u;
+                let weights = &mut weights[inner.clone()];
+                // Interleaved ([`PowerCubic::project_all`]); summed in the samples' order.
+                let newton = (PROJECT_STEPS, NEWTON_DONE);
+                poly.project_all(
+                    &mut params[inner],
+                    |k| samples[k],
+                    newton,
+                    |k, u, r| {
                         let dist2 = r.hypot2();
                         worst2 = worst2.max(dist2);
+                        let weight = &mut weights[k];
                         if round >= LAWSON_FROM {
                             *weight *= dist2.sqrt();
                         }
                         sum += *weight;
                         if dist2 <= 0.0 {
-                            continue;
+                            return;
                         }
                         // How the distance changes with each handle length (along the residual
                         // `r / |r|`), times `|r|` so that no root is taken: `j = g / |r|`, and
@@ -394,8 +381,8 @@ impl TrialBuffers {
                         nab += scaled * ga * gb;
                         nba += scaled * gb * ga;
                         nbb += scaled * gb * gb;
-                    }
-                }
+                    },
+                );
                 (rhs[ka], rhs[kb]) = (ra, rb);
                 normal[ka * n + ka] = naa;
                 normal[ka * n + kb] = nab;
