@@ -56,10 +56,10 @@ pub(crate) const MAX_REFINE: usize = 8;
 /// Fraction of the tolerance a candidate must meet by measurement.
 pub(crate) const SAFETY: f64 = 0.96;
 /// The span search stops when the longest fitting span is known within this ratio.
-pub(crate) const SPAN_PRECISION: f64 = 1.05;
+const SPAN_PRECISION: f64 = 1.05;
 /// A fitting span whose error is at least this fraction of the goal is taken as the
 /// longest (with err ~ h^5 it is within about 1 % of it).
-pub(crate) const NEAR_GOAL: f64 = 0.5;
+const NEAR_GOAL: f64 = 0.5;
 /// Most fits tried per output cubic before falling back to halving.
 pub(crate) const MAX_TRIES: usize = 12;
 /// Sampled error peaks at least this fraction of the largest are refined between samples.
@@ -303,12 +303,10 @@ const CUSP_TURN: f64 = std::f64::consts::FRAC_PI_4;
 /// Fits the stretch `[t0, t1]` (global parameters, may exceed `n`; wrapped when evaluated),
 /// appending cubics to `path`; returns the largest measured error.
 ///
-/// Each cubic covers the longest span from the current start that fits: the search
-/// predicts the span from the error law `err ~ h^p` (p estimated from the last two trials,
-/// 5 before that), keeps the longest span that fitted and the shortest that did not, and
-/// stops when they are within [`SPAN_PRECISION`] of each other. The search runs on the
-/// polish's sampled error (a lower bound); only a candidate about to be taken is measured
-/// ([`measure`]), and one that fails the measure counts as a span that does not fit.
+/// Each cubic covers the longest span from the current start that fits ([`SpanSearch`]).
+/// The search runs on the polish's sampled error (a lower bound); only a candidate about
+/// to be taken is measured ([`measure`]), and one that fails the measure counts as a span
+/// that does not fit.
 fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &mut BezPath) -> f64 {
     fit.stretch(t0, t1);
     let (spline, goal) = (fit.spline, fit.goal);
@@ -321,29 +319,23 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
         // A stretch at most [`WHOLE_FIRST`] spans long is tried whole first: between two
         // corners the whole stretch is usually one cubic, and a first try at `guess` would
         // cost a trial and could settle on a span just short of the end (two cubics).
-        let mut h = if a == t0 && rest <= WHOLE_FIRST * guess.max(1.0) {
+        let first = if a == t0 && rest <= WHOLE_FIRST * guess.max(1.0) {
             rest
         } else {
             guess.min(rest)
         };
         // The longest span that fitted: (span, trial, error, whether it was measured).
         let mut fits: Option<(f64, Trial, f64, bool)> = None;
-        let mut fails: Option<f64> = None;
-        let mut last: Option<(f64, f64)> = None;
+        let mut search = SpanSearch::new(first, rest, goal);
         for _ in 0..MAX_TRIES {
-            let low = if h < rest {
-                LOW_EXIT * NEAR_GOAL * goal
+            let h = search.span();
+            let trial = fit.trial(a, a + h, d0, search.low());
+            let taken = search.takes(trial.sampled);
+            let err = if taken {
+                fit.measure(&trial)
             } else {
-                0.0
+                trial.sampled
             };
-            let trial = fit.trial(a, a + h, d0, low);
-            let sampled = trial.sampled;
-            let mut err = sampled;
-            // Close to the goal means close to the longest span (err ~ h^5): measure it.
-            let taken = sampled <= goal && (h >= rest || sampled >= NEAR_GOAL * goal);
-            if taken {
-                err = fit.measure(&trial);
-            }
             if err <= goal {
                 if let Some((.., old, _, _)) = fits.replace((h, trial, err, taken)) {
                     fit.recycle(old);
@@ -352,44 +344,13 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
                     break;
                 }
             } else {
-                fails = Some(h);
                 fit.recycle(trial);
             }
-            if let (Some((lo, ..)), Some(hi)) = (&fits, fails) {
-                if hi <= lo * SPAN_PRECISION {
-                    break;
-                }
-            }
-            // Error law exponent from the last two trials, else the typical value.
-            let power = match last {
-                Some((h0, e0)) if e0 > 0.0 && err > 0.0 && (h / h0 - 1.0).abs() > 1e-3 => {
-                    ((err / e0).ln() / (h / h0).ln()).clamp(2.0, 8.0)
-                }
-                _ => 5.0,
-            };
-            last = Some((h, err));
-            // Aim slightly inside the goal so the prediction lands on the fitting side.
-            let target = 0.5 * (1.0 + NEAR_GOAL) * goal;
-            let mut next = if err > 0.0 {
-                h * (target / err).powf(1.0 / power)
-            } else {
-                2.0 * h
-            };
-            next = next.min(rest);
-            let lo = fits.as_ref().map_or(0.0, |f| f.0);
-            let hi = fails.unwrap_or(f64::INFINITY);
-            if !(next > lo && next < hi) {
-                next = if hi.is_finite() {
-                    0.5 * (lo + hi)
-                } else {
-                    rest
-                };
-            }
-            if fits.is_some() && next <= lo * SPAN_PRECISION.sqrt() {
+            if search.next(err).is_none() {
                 break;
             }
-            h = next;
         }
+        let (h, fails) = (search.span(), search.fails());
         let (h, cubic, err) = match fits {
             Some((h, trial, err, true)) => (h, fit.recycle(trial), err),
             Some((h, trial, _, false)) => {
@@ -421,7 +382,7 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
         // the next first try is this span, corrected by the error law for how far its
         // error was from the search's target.
         if h < rest || h > *guess {
-            let target = 0.5 * (1.0 + NEAR_GOAL) * goal;
+            let target = SpanSearch::target(goal);
             *guess = if err > 0.0 {
                 h * (target / err)
                     .powf(GUESS_POWER)
@@ -437,6 +398,119 @@ fn fit_stretch(fit: &mut StretchFit, t0: f64, t1: f64, guess: &mut f64, path: &m
         }
     }
     max_error
+}
+
+/// The search for the longest span from a start that one cubic fits, trial by trial (the
+/// static fitter's, and the compatible fitter's on its joint error): each trial's error
+/// predicts the next span from the error law `err ~ h^p` (`p` from the last two trials, 5
+/// before that), aimed a little inside the goal, and kept between the longest span that
+/// fitted and the shortest that did not (halving between them where the prediction leaves
+/// that bracket). It stops once the two are within [`SPAN_PRECISION`] of each other, or
+/// the next prediction lies within its square root above the longest that fitted. The
+/// caller tries each span, measures those [`SpanSearch::takes`], and stops at the first
+/// measured span that fits.
+pub(crate) struct SpanSearch {
+    /// The span to try.
+    h: f64,
+    /// The rest of the stretch from the start: the longest span there is.
+    rest: f64,
+    goal: f64,
+    /// The longest span that fitted, the shortest that did not.
+    fits: Option<f64>,
+    fails: Option<f64>,
+    /// The last trial's span and error.
+    last: Option<(f64, f64)>,
+}
+
+impl SpanSearch {
+    /// A search starting with span `h` (at most `rest`) for error `goal`.
+    pub(crate) fn new(h: f64, rest: f64, goal: f64) -> SpanSearch {
+        SpanSearch {
+            h,
+            rest,
+            goal,
+            fits: None,
+            fails: None,
+            last: None,
+        }
+    }
+
+    /// The error the search aims each prediction at: between [`NEAR_GOAL`] and the goal,
+    /// so that it lands on the fitting side.
+    pub(crate) fn target(goal: f64) -> f64 {
+        0.5 * (1.0 + NEAR_GOAL) * goal
+    }
+
+    /// The span to try next (after the search, the last one tried or predicted).
+    pub(crate) fn span(&self) -> f64 {
+        self.h
+    }
+
+    /// The shortest span that did not fit, if any.
+    pub(crate) fn fails(&self) -> Option<f64> {
+        self.fails
+    }
+
+    /// The sampled error below which the trial's polish may stop ([`LOW_EXIT`]): a span
+    /// short of the rest with an error that low is too short to be taken; the whole rest
+    /// is polished fully.
+    pub(crate) fn low(&self) -> f64 {
+        if self.h < self.rest {
+            LOW_EXIT * NEAR_GOAL * self.goal
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether a trial of sampled error `sampled` is to be measured (and taken if it fits):
+    /// within the goal and either the whole rest or close to the goal, which with
+    /// `err ~ h^5` means close to the longest span.
+    pub(crate) fn takes(&self, sampled: f64) -> bool {
+        sampled <= self.goal && (self.h >= self.rest || sampled >= NEAR_GOAL * self.goal)
+    }
+
+    /// Records the error of the span just tried (measured, or sampled); the next span to
+    /// try, or `None` when the longest span that fits is known well enough.
+    pub(crate) fn next(&mut self, err: f64) -> Option<f64> {
+        let h = self.h;
+        if err <= self.goal {
+            self.fits = Some(h);
+        } else {
+            self.fails = Some(h);
+        }
+        if let (Some(lo), Some(hi)) = (self.fits, self.fails) {
+            if hi <= lo * SPAN_PRECISION {
+                return None;
+            }
+        }
+        let power = match self.last {
+            Some((h0, e0)) if e0 > 0.0 && err > 0.0 && (h / h0 - 1.0).abs() > 1e-3 => {
+                ((err / e0).ln() / (h / h0).ln()).clamp(2.0, 8.0)
+            }
+            _ => 5.0,
+        };
+        self.last = Some((h, err));
+        let mut next = if err > 0.0 {
+            h * (SpanSearch::target(self.goal) / err).powf(1.0 / power)
+        } else {
+            2.0 * h
+        };
+        next = next.min(self.rest);
+        let lo = self.fits.unwrap_or(0.0);
+        let hi = self.fails.unwrap_or(f64::INFINITY);
+        if !(next > lo && next < hi) {
+            next = if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else {
+                self.rest
+            };
+        }
+        if self.fits.is_some() && next <= lo * SPAN_PRECISION.sqrt() {
+            return None;
+        }
+        self.h = next;
+        Some(next)
+    }
 }
 
 /// `d` (a unit vector) made exactly level across `axis` (0: vertical, the tangent at an x

@@ -74,9 +74,6 @@ use span::{Handle, Part, StretchGrid, TrialBuffers};
 
 /// Largest deviation of a position's weight sum from 1.
 const WEIGHT_SUM_SLACK: f64 = 1e-9;
-/// A trial short of the stretch's end whose sampled error is below this fraction of
-/// [`fit::NEAR_GOAL`] times the goal stops polishing (the search will lengthen it).
-const LOW_EXIT: f64 = 0.8;
 /// Most rounds of refitting a span that fails verification.
 const MAX_REFITS: usize = 3;
 /// Spans are not shortened below this (in X-spline segments) for a blend's sake.
@@ -758,10 +755,8 @@ impl<'a> Fitter<'a> {
     /// Covers `[from, to]` of the smooth stretch `stretch` greedily with the longest spans
     /// that fit at the probes `checks`, appending them to `spans`.
     ///
-    /// The search is [`fit::fit_contour`]'s, on the joint error: the span predicted from
-    /// `err ~ h^p`, bracketed between the longest span that fitted and the shortest that
-    /// did not, on sampled errors; only a span about to be taken is measured. (Written
-    /// again here rather than shared: the static fitter's search is tied to one curve.)
+    /// The search is [`fit::fit_contour`]'s ([`fit::SpanSearch`]), on the joint error: on
+    /// sampled errors, and only a span about to be taken is measured.
     ///
     /// `before`: the cubics of the span that ends at `from`, if it joins there smoothly;
     /// `after`: those of the span that starts at `to`. Every span's handles are matched at
@@ -798,23 +793,16 @@ impl<'a> Fitter<'a> {
                 before: before.as_deref(),
                 after: if h >= rest { after.as_deref() } else { None },
             };
-            let mut h = guess.min(rest);
-            // The longest span that fitted (measured when it was taken) and the shortest
-            // that did not.
+            // The longest span that fitted, measured if it was taken.
             let mut fits: Option<(f64, Vec<CubicBez>, Option<Span>)> = None;
-            let mut fails: Option<f64> = None;
-            let mut last: Option<(f64, f64)> = None;
+            let mut search = fit::SpanSearch::new(guess.min(rest), rest, goal);
             for _ in 0..fit::MAX_TRIES {
-                let low = if h < rest {
-                    LOW_EXIT * fit::NEAR_GOAL * goal
-                } else {
-                    0.0
-                };
-                let (cubics, sampled) = self.trial(&mut grids, (a, a + h), stretch, ends(h), low);
+                let h = search.span();
+                let (cubics, sampled) =
+                    self.trial(&mut grids, (a, a + h), stretch, ends(h), search.low());
                 let mut err = sampled;
-                let taken = sampled <= goal && (h >= rest || sampled >= fit::NEAR_GOAL * goal);
                 let mut measured = None;
-                if taken {
+                if search.takes(sampled) {
                     let mut span = self.span(a, a + h, stretch, cubics.clone());
                     err = self.measure(&mut span, checks.iter().copied());
                     measured = Some(span);
@@ -825,42 +813,12 @@ impl<'a> Fitter<'a> {
                     if done {
                         break;
                     }
-                } else {
-                    fails = Some(h);
                 }
-                if let (Some((lo, ..)), Some(hi)) = (&fits, fails) {
-                    if hi <= lo * fit::SPAN_PRECISION {
-                        break;
-                    }
-                }
-                let power = match last {
-                    Some((h0, e0)) if e0 > 0.0 && err > 0.0 && (h / h0 - 1.0).abs() > 1e-3 => {
-                        ((err / e0).ln() / (h / h0).ln()).clamp(2.0, 8.0)
-                    }
-                    _ => 5.0,
-                };
-                last = Some((h, err));
-                let target = 0.5 * (1.0 + fit::NEAR_GOAL) * goal;
-                let mut next = if err > 0.0 {
-                    h * (target / err).powf(1.0 / power)
-                } else {
-                    2.0 * h
-                };
-                next = next.min(rest);
-                let lo = fits.as_ref().map_or(0.0, |f| f.0);
-                let hi = fails.unwrap_or(f64::INFINITY);
-                if !(next > lo && next < hi) {
-                    next = if hi.is_finite() {
-                        0.5 * (lo + hi)
-                    } else {
-                        rest
-                    };
-                }
-                if fits.is_some() && next <= lo * fit::SPAN_PRECISION.sqrt() {
+                if search.next(err).is_none() {
                     break;
                 }
-                h = next;
             }
+            let h = search.span();
             let span = match fits {
                 Some((_, _, Some(span))) => span,
                 Some((h, cubics, None)) => {
