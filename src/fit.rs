@@ -852,24 +852,12 @@ impl<'a> Cursor<'a> {
 
     /// Point and derivative at global `T`, wrapped into `[0, n)` like `XSpline::eval`.
     fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
-        let count = self.spline.segment_count();
-        let n = count as f64;
-        // Stretch parameters lie in [0, 2n); there `T - n` is exact (Sterbenz), as is the
-        // remainder `rem_euclid` computes.
-        let wrapped = if (0.0..n).contains(&big_t) {
-            big_t
-        } else if (n..2.0 * n).contains(&big_t) {
-            big_t - n
-        } else {
-            big_t.rem_euclid(n)
-        };
-        // `wrapped >= 0`: truncation is `floor`, without its library call.
-        let j = (wrapped as usize).min(count - 1);
+        let (j, t) = self.spline.locate(big_t);
         if j != self.index {
             self.index = j;
             self.segment = self.spline.segment(j);
         }
-        self.segment.eval_deriv(wrapped - j as f64)
+        self.segment.eval_deriv(t)
     }
 }
 

@@ -187,16 +187,22 @@ impl XSpline {
     }
 
     /// Splits a global parameter `T` (any real; wrapped into `[0, n)`) into segment and `t`.
-    fn locate(&self, big_t: f64) -> (usize, f64) {
-        let n = self.points.len() as f64;
-        // Inside `[0, n)` the remainder is `T` itself (exact), so skip the library call;
-        // `wrapped >= 0`, so truncation is `floor`.
+    /// The fitters' dense runs call it for every sample, so the common cases skip the
+    /// library call: inside `[0, n)` the remainder is `T` itself, and inside `[n, 2n)`
+    /// (a stretch that runs past the contour's start) `T - n`, exact there (Sterbenz), so
+    /// the same bits as `rem_euclid`.
+    pub(crate) fn locate(&self, big_t: f64) -> (usize, f64) {
+        let count = self.points.len();
+        let n = count as f64;
         let wrapped = if (0.0..n).contains(&big_t) {
             big_t
+        } else if (n..2.0 * n).contains(&big_t) {
+            big_t - n
         } else {
             big_t.rem_euclid(n)
         };
-        let j = (wrapped as usize).min(self.points.len() - 1);
+        // `wrapped >= 0`: truncation is `floor`; through `i64` the same index, more cheaply.
+        let j = (wrapped as i64 as usize).min(count - 1);
         (j, wrapped - j as f64)
     }
 

@@ -1977,23 +1977,11 @@ impl<'a> Run<'a> {
     }
 
     fn eval_deriv(&mut self, big_t: f64) -> (Point, Vec2) {
-        let count = self.spline.segment_count();
-        let n = count as f64;
-        // Span parameters lie in [0, 2n): there `T - n` is exact, and for `T >= 0`
-        // truncation is `floor` (both without a library call).
-        let wrapped = if (0.0..n).contains(&big_t) {
-            big_t
-        } else if (n..2.0 * n).contains(&big_t) {
-            big_t - n
-        } else {
-            big_t.rem_euclid(n)
-        };
-        // `wrapped` lies in `[0, n)`: through `i64` the same index, more cheaply.
-        let j = (wrapped as i64 as usize).min(count - 1);
+        let (j, t) = self.spline.locate(big_t);
         if self.current.0 != j {
             self.current = (j, Prepared::new(&self.spline.segment(j)));
         }
-        self.current.1.eval_deriv(wrapped - j as f64)
+        self.current.1.eval_deriv(t)
     }
 }
 
