@@ -216,6 +216,10 @@ pub fn import_font(
     imported.report.notes.extend(kerning.note);
     imported.font.features = substitutions.features;
     imported.report.notes.extend(substitutions.note);
+    imported
+        .report
+        .notes
+        .extend(gpos_unread_note(data, opts.face));
     anchors.give(imported.font.glyphs.iter_mut());
     imported.report.notes.extend(anchors.note);
     imported
@@ -224,6 +228,36 @@ pub fn import_font(
         .extend(anchors::outline_marks_note(&imported.font.glyphs));
     imported.report.notes.extend(source_notes);
     Ok(imported)
+}
+
+/// The GPOS features the import reads: kerning ([`kerning`]) and mark attachment
+/// ([`anchors`]).
+const GPOS_READ: [&str; 3] = ["kern", "mark", "mkmk"];
+
+/// A note naming the font's GPOS features that the import does not read, such as `cpsp`,
+/// `dist`, `abvm` or `curs` (their positions are not in the sources, so the built font
+/// lacks them); none when the font has no others. A damaged table gives no note: the
+/// kerning and anchor readers report it.
+pub(crate) fn gpos_unread_note(data: &[u8], face: u32) -> Option<String> {
+    use skrifa::raw::TableProvider;
+    let font = skrifa::FontRef::from_index(data, face).ok()?;
+    let features = font.gpos().ok()?.feature_list().ok()?;
+    let mut tags: Vec<String> = features
+        .feature_records()
+        .iter()
+        .map(|r| r.feature_tag().to_string())
+        .filter(|tag| !GPOS_READ.contains(&tag.as_str()))
+        .map(|tag| format!("`{tag}`"))
+        .collect();
+    tags.sort();
+    tags.dedup();
+    (!tags.is_empty()).then(|| {
+        format!(
+            "GPOS feature(s) not imported: {} (xglyph reads `kern`, `mark` and `mkmk`); \
+             the built font does not position glyphs by them",
+            tags.join(", ")
+        )
+    })
 }
 
 /// What [`read_font_kerning`] gives: pairs per location and a note on what it left out.

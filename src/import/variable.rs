@@ -242,6 +242,7 @@ pub fn import_variable_font(
     notes.extend(rules_note);
     notes.extend(substitutions.note);
     notes.extend(kerning.note);
+    notes.extend(super::gpos_unread_note(data, opts.face));
     notes.extend(anchors.note);
     notes.extend(outline_marks);
     let mut kerning = kerning.pairs.into_iter();

@@ -914,3 +914,42 @@ fn a_whole_font_import_reads_the_mapped_characters_only() {
         ]
     );
 }
+
+/// GPOS features other than `kern`, `mark` and `mkmk` are named in one note, since the
+/// sources cannot hold them: a font built from the `mini` fixture with a `cpsp` and a
+/// `dist` feature (fea-rs compiles them into its GPOS, next to the kerning's `kern` and
+/// the anchors' `mark`) imports with that note and no other. (DejaVu, whose GPOS has only
+/// the three, gets none: `report_matches_written_files`.)
+#[test]
+fn gpos_features_not_imported_are_named() {
+    let dir = temp_dir("gpos-unread");
+    let src = dir.join("src");
+    std::fs::create_dir_all(&src).unwrap();
+    let mini = Path::new("tests/fixtures/mini");
+    for entry in std::fs::read_dir(mini).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, src.join(path.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(
+        src.join("features.fea"),
+        "languagesystem DFLT dflt;\nlanguagesystem latn dflt;\n\
+         feature cpsp {\n    pos A <5 0 10 0>;\n} cpsp;\n\
+         feature dist {\n    pos A 3;\n} dist;\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let (code, _, stderr) =
+        crate::common::cli::xglyph(&["build", src.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let ttf = out.join("MiniTest-Regular.ttf");
+    let data = std::fs::read(&ttf).unwrap();
+    let imp = import_font(&ttf, &data, &ImportOptions::default()).expect("the built font imports");
+    assert_eq!(
+        imp.report.notes,
+        [
+            "GPOS feature(s) not imported: `cpsp`, `dist` (xglyph reads `kern`, `mark` and \
+          `mkmk`); the built font does not position glyphs by them"
+        ]
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
